@@ -1,0 +1,187 @@
+"""Planning models: ASP files or text in the vocabulary of encodings/model.lp."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Iterable, Sequence
+
+import clingo
+import clingo.script
+from clingo import ast
+from clorm import FactBase, unify
+
+from ethasp.errors import InputError
+from ethasp.resources import encoding
+from ethasp.vocabulary import Error
+
+
+@dataclass(frozen=True)
+class Source:
+    """One piece of a model: a file, or text with a name for messages."""
+
+    name: str
+    text: str
+    path: Path | None = None
+
+
+class Messages:
+    """Collects clingo's messages; its errors become one-line InputErrors."""
+
+    def __init__(self) -> None:
+        self.errors: list[str] = []
+
+    def __call__(self, code: clingo.MessageCode, message: str) -> None:
+        first = message.split("\n", 1)[0]
+        if code == clingo.MessageCode.RuntimeError or ": error:" in first:
+            self.errors.append(" ".join(message.split()))
+
+    def raise_first(self, fallback: str) -> None:
+        raise InputError(self.errors[0] if self.errors else fallback)
+
+
+def _describe(problem: clingo.Symbol) -> str:
+    """One sentence for an error/1 atom of check.lp."""
+    name, args = problem.name, problem.arguments
+    if name == "undeclared_variable":
+        return f"unknown variable {args[0]} in {args[1]} (declare it with variable({args[0]}))"
+    if name == "undeclared_action":
+        return f"unknown action {args[0]} in {args[1]} (declare it with action({args[0]}))"
+    if name == "bad_value":
+        return f"truth value must be true or false in {args[0]}"
+    if name == "not_integer":
+        return f"utility must be an integer in {args[0]}"
+    if name == "ambiguous_utility":
+        return f"two different utilities for one element, one of them {args[0]}"
+    if name == "contradicting_effects":
+        return f"action {args[0]} sets variable {args[1]} both to true and to false"
+    if name == "no_goal":
+        return "the model has no goal (add goal(V,true) or goal(V,false) facts)"
+    return str(problem)
+
+
+@dataclass
+class Model:
+    """A planning model made of ASP sources (files or text).
+
+    Build one with :meth:`load` (files) or :meth:`from_string`; both check that
+    the sources parse, refuse ``#script`` blocks unless ``allow_scripts``, and
+    check the model with ``encodings/check.lp``.
+    """
+
+    sources: list[Source] = field(default_factory=list)
+    allow_scripts: bool = False
+
+    # -- construction ---------------------------------------------------------
+
+    @classmethod
+    def load(cls, paths: Iterable[str | Path], allow_scripts: bool = False,
+             check: bool = True) -> "Model":
+        """Load a model from ASP files."""
+        sources = []
+        for path in map(Path, paths):
+            if not path.is_file():
+                raise InputError(f"{path}: no such file")
+            try:
+                text = path.read_text()
+            except (OSError, UnicodeDecodeError) as exc:
+                raise InputError(f"{path}: cannot be read ({exc})") from None
+            sources.append(Source(str(path), text, path))
+        if not sources:
+            raise InputError("no model file given")
+        return cls._build(sources, allow_scripts, check)
+
+    @classmethod
+    def from_string(cls, text: str, name: str = "<model>", allow_scripts: bool = False,
+                    check: bool = True) -> "Model":
+        """A model from ASP text."""
+        return cls._build([Source(name, text)], allow_scripts, check)
+
+    @classmethod
+    def _build(cls, sources: list[Source], allow_scripts: bool, check: bool) -> "Model":
+        model = cls(sources, allow_scripts)
+        for source in sources:
+            model._parse(source)
+        if check:
+            model.check()
+        return model
+
+    def _parse(self, source: Source) -> None:
+        messages = Messages()
+        scripts: list[str] = []
+
+        def visit(statement):
+            if statement.ast_type == ast.ASTType.Script:
+                begin = statement.location.begin
+                scripts.append(f"{begin.filename}:{begin.line}")
+
+        try:
+            if source.path is not None:
+                ast.parse_files([str(source.path)], visit, logger=messages)
+            else:
+                ast.parse_string(source.text, visit, logger=messages)
+        except RuntimeError:
+            messages.raise_first(f"{source.name}: syntax error")
+        if scripts and not self.allow_scripts:
+            raise InputError(
+                f"{scripts[0]}: the model contains a #script block, which would run code; "
+                "it is refused (pass --allow-scripts to run it)")
+
+    # -- use --------------------------------------------------------------------
+
+    def control(self, arguments: Sequence[str] = (), messages: Messages | None = None) -> clingo.Control:
+        """A fresh clingo control object holding the model (not yet grounded)."""
+        if self.allow_scripts:
+            clingo.script.enable_python()
+        ctl = clingo.Control(list(arguments), logger=messages or Messages(), message_limit=20)
+        for source in self.sources:
+            if source.path is not None:
+                ctl.load(str(source.path))
+            else:
+                ctl.add("base", [], source.text)
+        return ctl
+
+    def solve_once(self, encodings: Sequence[str], facts: Iterable = (),
+                   arguments: Sequence[str] = ()) -> list[clingo.Symbol]:
+        """Ground and solve model + encodings + facts; the shown atoms of the first model.
+
+        For deterministic programs (checks, traces); raises InputError on
+        grounding errors and returns [] if there is no model.
+        """
+        messages = Messages()
+        ctl = self.control(arguments, messages)
+        try:
+            for name in encodings:
+                ctl.load(str(encoding(name)))
+            fact_text = "".join(f"{fact}.\n" for fact in facts)
+            if fact_text:
+                ctl.add("base", [], fact_text)
+            ctl.ground([("base", [])])
+        except RuntimeError:
+            messages.raise_first("grounding failed")
+        shown: list[clingo.Symbol] = []
+        with ctl.solve(yield_=True) as handle:
+            for answer in handle:
+                shown = list(answer.symbols(shown=True))
+                break
+        return shown
+
+    def check(self) -> None:
+        """Raise InputError naming the first defect found by check.lp."""
+        symbols = self.solve_once(["model.lp", "check.lp"])
+        errors = sorted(unify([Error], symbols).query(Error).all(), key=lambda e: str(e.problem))
+        if errors:
+            names = ", ".join(source.name for source in self.sources)
+            raise InputError(f"{names}: {_describe(errors[0].problem.symbol)}")
+
+    def facts(self, predicates) -> FactBase:
+        """The model's facts of the given clorm predicates (its rules grounded)."""
+        messages = Messages()
+        ctl = self.control(messages=messages)
+        try:
+            ctl.load(str(encoding("model.lp")))
+            ctl.ground([("base", [])])
+        except RuntimeError:
+            messages.raise_first("grounding failed")
+        symbols = [atom.symbol for atom in ctl.symbolic_atoms if atom.is_fact]
+        return unify(list(predicates), symbols)

@@ -1,0 +1,75 @@
+"""Plans: sequences of action terms, read from and written as text."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Iterable, Iterator
+
+import clingo
+from clorm import Raw
+
+from ethasp.errors import InputError
+from ethasp.vocabulary import Occurs
+
+
+def split_terms(text: str) -> list[str]:
+    """Split "a1 push(man, bridge) a3" at spaces outside parentheses."""
+    terms, depth, current = [], 0, []
+    for char in text:
+        if char in "([":
+            depth += 1
+        elif char in ")]":
+            depth -= 1
+        if char.isspace() and depth == 0:
+            if current:
+                terms.append("".join(current))
+                current = []
+            continue
+        current.append(char)
+    if current:
+        terms.append("".join(current))
+    return terms
+
+
+def parse_action(text: str) -> clingo.Symbol:
+    """An action term, e.g. ``push(man)``."""
+    try:
+        symbol = clingo.parse_term(text)
+    except RuntimeError:
+        raise InputError(f"not an action term: {text!r}") from None
+    return symbol
+
+
+@dataclass(frozen=True)
+class Plan:
+    """A sequence of actions (clingo terms); the first action is step 1."""
+
+    actions: tuple[clingo.Symbol, ...]
+
+    @classmethod
+    def parse(cls, text: str) -> "Plan":
+        """Read actions separated by spaces: ``"a1 push(man) a3"``."""
+        return cls(tuple(parse_action(term) for term in split_terms(text)))
+
+    @classmethod
+    def from_occurs(cls, atoms: Iterable[Occurs]) -> "Plan":
+        """The plan of a set of ``occurs(A,T)`` atoms."""
+        ordered = sorted(atoms, key=lambda atom: atom.step)
+        return cls(tuple(atom.action.symbol for atom in ordered))
+
+    def facts(self) -> list[Occurs]:
+        """The plan as ``occurs(A,T)`` facts."""
+        return [Occurs(action=Raw(action), step=index)
+                for index, action in enumerate(self.actions, start=1)]
+
+    def __len__(self) -> int:
+        return len(self.actions)
+
+    def __iter__(self) -> Iterator[clingo.Symbol]:
+        return iter(self.actions)
+
+    def to_list(self) -> list[str]:
+        return [str(action) for action in self.actions]
+
+    def __str__(self) -> str:
+        return " ".join(self.to_list())

@@ -1,0 +1,86 @@
+"""Typed clorm predicates for the ASP vocabulary that crosses into Python.
+
+The planning model's own vocabulary (``variable/1`` ... ``utility/3``, see
+``encodings/model.lp``) and the atoms that the encodings report back.  Terms
+that can be any ground term (action and variable names) are kept as
+:class:`clorm.Raw`, so ``push(man)`` stays a term.
+"""
+
+from clorm import ConstantStr, Predicate, Raw
+
+
+# -- the planning model -------------------------------------------------------
+
+class Variable(Predicate, name="variable"):
+    name: Raw
+
+
+class Action(Predicate, name="action"):
+    name: Raw
+
+
+class Pre(Predicate, name="pre"):
+    action: Raw
+    variable: Raw
+    value: ConstantStr
+
+
+class Eff(Predicate, name="eff"):
+    action: Raw
+    variable: Raw
+    value: ConstantStr
+
+
+class Init(Predicate, name="init"):
+    variable: Raw
+
+
+class Goal(Predicate, name="goal"):
+    variable: Raw
+    value: ConstantStr
+
+
+# -- well-formedness (check.lp) -----------------------------------------------
+
+class Error(Predicate, name="error"):
+    problem: Raw
+
+
+# -- plans and traces (transition.lp, trace.lp) -------------------------------
+
+class Occurs(Predicate, name="occurs"):
+    action: Raw
+    step: int
+
+
+class Invalid(Predicate, name="invalid"):
+    problem: Raw
+
+
+class Unmet(Predicate, name="unmet"):
+    step: int
+    action: Raw
+    variable: Raw
+    value: ConstantStr
+
+
+class Failure(Predicate, name="failure"):
+    step: int
+
+
+class Final(Predicate, name="final"):
+    variable: Raw
+    value: ConstantStr
+
+
+class UnmetGoal(Predicate, name="unmet_goal"):
+    variable: Raw
+    value: ConstantStr
+
+
+class IsPlan(Predicate, name="plan"):
+    pass
+
+
+class UnreachableGoal(Predicate, name="unreachable_goal"):
+    pass

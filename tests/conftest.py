@@ -1,0 +1,39 @@
+"""Shared test helpers: run encodings through clingo and read answer sets."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import clingo
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+ENCODINGS = ROOT / "encodings"
+MODELS = ROOT / "asp"
+
+os.environ.setdefault("HYPOTHESIS_PROFILE", "ci")
+
+
+def answer_sets(files, program: str = "", arguments=("0",)) -> list[set[str]]:
+    """All answer sets (shown atoms, as strings) of encodings plus a program."""
+    ctl = clingo.Control(list(arguments), logger=lambda code, message: None)
+    for name in files:
+        ctl.load(str(ENCODINGS / name) if not Path(name).is_absolute() else str(name))
+    if program:
+        ctl.add("base", [], program)
+    ctl.ground([("base", [])])
+    result: list[set[str]] = []
+    ctl.solve(on_model=lambda model: result.append({str(s) for s in model.symbols(shown=True)}))
+    return result
+
+
+def only_answer(files, program: str = "") -> set[str]:
+    answers = answer_sets(files, program)
+    assert len(answers) == 1, answers
+    return answers[0]
+
+
+@pytest.fixture
+def trolley_path() -> Path:
+    return MODELS / "trolley.lp"
