@@ -9,9 +9,12 @@ from pathlib import Path
 from typing import Sequence
 
 from ethasp.errors import InputError
+from ethasp.judgement import JudgementReport, judge, query
+from ethasp.reasons import DEFAULT_LIMIT as DEFAULT_REASONS_LIMIT
 from ethasp.model import Model
 from ethasp.plan import Plan
 from ethasp.resources import MODELS
+from ethasp.restriction import plan_with_principles
 from ethasp.search import DEFAULT_MAX_HORIZON, FOUND, find_plan
 from ethasp.validation import validate
 
@@ -26,12 +29,17 @@ eff/3, init/1, goal/2, utility/2, utility/3; the name of a bundled model
 
 
 def model_paths(names: Sequence[str]) -> list[Path]:
-    """Model files: paths as given, or else the bundled model of that name."""
+    """Model files: paths as given, or else the bundled model of that name.
+
+    Bundled PDDL files and their annotations are in the folder ``pddl``.
+    """
     paths = []
     for name in names:
         path = Path(name)
         if not path.exists():
             bundled = MODELS / (name if name.endswith(".lp") else name + ".lp")
+            if "/" not in name and not bundled.is_file():
+                bundled = MODELS / "pddl" / name
             if "/" not in name and bundled.is_file():
                 path = bundled
         paths.append(path)
@@ -50,14 +58,18 @@ def emit(args: argparse.Namespace, data: dict, text: str) -> None:
 
 def command_plan(args: argparse.Namespace) -> int:
     model = load_model(args)
+    if args.principle:
+        return command_plan_permissible(args, model)
     result = find_plan(model, args.max_horizon, args.time_limit, all_plans=args.all)
     if result.status == FOUND:
         if args.all:
             lines = [f"{len(result.plans)} shortest plans of {result.horizon} steps:"]
-            lines += [f"  {plan}" if len(plan) else "  (empty plan)" for plan in result.plans]
+            lines += [f"  {model.naming.actions(plan)}" if len(plan) else "  (empty plan)"
+                      for plan in result.plans]
             text = "\n".join(lines)
         else:
-            text = (f"plan of {result.horizon} steps: {result.plan}" if len(result.plan)
+            text = (f"plan of {result.horizon} steps: {model.naming.actions(result.plan)}"
+                    if len(result.plan)
                     else "plan of 0 steps: the goal holds initially")
     elif result.status == "none":
         text = f"no plan exists: {result.proof}"
@@ -67,21 +79,127 @@ def command_plan(args: argparse.Namespace) -> int:
     return 0
 
 
+def command_plan_permissible(args: argparse.Namespace, model: Model) -> int:
+    """ethasp plan --principle: a shortest HPlan, then its judgement."""
+    result = plan_with_principles(model, args.principle, args.max_horizon, args.time_limit,
+                                  all_plans=args.all)
+    under = " and ".join(result.principles)
+    data = result.to_json()
+    if result.status == FOUND:
+        shown = [model.naming.actions(plan) if len(plan) else "(empty plan)"
+                 for plan in (result.plans if args.all else [result.plan])]
+        head = f"plan of {result.horizon} steps permissible under {under}"
+        lines = ([f"{len(shown)} shortest plans of {result.horizon} steps permissible under "
+                  f"{under}:"] + [f"  {plan}" for plan in shown] if args.all
+                 else [f"{head}: {shown[0]}"])
+        # The judgement of the (first) HPlan, as ethasp judge prints it, minus its plan line.
+        report = judge(model, result.plan, result.principles, args.max_horizon, args.time_limit)
+        data["judgements"] = report.to_json()["judgements"]
+        lines += _judgement_text(report, model).split("\n")[1:]
+    elif result.status == "none":
+        lines = [f"no permissible plan exists: {result.proof}"]
+    else:
+        lines = [f"bounded: {result.proof}; a permissible plan may still exist"]
+    if result.status != FOUND and result.best is not None and result.best.utility is not None:
+        lines.append(f"best reachable utility: {result.best.utility} ({result.best.status}: "
+                     f"{result.best.proof})")
+    emit(args, data, "\n".join(lines))
+    return 0
+
+
 def command_validate(args: argparse.Namespace) -> int:
     model = load_model(args)
     validation = validate(model, Plan.parse(args.plan))
     if validation.valid:
-        text = f"valid plan of {len(validation.plan)} steps; final state: {' '.join(validation.final_state)}"
+        text = (f"valid plan of {len(validation.plan)} steps; "
+                f"final state: {model.naming.facts(validation.final_state)}")
     else:
-        text = f"not a plan: {validation.message()}"
+        text = f"not a plan: {validation.message(model.naming)}"
     emit(args, validation.to_json(), text)
     return 0 if validation.valid else 2
+
+
+def _judgement_text(report: JudgementReport, model: Model) -> str:
+    naming = model.naming
+    lines = [f"plan: {naming.actions(report.plan)}" if len(report.plan) else "plan: (empty)",
+             f"final state: {naming.facts(report.final_state)} (utility {report.utility})"]
+    for judgement in report.judgements:
+        verdict = "permissible" if judgement.permissible else "impermissible"
+        if judgement.status == "bounded":
+            verdict = f"{verdict} as far as searched (bounded, not proven)"
+        else:
+            verdict = f"{verdict} (proven)"
+        best = judgement.best_reachable
+        if best is None:
+            lines.append(f"{judgement.principle}: {verdict}")
+            continue
+        lines.append(f"{judgement.principle}: {verdict}: {judgement.proof}")
+        if best.state is not None:
+            steps = "step" if best.horizon == 1 else "steps"
+            lines.append(f"  best reachable state found: {naming.facts(best.state)} "
+                         f"(utility {best.utility}, within {best.horizon} {steps}; "
+                         f"best: {best.status})")
+    return "\n".join(lines)
+
+
+def _given_plan(args: argparse.Namespace) -> Plan:
+    """The plan of --plan, or of --plan-file (for plans too long for a command line)."""
+    if args.plan_file is None:
+        return Plan.parse(args.plan)
+    try:
+        return Plan.parse(Path(args.plan_file).read_text())
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(f"{args.plan_file}: cannot be read ({exc})") from None
+
+
+def _add_plan_arguments(parser: argparse.ArgumentParser) -> None:
+    given = parser.add_mutually_exclusive_group(required=True)
+    given.add_argument("--plan", metavar='"A1 A2 ..."',
+                       help="the plan: action terms separated by spaces")
+    given.add_argument("--plan-file", metavar="FILE",
+                       help="read the plan from FILE (actions separated by white space)")
+
+
+def _explanation_text(report: JudgementReport) -> list[str]:
+    """Each judgement's explanation, then its reasons (ethasp/reasons.py)."""
+    lines = []
+    for judgement in report.judgements:
+        explanation = judgement.explanation
+        if explanation is None:
+            continue
+        more = " (limit reached; more may exist)" if explanation.truncated else ""
+        lines.append(f"{judgement.principle}: {explanation.text}")
+        for kind, reasons in (("necessary", explanation.necessary_reasons),
+                              ("sufficient", explanation.sufficient_reasons)):
+            shown = "; ".join("{" + ", ".join(reason) + "}" for reason in reasons) or "none"
+            lines.append(f"  {kind} reasons: {shown}{more}")
+    return lines
+
+
+def command_judge(args: argparse.Namespace) -> int:
+    model = load_model(args)
+    if args.reasons_limit < 0:
+        raise InputError("--reasons-limit must be at least 0")
+    report = judge(model, _given_plan(args), args.principle, args.max_horizon,
+                   args.time_limit, args.reasons_limit)
+    lines = _explanation_text(report) + [_judgement_text(report, model)]
+    emit(args, report.to_json(), "\n".join(lines))
+    return 0
+
+
+def command_query(args: argparse.Namespace) -> int:
+    model = load_model(args)
+    result = query(model, _given_plan(args), args.formula)
+    emit(args, result.to_json(), "true" if result.value else "false")
+    return 0
 
 
 # -- parser -------------------------------------------------------------------
 
 def _add_model_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("model", nargs="+", metavar="MODEL", help="model files (ASP)")
+    parser.add_argument("model", nargs="+", metavar="MODEL",
+                        help="model files (ASP), or a PDDL domain and problem (.pddl) "
+                             "with ASP annotation files")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.add_argument("--allow-scripts", action="store_true",
                         help="run #script blocks in model files (refused by default)")
@@ -106,6 +224,9 @@ def build_parser() -> argparse.ArgumentParser:
     _add_model_arguments(plan)
     _add_search_arguments(plan)
     plan.add_argument("--all", action="store_true", help="list all shortest plans")
+    plan.add_argument("--principle", action="append", metavar="NAME",
+                      help="find a plan permissible under the principle NAME (deontology, "
+                           "utilitarianism or do-no-harm; repeat it to require several)")
     plan.set_defaults(run=command_plan)
 
     check = commands.add_parser(
@@ -114,8 +235,37 @@ def build_parser() -> argparse.ArgumentParser:
                     "or the goal facts left unmet. Exit code 0 for a plan, 2 otherwise.")
     _add_model_arguments(check)
     check.add_argument("--plan", required=True, metavar='"A1 A2 ..."',
-                       help="action terms separated by spaces, e.g. \"pull\" or \"go(a,b) pick(x)\"")
+                       help="action terms separated by spaces, e.g. \"pull\" or \"go(a,b) pick(x)\", "
+                            "or PDDL actions, e.g. \"(go a b) (pick x)\"")
     check.set_defaults(run=command_validate)
+
+    judging = commands.add_parser(
+        "judge", help="judge a plan under ethical principles",
+        description="Judge a plan under ethical principles (default: all of "
+                    "encodings/principles/). Status: proven, or bounded (utilitarianism "
+                    "compared the final state only with the states searched).")
+    _add_model_arguments(judging)
+    _add_plan_arguments(judging)
+    judging.add_argument("--principle", action="append", metavar="NAME",
+                         help="deontology, do-no-harm or utilitarianism (repeatable)")
+    judging.add_argument("--max-horizon", type=int, default=DEFAULT_MAX_HORIZON, metavar="N",
+                         help="search a best reachable state among the states reachable in "
+                              f"at most N steps (default {DEFAULT_MAX_HORIZON})")
+    judging.add_argument("--time-limit", type=float, default=None, metavar="SECONDS",
+                         help="stop that search after SECONDS and report 'bounded'")
+    judging.add_argument("--reasons-limit", type=int, default=DEFAULT_REASONS_LIMIT, metavar="N",
+                         help="compute at most N sufficient and N necessary reasons per "
+                              f"judgement (default {DEFAULT_REASONS_LIMIT}; 0: no explanations)")
+    judging.set_defaults(run=command_judge)
+
+    asking = commands.add_parser(
+        "query", help="evaluate a formula of the moral action query language",
+        description="Evaluate a formula of the language L for a plan and print true or "
+                    "false, e.g. 'Caused(one_will_die) and not Bad(pull)'.")
+    _add_model_arguments(asking)
+    asking.add_argument("formula", metavar="FORMULA", help="the formula (see the README)")
+    _add_plan_arguments(asking)
+    asking.set_defaults(run=command_query)
     return parser
 
 

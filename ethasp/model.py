@@ -12,6 +12,7 @@ from clingo import ast
 from clorm import FactBase, unify
 
 from ethasp.errors import InputError
+from ethasp.naming import Naming, PddlNaming
 from ethasp.resources import encoding
 from ethasp.vocabulary import Error
 
@@ -71,15 +72,28 @@ class Model:
 
     sources: list[Source] = field(default_factory=list)
     allow_scripts: bool = False
+    naming: Naming = field(default_factory=Naming)
 
     # -- construction ---------------------------------------------------------
 
     @classmethod
     def load(cls, paths: Iterable[str | Path], allow_scripts: bool = False,
              check: bool = True) -> "Model":
-        """Load a model from ASP files."""
-        sources = []
-        for path in map(Path, paths):
+        """Load a model from ASP files, or a PDDL domain and problem plus ASP files.
+
+        Files ending in ``.pddl`` are translated into rules (see
+        :mod:`ethasp.pddl`); the model then shows actions in PDDL form.
+        """
+        paths = [Path(path) for path in paths]
+        sources, naming = [], Naming()
+        if any(path.suffix.lower() == ".pddl" for path in paths):
+            from ethasp.pddl import split_paths, translate_files
+
+            pddl_paths, paths = split_paths(paths)
+            program, name = translate_files(pddl_paths)
+            sources.append(Source(name, encoding("pddl.lp").read_text() + program))
+            naming = PddlNaming()
+        for path in paths:
             if not path.is_file():
                 raise InputError(f"{path}: no such file")
             try:
@@ -89,7 +103,9 @@ class Model:
             sources.append(Source(str(path), text, path))
         if not sources:
             raise InputError("no model file given")
-        return cls._build(sources, allow_scripts, check)
+        model = cls._build(sources, allow_scripts, check)
+        model.naming = naming
+        return model
 
     @classmethod
     def from_string(cls, text: str, name: str = "<model>", allow_scripts: bool = False,

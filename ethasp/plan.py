@@ -9,6 +9,7 @@ import clingo
 from clorm import Raw
 
 from ethasp.errors import InputError
+from ethasp.naming import pddl_atom_to_term
 from ethasp.vocabulary import Occurs
 
 
@@ -32,7 +33,9 @@ def split_terms(text: str) -> list[str]:
 
 
 def parse_action(text: str) -> clingo.Symbol:
-    """An action term, e.g. ``push(man)``."""
+    """An action term, e.g. ``push(man)``, or a PDDL action, e.g. ``(push man)``."""
+    if text.startswith("("):
+        return pddl_atom_to_term(text)
     try:
         symbol = clingo.parse_term(text)
     except RuntimeError:
@@ -48,7 +51,7 @@ class Plan:
 
     @classmethod
     def parse(cls, text: str) -> "Plan":
-        """Read actions separated by spaces: ``"a1 push(man) a3"``."""
+        """Read actions separated by spaces: ``"a1 push(man) a3"`` or ``"(a1) (push man)"``."""
         return cls(tuple(parse_action(term) for term in split_terms(text)))
 
     @classmethod

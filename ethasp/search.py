@@ -173,6 +173,36 @@ class Search:
             self.ctl.configuration.solve.models = saved
         return satisfiable
 
+    # -- single horizons (for drivers that choose their own horizons) -----------
+
+    def solve_at(self, horizon: int, deadline: float | None = None
+                 ) -> tuple[bool | None, list[clingo.Symbol], list[int] | None]:
+        """Ground up to ``horizon`` and solve with that horizon, once.
+
+        Returns (satisfiable, or None if the deadline interrupted the solve;
+        the shown atoms of the last model found, an optimal one when
+        ``optimize`` and not interrupted; that model's cost).  The horizon's
+        external is released afterwards, so every horizon is solved at most once.
+        """
+        self._ground_to(horizon)
+        self.ctl.configuration.solve.models = "0" if self.optimize else "1"
+        query = clingo.Function(CHECK_MARKER, [clingo.Number(horizon)])
+        self.ctl.assign_external(query, True)
+        try:
+            satisfiable, models, cost = self._solve(self.assumptions, deadline, False)
+        finally:
+            self.ctl.release_external(query)
+        return satisfiable, (models[0] if models else []), cost
+
+    def simple_path_exists(self, length: int, deadline: float | None = None) -> bool | None:
+        """Is there a path of ``length`` actions without a repeated state?
+
+        None if the deadline interrupted the check.  Call it between solves at
+        single horizons (no horizon external may be true meanwhile).
+        """
+        self._ground_to(length)
+        return self._simple_path_exists(length, deadline)
+
     # -- the search -------------------------------------------------------------
 
     def run(self, max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,

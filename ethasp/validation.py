@@ -9,6 +9,7 @@ from clorm import unify
 
 from ethasp.errors import InputError
 from ethasp.model import Model
+from ethasp.naming import Naming
 from ethasp.plan import Plan
 from ethasp.vocabulary import Failure, Final, Invalid, IsPlan, Unmet, UnmetGoal
 
@@ -39,14 +40,19 @@ class Validation:
     unmet_goals: list[str] = field(default_factory=list)
     final_state: list[str] = field(default_factory=list)
 
-    def message(self) -> str:
-        """One line saying why the sequence is not a plan ('' if it is one)."""
+    def message(self, naming: Naming = Naming()) -> str:
+        """One line saying why the sequence is not a plan ('' if it is one).
+
+        ``naming`` shows actions and facts (a model's :attr:`Model.naming`).
+        """
         if self.valid:
             return ""
         if self.failure_step is not None:
-            return (f"step {self.failure_step}: action {self.failure_action} is not applicable: "
-                    f"precondition {', '.join(self.unmet_preconditions)} does not hold")
-        return f"the goal is not reached: {', '.join(self.unmet_goals)} does not hold at the end"
+            return (f"step {self.failure_step}: action {naming.action(self.failure_action)} "
+                    f"is not applicable: precondition "
+                    f"{', '.join(map(naming.fact, self.unmet_preconditions))} does not hold")
+        return (f"the goal is not reached: {', '.join(map(naming.fact, self.unmet_goals))} "
+                "does not hold at the end")
 
     def to_json(self) -> dict:
         return {
@@ -71,7 +77,11 @@ def _problem(problem: clingo.Symbol) -> str:
 
 def validate(model: Model, plan: Plan) -> Validation:
     """Validate a plan; raise InputError if it names unknown actions."""
-    symbols = model.solve_once(TRACE, plan.facts())
+    return read_validation(plan, model.solve_once(TRACE, plan.facts()))
+
+
+def read_validation(plan: Plan, symbols: list[clingo.Symbol]) -> Validation:
+    """The validation of a plan from the shown atoms of a program with trace.lp."""
     facts = unify([Invalid, Unmet, Failure, Final, UnmetGoal, IsPlan], symbols)
     invalid = sorted(str(_problem(atom.problem.symbol)) for atom in facts.query(Invalid).all())
     if invalid:

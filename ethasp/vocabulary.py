@@ -84,3 +84,39 @@ class IsPlan(Predicate, name="plan"):
 
 class UnreachableGoal(Predicate, name="unreachable_goal"):
     pass
+
+
+# -- judgements and the language L (language.lp, judge.lp, search/best.lp) ----
+
+class Verdict(Predicate, name="verdict"):
+    name: Raw
+    value: ConstantStr
+
+
+class UtilityOfFinal(Predicate, name="utility_of_final"):
+    utility: int
+
+
+class FormulaOf(Predicate, name="formula"):
+    name: Raw
+    formula: Raw
+
+
+class Conj(Predicate, name="conj"):
+    name: Raw
+    variable: Raw
+    value: ConstantStr
+
+
+class Alternative(Predicate, name="alternative"):
+    name: Raw
+
+
+class AtHorizon(Predicate, name="at_horizon"):
+    variable: Raw
+    value: ConstantStr
+    time: int
+
+
+class UpperBound(Predicate, name="upper_bound"):
+    bound: int

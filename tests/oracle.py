@@ -72,6 +72,73 @@ class RandomModel:
     def state_utility(self, state: frozenset) -> int:
         return sum(self.fact_utility.get((var, var in state), 0) for var in self.variables)
 
+    # -- the ethical principles (Definitions 1-3 of the paper) ------------------
+
+    def bad_action(self, action: str) -> bool:
+        return self.action_utility.get(action, 0) < 0
+
+    def bad_fact(self, var: str, value: bool) -> bool:
+        return self.fact_utility.get((var, value), 0) < 0
+
+    def caused(self, plan: list[str]) -> set[tuple[str, bool]]:
+        """Caused(p): p holds in the final state and some action of the plan has p as effect."""
+        final = self.run(plan)
+        effects = {(var, value) for action in plan for var, value in self.eff[action].items()}
+        return {(var, value) for var, value in effects if (var in final) == value}
+
+    def best_reachable_utility(self) -> int:
+        return max(self.state_utility(state) for state in self.distances())
+
+    def permissible(self, plan: list[str], principle: str) -> bool:
+        """Whether a plan is permissible under a principle, from the definitions."""
+        if principle == "deontology":
+            return not any(self.bad_action(action) for action in plan)
+        if principle == "do-no-harm":
+            return not any(self.bad_fact(var, value) for var, value in self.caused(plan))
+        if principle == "utilitarianism":
+            return self.state_utility(self.run(plan)) >= self.best_reachable_utility()
+        raise ValueError(principle)
+
+    def shortest_permissible_length(self, principles) -> int | None:
+        """The length of a shortest plan permissible under all the principles, or None.
+
+        Breadth-first search over pairs (state, bad facts some action so far
+        had as effect); the pairs are finitely many, so None means no
+        permissible plan of any length.
+        """
+        principles = set(principles)
+        best = self.best_reachable_utility() if "utilitarianism" in principles else None
+
+        def accepted(state, effected) -> bool:
+            if not self.is_goal(state):
+                return False
+            if best is not None and self.state_utility(state) < best:
+                return False
+            if "do-no-harm" in principles:
+                return not any((var in state) == value for var, value in effected)
+            return True
+
+        start = (self.init, frozenset())
+        dist = {start: 0}
+        queue = deque([start])
+        while queue:
+            node = queue.popleft()
+            state, effected = node
+            if accepted(state, effected):
+                return dist[node]
+            for action in self.actions:
+                if not self.applicable(state, action):
+                    continue
+                if "deontology" in principles and self.bad_action(action):
+                    continue
+                succ = (self.apply(state, action),
+                        effected | {(var, value) for var, value in self.eff[action].items()
+                                    if self.bad_fact(var, value)})
+                if succ not in dist:
+                    dist[succ] = dist[node] + 1
+                    queue.append(succ)
+        return None
+
     # -- ASP ------------------------------------------------------------------
 
     def to_asp(self) -> str:
@@ -105,3 +172,95 @@ def random_model(seed: int, max_variables: int = 4, max_actions: int = 4) -> Ran
     fact_utility = {(v, b): rng.randint(-3, 3) for v in variables for b in (True, False)
                     if rng.random() < 0.5}
     return RandomModel(variables, actions, pre, eff, init, goal, action_utility, fact_utility)
+
+
+# -- the language L, read literally (section "Moral Action Query Language") ------
+#
+# Formulas are tuples: ("good"|"bad"|"neutral", element), with element
+# ("action", a) or ("fact", v, value); ("caused", v, value);
+# ("geq", [(v, value), ...], [(v, value), ...]); ("not", f); ("and"|"or"|"imp", f, g).
+
+def element_utility(spec: RandomModel, element: tuple) -> int:
+    if element[0] == "action":
+        return spec.action_utility.get(element[1], 0)
+    return spec.fact_utility.get((element[1], element[2]), 0)
+
+
+def holds(spec: RandomModel, plan: list[str], formula: tuple) -> bool:
+    """<model, plan> |= formula, from the paper's definitions."""
+    kind = formula[0]
+    if kind == "good":
+        return element_utility(spec, formula[1]) > 0
+    if kind == "bad":
+        return element_utility(spec, formula[1]) < 0
+    if kind == "neutral":
+        return element_utility(spec, formula[1]) == 0
+    if kind == "caused":
+        final = spec.run(plan)
+        fact = (formula[1], formula[2])
+        in_final = (fact[0] in final) == fact[1]
+        return in_final and any(spec.eff[action].get(fact[0]) == fact[1] for action in plan)
+    if kind == "geq":
+        def worth(facts):
+            return sum(spec.fact_utility.get(fact, 0) for fact in set(facts))
+        return worth(formula[1]) >= worth(formula[2])
+    if kind == "not":
+        return not holds(spec, plan, formula[1])
+    if kind == "and":
+        return holds(spec, plan, formula[1]) and holds(spec, plan, formula[2])
+    if kind == "or":
+        return holds(spec, plan, formula[1]) or holds(spec, plan, formula[2])
+    if kind == "imp":
+        return not holds(spec, plan, formula[1]) or holds(spec, plan, formula[2])
+    raise ValueError(formula)
+
+
+def random_formula(spec: RandomModel, rng: random.Random, depth: int = 3) -> tuple:
+    """A random formula of L over the model's actions and variables."""
+    def fact() -> tuple:
+        return rng.choice(spec.variables), rng.random() < 0.5
+
+    if depth == 0 or rng.random() < 0.3:
+        kind = rng.choice(["good", "bad", "neutral", "caused", "geq"])
+        if kind == "caused":
+            return ("caused", *fact())
+        if kind == "geq":
+            return ("geq", [fact() for _ in range(rng.randint(1, 3))],
+                    [fact() for _ in range(rng.randint(1, 3))])
+        element = (("action", rng.choice(spec.actions)) if rng.random() < 0.4
+                   else ("fact", *fact()))
+        return (kind, element)
+    kind = rng.choice(["not", "and", "or", "imp"])
+    if kind == "not":
+        return ("not", random_formula(spec, rng, depth - 1))
+    return (kind, random_formula(spec, rng, depth - 1), random_formula(spec, rng, depth - 1))
+
+
+def plan_through(spec: RandomModel, rng: random.Random, walk: int) -> list[str] | None:
+    """A plan: a random walk of at most ``walk`` applicable actions, then a
+    shortest path to a goal state (None if no goal state is reachable from there)."""
+    state, plan = spec.init, []
+    for _ in range(walk):
+        options = [a for a in spec.actions if spec.applicable(state, a)]
+        if not options:
+            break
+        action = rng.choice(options)
+        plan.append(action)
+        state = spec.apply(state, action)
+    parent = {state: None}
+    queue = deque([state])
+    while queue:
+        current = queue.popleft()
+        if spec.is_goal(current):
+            tail = []
+            while parent[current] is not None:
+                current, action = parent[current]
+                tail.append(action)
+            return plan + tail[::-1]
+        for action in spec.actions:
+            if spec.applicable(current, action):
+                succ = spec.apply(current, action)
+                if succ not in parent:
+                    parent[succ] = (current, action)
+                    queue.append(succ)
+    return None

@@ -1,0 +1,6 @@
+; The trolley dilemma: five will die unless someone acts.
+
+(define (problem dilemma)
+  (:domain trolley)
+  (:init (five-will-die))
+  (:goal (done)))

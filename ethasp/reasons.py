@@ -1,0 +1,364 @@
+"""Non-contrastive explanations: sufficient and necessary reasons, by clingo.
+
+After Lindner and Moellney (2019), as used in section "Non-Contrastive Moral
+Explanations" of the paper: the formula of a principle is taken
+propositionally over its atomic subformulas (``encodings/reasons/literals.lp``)
+under a background theory (``theory.lp``).  The **sufficient reasons** are
+the subset-minimal sets of actual literals that entail the formula's actual
+truth value (``sufficient.lp``, a saturation check); the **necessary reasons**
+are the minimal hitting sets of the sufficient reasons (``necessary.lp``, the
+minimal sets of actual literals a countermodel must flip).  Both are
+enumerated lazily, at most ``limit`` of each, by clingo's domain-heuristic
+enumeration of subset-minimal answer sets.  The reason an explanation uses is
+the most relevant necessary reason, chosen by optimisation
+(``relevance.lp``); its words are chosen in ``comparison.lp`` and rendered by
+:mod:`ethasp.words`.
+
+For utilitarianism, whose formula ranges over all reachable states, the
+formula is explained against one alternative: a best reachable state other
+than the final state (``other_state.lp``, by optimisation; states are never
+listed).  The conjunction over all reachable states has the same truth value
+as GEq(s_n, s) for that state s; its reasons are those of this one comparison.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from typing import Iterable, Sequence
+
+import clingo
+from clorm import ConstantStr, Predicate, Raw, StringField, unify
+
+from ethasp.errors import InputError
+from ethasp.formula import format_literal
+from ethasp.model import Messages, Model
+from ethasp.plan import Plan
+from ethasp.principles import Principle, select_principles
+from ethasp.resources import encoding
+from ethasp.search import DEFAULT_MAX_HORIZON, Search
+from ethasp.validation import read_validation, validate
+
+DEFAULT_LIMIT = 10
+
+BASE = ("model.lp", "trace.lp", "language.lp")
+REASONS = ("reasons/literals.lp", "reasons/theory.lp", "reasons/evaluate.lp")
+ENUMERATION = ("--heuristic=Domain", "--enum-mode=domRec")
+# Core-guided optimisation: the relevance criteria count literals, and each
+# violated conjunct is a core; model-guided optimisation stalls on large ones.
+RELEVANCE = ("--opt-mode=opt", "--opt-strategy=usc")
+
+# The name of the alternative state compared with for utilitarianism (conj/3).
+OTHER = clingo.Function("other")
+
+
+# -- the ASP vocabulary read back -----------------------------------------------
+
+class ReasonAtom(Predicate, name="reason"):
+    atom: Raw
+    value: ConstantStr
+
+
+class VerdictAtom(Predicate, name="verdict"):
+    name: Raw
+    value: ConstantStr
+
+
+class Mention(Predicate, name="mention"):
+    atom: Raw
+    side: ConstantStr
+    variable: Raw
+    value: ConstantStr
+
+
+class ComparisonAtom(Predicate, name="comparison"):
+    atom: Raw
+    relation: ConstantStr
+
+
+class Conjunct(Predicate, name="conjunct"):
+    name: Raw
+    variable: Raw
+    value: ConstantStr
+
+
+class OtherState(Predicate, name="other_state"):
+    variable: Raw
+    value: ConstantStr
+    time: int
+
+
+class OtherThan(Predicate, name="other_than"):
+    variable: Raw
+    value: ConstantStr
+
+
+class Explain(Predicate, name="explain"):
+    name: Raw
+
+
+class AlternativeFact(Predicate, name="alternative"):
+    name: Raw
+
+
+class ConjFact(Predicate, name="conj"):
+    name: Raw
+    variable: Raw
+    value: ConstantStr
+
+
+class AgentLabel(Predicate, name="agent_label"):
+    name: str = StringField
+    possessive: str = StringField
+
+
+class ActionLabel(Predicate, name="action_label"):
+    action: Raw
+    phrase: str = StringField
+    gerund: str = StringField
+
+
+class FactLabel(Predicate, name="fact_label"):
+    variable: Raw
+    value: ConstantStr
+    phrase: str = StringField
+
+
+# -- results --------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Literal:
+    """A literal of L: an atom (``caused(V,B)``, ``good(E)``, ``bad(E)``,
+    ``neutral(E)``, ``geq(C,D)``, as terms of ``language.lp``) and its value."""
+
+    atom: clingo.Symbol
+    value: bool
+
+    def term(self) -> clingo.Symbol:
+        return self.atom if self.value else clingo.Function("neg", [self.atom])
+
+
+@dataclass
+class Comparison:
+    """What the words of a GEq atom mention: the facts of each side (variable,
+    value) and how the left side actually compares (better, equal, worse)."""
+
+    left: list[tuple[clingo.Symbol, bool]]
+    right: list[tuple[clingo.Symbol, bool]]
+    relation: str
+
+
+@dataclass
+class Labels:
+    """The model's label facts (``encodings/reasons/labels.lp``)."""
+
+    agent: str | None = None
+    possessive: str | None = None
+    actions: dict[clingo.Symbol, tuple[str, str]] = field(default_factory=dict)
+    facts: dict[tuple[clingo.Symbol, bool], str] = field(default_factory=dict)
+
+
+@dataclass
+class Explanation:
+    """Why a plan is (im)permissible under one principle.
+
+    ``sufficient_reasons`` and ``necessary_reasons`` are lists of reasons, each
+    a list of literals in the formula syntax (``Bad(a2)``, ``not
+    Caused(five_will_die)``); at most ``limit`` of each are computed, and
+    ``truncated`` says that the limit cut an enumeration short (more reasons
+    may exist).  ``chosen_reason`` is the most relevant necessary reason (empty
+    when the verdict holds whatever the atoms' values), ``text`` its words.
+    ``alternative`` is the state compared with (utilitarianism), as literals
+    ``v`` / ``-v``.  ``literals`` holds the chosen reason as :class:`Literal`
+    objects, with ``comparisons`` and ``labels``, for building other texts
+    (see :mod:`ethasp.words`).
+    """
+
+    principle: str
+    plan: Plan
+    permissible: bool
+    sufficient_reasons: list[list[str]]
+    necessary_reasons: list[list[str]]
+    chosen_reason: list[str]
+    text: str
+    truncated: bool
+    alternative: list[str] | None = None
+    literals: list[Literal] = field(default_factory=list)
+    comparisons: dict[clingo.Symbol, Comparison] = field(default_factory=dict)
+    labels: Labels = field(default_factory=Labels)
+
+    def to_json(self) -> dict:
+        data = {"sufficient_reasons": self.sufficient_reasons,
+                "necessary_reasons": self.necessary_reasons,
+                "chosen_reason": self.chosen_reason,
+                "explanation": self.text,
+                "reasons_truncated": self.truncated}
+        if self.alternative is not None:
+            data["compared_state"] = self.alternative
+        return data
+
+
+# -- clingo calls ---------------------------------------------------------------
+
+def _solve(model: Model, files: Sequence[str], facts: Iterable, arguments: Sequence[str],
+           models: int) -> tuple[list[list[clingo.Symbol]], bool]:
+    """Models (shown atoms) of model + encodings + facts, and whether the
+    search was exhausted.  ``models`` is clingo's model limit (0: all; with
+    optimisation only the last, optimal, model is kept)."""
+    messages = Messages()
+    ctl = model.control([*arguments, str(models)], messages)
+    try:
+        for name in files:
+            ctl.load(str(encoding(name)))
+        text = "".join(f"{fact}.\n" for fact in facts)
+        if text:
+            ctl.add("base", [], text)
+        ctl.ground([("base", [])])
+    except RuntimeError:
+        messages.raise_first("grounding failed")
+    found: list[list[clingo.Symbol]] = []
+    with ctl.solve(yield_=True) as handle:
+        for answer in handle:
+            found.append(list(answer.symbols(shown=True)))
+        exhausted = handle.get().exhausted
+    return found, exhausted
+
+
+def _literals(symbols: Iterable[clingo.Symbol]) -> list[Literal]:
+    atoms = unify([ReasonAtom], symbols).query(ReasonAtom).all()
+    return sorted((Literal(a.atom.symbol, a.value == "true") for a in atoms),
+                  key=lambda lit: (str(lit.atom), lit.value))
+
+
+def best_other_state(model: Model, final: Sequence[tuple[clingo.Symbol, str]],
+                     max_horizon: int = DEFAULT_MAX_HORIZON,
+                     time_limit: float | None = None) -> list[tuple[clingo.Symbol, str]] | None:
+    """A best reachable state other than ``final`` (variable, value pairs),
+    goal states first among equally good ones; None if there is none.
+
+    Horizons 0, 1, 2, ... are solved once each (``encodings/search/best.lp``
+    with ``reasons/other_state.lp``, no goal); the search stops when the
+    utility found meets the upper bound of ``best.lp``, when no longer path
+    without a repeated state exists (every reachable state was searched), or
+    at ``max_horizon`` / ``time_limit`` (then the state is the best found).
+    """
+    deadline = None if time_limit is None else time.monotonic() + time_limit
+    facts = [OtherThan(variable=Raw(v), value=b) for v, b in final]
+    search = Search(model, ["search/best.lp", "reasons/other_state.lp"], facts=facts,
+                    goal=False, optimize=True)
+    best: list[tuple[clingo.Symbol, str]] | None = None
+    for horizon in range(0, max_horizon + 1):
+        satisfiable, symbols, cost = search.solve_at(horizon, deadline)
+        if symbols and cost is not None:
+            # The search may idle, so a horizon's optimum is at least as good
+            # as every earlier one (and wins ties by the goal preference).
+            answer = unify([OtherState], symbols)
+            best = sorted(((a.variable.symbol, a.value) for a in answer.query(OtherState).all()),
+                          key=lambda pair: str(pair[0]))
+            bounds = [s for s in symbols if s.name == "upper_bound" and len(s.arguments) == 1]
+            if bounds and -cost[0] >= bounds[0].arguments[0].number:
+                break
+        if satisfiable is None:
+            break
+        exists = search.simple_path_exists(horizon + 1, deadline)
+        if not exists:
+            break
+    return best
+
+
+def _labels(symbols: Iterable[clingo.Symbol]) -> Labels:
+    answer = unify([AgentLabel, ActionLabel, FactLabel], symbols)
+    labels = Labels()
+    for agent in answer.query(AgentLabel).all():
+        labels.agent, labels.possessive = agent.name, agent.possessive
+    for action in answer.query(ActionLabel).all():
+        labels.actions[action.action.symbol] = (action.phrase, action.gerund)
+    for fact in answer.query(FactLabel).all():
+        labels.facts[(fact.variable.symbol, fact.value == "true")] = fact.phrase
+    return labels
+
+
+def _comparisons(symbols: Iterable[clingo.Symbol]) -> dict[clingo.Symbol, Comparison]:
+    answer = unify([Mention, ComparisonAtom], symbols)
+    result: dict[clingo.Symbol, Comparison] = {}
+    for atom in answer.query(ComparisonAtom).all():
+        result[atom.atom.symbol] = Comparison([], [], atom.relation)
+    for mention in sorted(answer.query(Mention).all(), key=str):
+        side = result[mention.atom.symbol]
+        pair = (mention.variable.symbol, mention.value == "true")
+        (side.left if mention.side == "left" else side.right).append(pair)
+    return result
+
+
+# -- the API --------------------------------------------------------------------
+
+def explain(model: Model, plan: Plan, principle: str | Principle, limit: int = DEFAULT_LIMIT,
+            alternative: Sequence[tuple[clingo.Symbol, str]] | None = None,
+            max_horizon: int = DEFAULT_MAX_HORIZON,
+            time_limit: float | None = None) -> Explanation:
+    """Sufficient and necessary reasons for the verdict of one principle on a
+    plan, at most ``limit`` of each, and the explanation text.
+
+    ``alternative`` (variable, value pairs) is the state utilitarianism
+    compares with; by default a best reachable state other than the final
+    state is searched (``max_horizon``, ``time_limit``).  Raises InputError if
+    the plan is not a plan or the principle unknown.
+    """
+    from ethasp.words import non_contrastive  # words depend on this module's data
+
+    if limit < 1:
+        raise InputError("the reasons limit must be at least 1")
+    chosen = principle if isinstance(principle, Principle) else select_principles([principle])[0]
+    facts: list = list(plan.facts()) + [Explain(name=Raw(clingo.Function(chosen.asp_name)))]
+    compared: list[str] | None = None
+    if chosen.reads_alternatives:
+        if alternative is None:
+            validation = validate(model, plan)  # before a search that may be long
+            if not validation.valid:
+                raise InputError(f"not a plan: {validation.message(model.naming)}")
+            final = [(clingo.parse_term(lit.lstrip("-")), "false" if lit.startswith("-") else "true")
+                     for lit in validation.final_state]
+            alternative = best_other_state(model, final, max_horizon, time_limit)
+        if alternative is not None:
+            facts.append(AlternativeFact(name=Raw(OTHER)))
+            facts += [ConjFact(name=Raw(OTHER), variable=Raw(v), value=b) for v, b in alternative]
+            compared = sorted(str(v) if b == "true" else f"-{v}" for v, b in alternative)
+    base = list(BASE) + [chosen.encoding] + list(REASONS)
+
+    words = ["reasons/comparison.lp", "reasons/labels.lp"]
+    best, _ = _solve(model, base + ["reasons/necessary.lp", "reasons/relevance.lp"] + words,
+                     facts, RELEVANCE, 0)
+    literals: list[Literal] = _literals(best[-1]) if best else []
+    if not best:
+        # No countermodel: the verdict holds whatever the atoms' values.
+        best, _ = _solve(model, base + words, facts, [], 1)
+    symbols = best[-1]
+    validation = read_validation(plan, symbols)
+    if not validation.valid:
+        raise InputError(f"not a plan: {validation.message(model.naming)}")
+    verdict = unify([VerdictAtom], symbols).query(VerdictAtom).all()
+    permissible = any(v.value == "true" for v in verdict)
+    conj: dict[clingo.Symbol, list[tuple[clingo.Symbol, str]]] = {}
+    for member in unify([Conjunct], symbols).query(Conjunct).all():
+        conj.setdefault(member.name.symbol, []).append((member.variable.symbol, member.value))
+    for members in conj.values():
+        members.sort(key=lambda pair: str(pair[0]))
+
+    def texts(reason: list[Literal]) -> list[str]:
+        return [format_literal(lit.term(), conj) for lit in reason]
+
+    necessary, necessary_done = _solve(model, base + ["reasons/necessary.lp"], facts,
+                                       ENUMERATION, limit)
+    sufficient, sufficient_done = _solve(model, base + ["reasons/shape.lp",
+                                                        "reasons/sufficient.lp"], facts,
+                                         ENUMERATION, limit)
+    explanation = Explanation(
+        principle=chosen.name, plan=plan, permissible=permissible,
+        sufficient_reasons=[texts(_literals(s)) for s in sufficient],
+        necessary_reasons=[texts(_literals(s)) for s in necessary],
+        chosen_reason=texts(literals), text="",
+        truncated=not (necessary_done and sufficient_done),
+        alternative=compared, literals=literals, comparisons=_comparisons(symbols),
+        labels=_labels(symbols))
+    explanation.text = non_contrastive(explanation)
+    return explanation

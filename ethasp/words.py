@@ -1,0 +1,197 @@
+"""English words for explanations, from the model's labels.
+
+The label vocabulary is documented in ``encodings/reasons/labels.lp``:
+``agent_label(Name,Possessive)``, ``action_label(A,Phrase,Gerund)`` and
+``fact_label(V,B,Phrase)``.  Whatever has no label is named by its term
+("the agent", "its", the action's name, "the fact v" / "the fact not v").
+
+This module only renders: which reason an explanation uses, and which facts
+the words of a comparison mention, are chosen in ASP
+(``encodings/reasons/relevance.lp`` and ``comparison.lp``).  The building
+blocks are separate functions, so that other texts (for instance contrastive
+explanations: "The man could refrain from action. This would be permissible
+under the do-no-harm principle because this way the death of the five persons
+is not caused by his action.") can be assembled from them.
+
+Templates, by literal (``X`` a gerund or fact phrase, ``P`` a possessive):
+
+* ``Bad(a)`` / ``not Bad(a)``: "X is inherently bad" / "X is not inherently bad"
+  (``Good``: "inherently good", ``Neutral``: "morally neutral"); for facts
+  without "inherently": "X is bad";
+* ``Caused(p)`` / ``not Caused(p)``: "this way X is caused by P action" /
+  "this way X is not caused by P action" ("actions" for plans of several
+  steps);
+* ``GEq(c,d)``: "X is better than Y" (or "is as good as"), ``not GEq(c,d)``:
+  "X is worse than Y", where X and Y name the facts mentioned for each side.
+
+A reason of several literals joins their clauses with "and".
+"""
+
+from __future__ import annotations
+
+from typing import Sequence
+
+import clingo
+
+from ethasp.plan import Plan
+from ethasp.reasons import Comparison, Explanation, Labels, Literal
+
+DEFAULT_AGENT = "the agent"
+DEFAULT_POSSESSIVE = "its"
+EMPTY_PLAN = "do nothing"
+
+VALUATIONS = {"good": "good", "bad": "bad", "neutral": "morally neutral"}
+
+
+def capitalize(text: str) -> str:
+    """The text with its first letter in upper case."""
+    return text[:1].upper() + text[1:]
+
+
+def join(parts: Sequence[str], word: str = "and") -> str:
+    """"a", "a and b", "a, b and c"."""
+    parts = list(parts)
+    if len(parts) <= 1:
+        return "".join(parts)
+    return f"{', '.join(parts[:-1])} {word} {parts[-1]}"
+
+
+# -- names ------------------------------------------------------------------------
+
+def agent(labels: Labels) -> str:
+    """The agent as a noun phrase, e.g. "the man"."""
+    return labels.agent or DEFAULT_AGENT
+
+
+def possessive(labels: Labels, pronoun: bool = False) -> str:
+    """The agent's possessive: "the man's", or with ``pronoun`` "his"."""
+    if pronoun:
+        return labels.possessive or DEFAULT_POSSESSIVE
+    return f"{agent(labels)}'s"
+
+
+def _term_words(term: clingo.Symbol) -> str:
+    if term.type == clingo.SymbolType.Function and not term.arguments:
+        return term.name.replace("_", " ")
+    return str(term)
+
+
+def action_phrase(labels: Labels, action: clingo.Symbol) -> str:
+    """An action as a verb phrase, e.g. "pull the lever"."""
+    label = labels.actions.get(action)
+    return label[0] if label else _term_words(action)
+
+
+def gerund(labels: Labels, action: clingo.Symbol) -> str:
+    """An action as a gerund phrase, e.g. "pulling a lever"."""
+    label = labels.actions.get(action)
+    return label[1] if label else f"action {action}"
+
+
+def plan_phrase(labels: Labels, plan: Plan) -> str:
+    """A plan as a verb phrase: "pull the lever", "scout, then steal, then ..."."""
+    if not len(plan):
+        return EMPTY_PLAN
+    return ", then ".join(action_phrase(labels, action) for action in plan)
+
+
+def fact_phrase(labels: Labels, variable: clingo.Symbol, value: bool) -> str:
+    """A fact as a noun phrase, e.g. "the death of the one person"."""
+    label = labels.facts.get((variable, value))
+    if label:
+        return label
+    return f"the fact {variable}" if value else f"the fact not {variable}"
+
+
+def principle_phrase(principle: str) -> str:
+    """A principle as a noun phrase, e.g. "the do-no-harm principle"."""
+    return f"the {principle.replace('_', '-')} principle"
+
+
+def verdict_word(permissible: bool) -> str:
+    return "permissible" if permissible else "impermissible"
+
+
+# -- reasons ----------------------------------------------------------------------
+
+def _element_phrase(labels: Labels, element: clingo.Symbol) -> tuple[str, bool]:
+    """The phrase of an element of L and whether it is an action."""
+    if element.name == "action":
+        return gerund(labels, element.arguments[0]), True
+    variable, value = element.arguments
+    return fact_phrase(labels, variable, value.name == "true"), False
+
+
+def literal_clause(literal: Literal, labels: Labels,
+                   comparisons: dict[clingo.Symbol, Comparison] | None = None,
+                   pronoun: bool = False, actions: int = 1) -> str:
+    """The words of one literal, e.g. "pulling a lever is not inherently bad".
+
+    ``pronoun`` uses the possessive pronoun ("his action") instead of the
+    agent's name ("the man's action"); ``actions`` is the plan's length
+    ("action" or "actions").
+    """
+    atom, value = literal.atom, literal.value
+    negation = "" if value else "not "
+    if atom.name in VALUATIONS:
+        subject, is_action = _element_phrase(labels, atom.arguments[0])
+        degree = "inherently " if is_action and atom.name != "neutral" else ""
+        return f"{subject} is {negation}{degree}{VALUATIONS[atom.name]}"
+    if atom.name == "caused":
+        variable, truth = atom.arguments
+        fact = fact_phrase(labels, variable, truth.name == "true")
+        noun = "action" if actions <= 1 else "actions"
+        return (f"this way {fact} is {negation}caused by "
+                f"{possessive(labels, pronoun)} {noun}")
+    if atom.name == "geq":
+        comparison = (comparisons or {}).get(atom)
+        if comparison is None:
+            return f"{atom} is {negation}true"
+        left = join([fact_phrase(labels, v, b) for v, b in comparison.left]) or "nothing"
+        right = join([fact_phrase(labels, v, b) for v, b in comparison.right]) or "nothing"
+        if not value:
+            relation = "is worse than"
+        elif comparison.relation == "equal":
+            relation = "is as good as"
+        else:
+            relation = "is better than"
+        return f"{left} {relation} {right}"
+    return f"{atom} is {negation}true"
+
+
+def reason_clause(literals: Sequence[Literal], labels: Labels,
+                  comparisons: dict[clingo.Symbol, Comparison] | None = None,
+                  pronoun: bool = False, actions: int = 1) -> str:
+    """The words of a reason: its literals' clauses joined by "and"."""
+    return join([literal_clause(lit, labels, comparisons, pronoun, actions) for lit in literals])
+
+
+def explanation_clause(explanation: Explanation, pronoun: bool = False) -> str:
+    """The chosen reason of an explanation in words ("because ..." follows)."""
+    return reason_clause(explanation.literals, explanation.labels, explanation.comparisons,
+                         pronoun, len(explanation.plan))
+
+
+# -- sentences --------------------------------------------------------------------
+
+def option_sentence(labels: Labels, plan: Plan, modal: str = "can") -> str:
+    """"The man can pull the lever." (``modal`` "could" for alternatives)."""
+    return f"{capitalize(agent(labels))} {modal} {plan_phrase(labels, plan)}."
+
+
+def verdict_sentence(explanation: Explanation, opening: str = "Doing so is",
+                     principle: bool = False, pronoun: bool = False) -> str:
+    """"Doing so is permissible because ..." (``opening`` e.g. "This would be";
+    ``principle`` adds "under the ... principle")."""
+    words = f"{opening} {verdict_word(explanation.permissible)}"
+    if principle:
+        words += f" under {principle_phrase(explanation.principle)}"
+    if not explanation.literals:
+        return f"{words} in any case."
+    return f"{words} because {explanation_clause(explanation, pronoun)}."
+
+
+def non_contrastive(explanation: Explanation) -> str:
+    """The non-contrastive explanation: the plan and why it is (im)permissible."""
+    return (f"{option_sentence(explanation.labels, explanation.plan)} "
+            f"{verdict_sentence(explanation)}")

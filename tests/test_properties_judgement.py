@@ -1,0 +1,98 @@
+"""Property tests: judgements and queries against the brute-force oracle."""
+
+import random
+
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from ethasp import Model, Plan, judge, query
+from oracle import holds, plan_through, random_formula, random_model
+
+PRINCIPLES = ["deontology", "do-no-harm", "utilitarianism"]
+
+
+def model_with_plan(seed: int, walk: int):
+    """A random model that has a plan, and a random plan of it."""
+    rng = random.Random(seed)
+    for offset in range(50):
+        spec = random_model(seed + offset)
+        plan = plan_through(spec, rng, walk)
+        if plan is not None:
+            return spec, plan
+    raise AssertionError("no model with a plan")
+
+
+def text(formula: tuple) -> str:
+    """The textual syntax, written out fully parenthesised (independent of the printer)."""
+    kind = formula[0]
+
+    def fact(variable, value):
+        return variable if value else f"-{variable}"
+
+    if kind in ("good", "bad", "neutral"):
+        element = formula[1]
+        name = element[1] if element[0] == "action" else fact(element[1], element[2])
+        return f"{kind.capitalize()}({name})"
+    if kind == "caused":
+        return f"Caused({fact(formula[1], formula[2])})"
+    if kind == "geq":
+        return ("GEq(" + " & ".join(fact(*f) for f in formula[1]) + ", "
+                + " & ".join(fact(*f) for f in formula[2]) + ")")
+    if kind == "not":
+        return f"not ({text(formula[1])})"
+    operator = {"and": "and", "or": "or", "imp": "->"}[kind]
+    return f"({text(formula[1])}) {operator} ({text(formula[2])})"
+
+
+@settings(max_examples=150, deadline=None)
+@given(st.integers(min_value=0, max_value=10**9), st.integers(min_value=0, max_value=6))
+def test_verdicts_agree_with_the_definitions(seed, walk):
+    spec, plan = model_with_plan(seed, walk)
+    report = judge(Model.from_string(spec.to_asp()), Plan.parse(" ".join(plan)))
+    final = spec.run(plan)
+    assert report.utility == spec.state_utility(final)
+    assert report.final_state == sorted(v if v in final else f"-{v}" for v in spec.variables)
+    for judgement in report.judgements:
+        assert judgement.status == "proven", judgement
+        assert judgement.permissible == spec.permissible(plan, judgement.principle), judgement
+    best = report.judgements[2].best_reachable
+    assert best.utility == spec.best_reachable_utility()
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.integers(min_value=0, max_value=10**9), st.integers(min_value=0, max_value=4))
+def test_formulas_agree_with_the_definitions(seed, walk):
+    spec, plan = model_with_plan(seed, walk)
+    rng = random.Random(seed)
+    formulas = [random_formula(spec, rng) for _ in range(3)]
+    model = Model.from_string(spec.to_asp())
+    for formula in formulas:
+        result = query(model, Plan.parse(" ".join(plan)), text(formula))
+        assert result.value == holds(spec, plan, formula), (text(formula), plan)
+
+
+@settings(max_examples=120, deadline=None)
+@given(st.integers(min_value=0, max_value=10**9), st.integers(min_value=1, max_value=150))
+def test_long_sequences_have_the_oracle_final_state_and_failure(seed, length):
+    """trace.lp walks back over blocks of steps; long sequences exercise the jumps."""
+    from ethasp import validate
+
+    spec = random_model(seed)
+    rng = random.Random(seed)
+    state, plan = spec.init, []
+    for _ in range(length):
+        options = [a for a in spec.actions if spec.applicable(state, a)]
+        # now and then an action that may be inapplicable
+        action = rng.choice(spec.actions if rng.random() < 0.02 or not options else options)
+        plan.append(action)
+        if not spec.applicable(state, action):
+            break
+        state = spec.apply(state, action)
+    check = validate(Model.from_string(spec.to_asp()), Plan.parse(" ".join(plan)))
+    final = spec.run(plan)
+    if final is None:
+        assert check.failure_step == len(plan)
+    else:
+        assert check.failure_step is None
+        assert check.final_state == sorted(v if v in final else f"-{v}" for v in spec.variables)
+        assert check.valid == spec.is_goal(final)

@@ -1,0 +1,228 @@
+"""Reasons and explanations: the paper's examples through the encodings, the
+Python API, the words, and the command line."""
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+import clingo
+
+from conftest import ENCODINGS, MODELS, ROOT, answer_sets
+from ethasp import Model, Plan
+from ethasp.reasons import explain
+from ethasp.words import option_sentence, principle_phrase, reason_clause
+
+TROLLEY = MODELS / "trolley.lp"
+BASE = ["model.lp", "trace.lp", "language.lp"]
+CORE = ["reasons/literals.lp", "reasons/theory.lp", "reasons/evaluate.lp"]
+ENUMERATE = ("0", "--heuristic=Domain", "--enum-mode=domRec")
+
+# The paper's example: a1 is good, a2 and a3 are bad.
+ABC = """
+variable(done). action(a1;a2;a3). eff(a3,done,true). goal(done,true).
+utility(a1,1). utility(a2,-1). utility(a3,-1).
+occurs(a1,1). occurs(a2,2). occurs(a3,3).
+"""
+
+
+def optimal_answers(files, program: str) -> list[set[str]]:
+    """The optimal answer sets (all of them) of encodings plus a program."""
+    ctl = clingo.Control(["0", "--opt-mode=optN", "--opt-strategy=usc"],
+                         logger=lambda code, message: None)
+    for name in files:
+        ctl.load(str(ENCODINGS / name))
+    ctl.add("base", [], program)
+    ctl.ground([("base", [])])
+    found: list[set[str]] = []
+
+    def keep(model: clingo.Model) -> None:
+        if model.optimality_proven:
+            found.append({str(s) for s in model.symbols(shown=True)})
+
+    ctl.solve(on_model=keep)
+    return found
+
+
+def reason_sets(principle: str, kind: list[str], program: str, arguments=ENUMERATE):
+    files = BASE + [f"principles/{principle}.lp"] + CORE + kind
+    program += f"\nexplain({principle})."
+    answers = (optimal_answers(files, program) if arguments == OPTIMAL
+               else answer_sets(files, program, arguments))
+    return {frozenset(a for a in answer if a.startswith("reason(")) for answer in answers}
+
+
+SUFFICIENT = ["reasons/shape.lp", "reasons/sufficient.lp"]
+NECESSARY = ["reasons/necessary.lp"]
+RELEVANT = ["reasons/necessary.lp", "reasons/relevance.lp"]
+OPTIMAL = "optimal"
+
+
+def trolley(plan: str) -> str:
+    return TROLLEY.read_text() + f"\noccurs({plan},1)."
+
+
+# -- encodings ---------------------------------------------------------------------
+
+def test_paper_example_deontology():
+    assert reason_sets("deontology", SUFFICIENT, ABC) == {
+        frozenset({"reason(bad(action(a2)),true)"}), frozenset({"reason(bad(action(a3)),true)"})}
+    assert reason_sets("deontology", NECESSARY, ABC) == {
+        frozenset({"reason(bad(action(a2)),true)", "reason(bad(action(a3)),true)"})}
+
+
+def test_trolley_do_no_harm_refrain_uses_not_caused_five_will_die():
+    necessary = reason_sets("do_no_harm", NECESSARY, trolley("refrain"))
+    assert frozenset({"reason(caused(five_will_die,true),false)"}) in necessary
+    # the optimal (most relevant) necessary reasons under the relevance rule
+    optimal = reason_sets("do_no_harm", RELEVANT, trolley("refrain"), OPTIMAL)
+    assert optimal == {frozenset({"reason(caused(five_will_die,true),false)"})}
+
+
+def test_trolley_do_no_harm_pull_is_caused_one_will_die():
+    assert reason_sets("do_no_harm", SUFFICIENT, trolley("pull")) == {frozenset({
+        "reason(caused(one_will_die,true),true)", "reason(bad(fact(one_will_die,true)),true)"})}
+    assert reason_sets("do_no_harm", NECESSARY, trolley("pull")) == {
+        frozenset({"reason(caused(one_will_die,true),true)"}),
+        frozenset({"reason(bad(fact(one_will_die,true)),true)"})}
+    optimal = reason_sets("do_no_harm", RELEVANT, trolley("pull"), OPTIMAL)
+    assert optimal == {frozenset({"reason(caused(one_will_die,true),true)"})}
+
+
+def test_trolley_utilitarianism_pull_compares_with_refrain():
+    alternative = ("alternative(s). conj(s,five_will_die,true). conj(s,one_will_die,false). "
+                   "conj(s,done,true).")
+    reasons = reason_sets("utilitarianism", NECESSARY, trolley("pull") + alternative)
+    assert reasons == {frozenset({"reason(geq(final,s),true)"})}
+    answers = answer_sets(BASE + ["principles/utilitarianism.lp"] + CORE
+                          + ["reasons/comparison.lp"],
+                          trolley("pull") + alternative + "explain(utilitarianism).")
+    assert {"mention(geq(final,s),left,five_will_die,false)",
+            "mention(geq(final,s),right,one_will_die,false)",
+            "comparison(geq(final,s),better)"} <= answers[0]
+
+
+def test_theory_rules_out_impossible_literal_sets():
+    # Caused(v) and Caused(-v) cannot both hold: not Caused(v) or not Caused(-v) is
+    # entailed by nothing, so its only sufficient reason is empty.
+    program = ("formula(q,or(neg(caused(v,true)),neg(caused(v,false)))). explain(q). "
+               "verdict(q,true).")
+    assert {frozenset(r) for r in reason_sets_raw(program, SUFFICIENT)} == {frozenset()}
+    assert reason_sets_raw(program, NECESSARY) == []
+    # at least one of Good, Bad, Neutral when all three occur
+    program = ("formula(q,any(i)). member(i,good(action(a))). member(i,bad(action(a))). "
+               "member(i,neutral(action(a))). explain(q). verdict(q,true). "
+               "satisfied(bad(action(a))).")
+    assert {frozenset(r) for r in reason_sets_raw(program, SUFFICIENT)} == {frozenset()}
+
+
+def reason_sets_raw(program: str, kind: list[str]):
+    return [{a for a in answer if a.startswith("reason(")}
+            for answer in answer_sets(CORE + kind, program, ENUMERATE)]
+
+
+def test_other_state_prefers_goal_states_on_ties():
+    program = ("time(0..1). step(1). horizon(1). other_than(five_will_die,false). "
+               "other_than(one_will_die,true). other_than(done,true).")
+    answers = optimal_answers(["model.lp", "relaxed.lp", "search/transition.lp",
+                               "search/best.lp", "reasons/other_state.lp", TROLLEY], program)
+    assert answers and all("other_state(done,true,1)" in a and "occurs(refrain,1)" in a
+                           for a in answers)
+
+
+# -- API and words -------------------------------------------------------------------
+
+PAPER_TEXTS = {
+    ("deontology", "pull"): "The man can pull the lever. Doing so is permissible because "
+                            "pulling a lever is not inherently bad.",
+    ("utilitarianism", "pull"): "The man can pull the lever. Doing so is permissible because "
+                                "five saved lives is better than one saved life.",
+    ("do-no-harm", "pull"): "The man can pull the lever. Doing so is impermissible because "
+                            "this way the death of the one person is caused by the man's action.",
+    ("do-no-harm", "refrain"): "The man can refrain from action. Doing so is permissible "
+                               "because this way the death of the five persons is not caused "
+                               "by the man's action.",
+    ("utilitarianism", "refrain"): "The man can refrain from action. Doing so is impermissible "
+                                   "because one saved life is worse than five saved lives.",
+}
+
+
+@pytest.fixture(scope="module")
+def trolley_model():
+    return Model.load([TROLLEY])
+
+
+@pytest.mark.parametrize("case", sorted(PAPER_TEXTS))
+def test_user_study_texts(trolley_model, case):
+    principle, plan = case
+    assert explain(trolley_model, Plan.parse(plan), principle).text == PAPER_TEXTS[case]
+
+
+def test_api_reasons_of_the_trolley(trolley_model):
+    pull = explain(trolley_model, Plan.parse("pull"), "do-no-harm")
+    assert not pull.permissible and not pull.truncated
+    assert pull.sufficient_reasons == [["Bad(one_will_die)", "Caused(one_will_die)"]]
+    assert sorted(pull.necessary_reasons) == [["Bad(one_will_die)"], ["Caused(one_will_die)"]]
+    assert pull.chosen_reason == ["Caused(one_will_die)"]
+    refrain = explain(trolley_model, Plan.parse("refrain"), "do-no-harm")
+    assert refrain.chosen_reason == ["not Caused(five_will_die)"]
+    assert ["not Caused(five_will_die)"] in refrain.necessary_reasons
+    useful = explain(trolley_model, Plan.parse("pull"), "utilitarianism")
+    assert useful.chosen_reason == [
+        "GEq(done & -five_will_die & one_will_die, done & five_will_die & -one_will_die)"]
+    assert useful.alternative == ["-one_will_die", "done", "five_will_die"]
+
+
+def test_building_blocks_for_contrastive_texts(trolley_model):
+    refrain = explain(trolley_model, Plan.parse("refrain"), "do-no-harm")
+    assert option_sentence(refrain.labels, refrain.plan, "could") == \
+        "The man could refrain from action."
+    assert reason_clause(refrain.literals, refrain.labels, refrain.comparisons, pronoun=True) == \
+        "this way the death of the five persons is not caused by his action"
+    assert principle_phrase(refrain.principle) == "the do-no-harm principle"
+
+
+def test_paper_example_through_the_api():
+    model = Model.from_string(ABC.replace("occurs(a1,1). occurs(a2,2). occurs(a3,3).", ""))
+    result = explain(model, Plan.parse("a1 a2 a3"), "deontology")
+    assert sorted(result.sufficient_reasons) == [["Bad(a2)"], ["Bad(a3)"]]
+    assert result.necessary_reasons == [["Bad(a2)", "Bad(a3)"]]
+    # without labels the words come from the terms
+    assert result.text == ("The agent can a1, then a2, then a3. Doing so is impermissible "
+                           "because action a2 is inherently bad and action a3 is inherently bad.")
+
+
+def test_limit_truncates_lazily():
+    # 12 caused bad facts: 2^12 necessary reasons, 12 sufficient ones
+    text = "\n".join(f"variable(x({i})). action(a({i})). eff(a({i}),x({i}),true). "
+                     f"utility(x({i}),true,-1)." for i in range(12)) + "\ngoal(x(0),true)."
+    plan = Plan.parse(" ".join(f"a({i})" for i in range(12)))
+    result = explain(Model.from_string(text), plan, "do-no-harm", limit=3)
+    assert result.truncated
+    assert len(result.sufficient_reasons) == 3 and len(result.necessary_reasons) == 3
+    assert all(len(reason) == 12 for reason in result.necessary_reasons)
+    assert len(result.chosen_reason) == 12
+    assert all(literal.startswith("Caused(") for literal in result.chosen_reason)
+
+
+def test_empty_plan_is_permissible_in_any_case():
+    model = Model.from_string("variable(v). action(a). eff(a,v,true). goal(v,false).")
+    result = explain(model, Plan.parse(""), "deontology")
+    assert result.permissible and result.sufficient_reasons == [[]]
+    assert result.necessary_reasons == [] and result.chosen_reason == []
+    assert result.text == "The agent can do nothing. Doing so is permissible in any case."
+
+
+def test_bad_input(trolley_model):
+    from ethasp import InputError
+    with pytest.raises(InputError, match="not a plan"):
+        explain(trolley_model, Plan.parse(""), "do-no-harm")
+    with pytest.raises(InputError, match="unknown action jump"):
+        explain(trolley_model, Plan.parse("jump"), "deontology")
+    with pytest.raises(InputError, match="not a plan"):
+        explain(trolley_model, Plan.parse(""), "utilitarianism")
+    with pytest.raises(InputError, match="unknown principle"):
+        explain(trolley_model, Plan.parse("pull"), "kant")
+    with pytest.raises(InputError, match="at least 1"):
+        explain(trolley_model, Plan.parse("pull"), "deontology", limit=0)
