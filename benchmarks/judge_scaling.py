@@ -7,15 +7,16 @@ sweeps over all switches again and again, so every step has a precondition
 on a variable last touched N steps earlier, then finishes.
 
 Run:  python benchmarks/judge_scaling.py [--variables 1000] [--steps 1000 2000 5000 10000]
-Prints, per plan length, the wall-clock time of the whole `ethasp judge ...
---principle deontology --principle do-no-harm` process (best of --repeat runs)
-and the growth ratios; the target is under 1 s for 10,000 steps on 1,000
+Prints, per plan length, the wall-clock and CPU time of the whole `ethasp
+judge ... --principle deontology --principle do-no-harm` process (best of
+--repeat runs; CPU time is steadier on a busy machine) and the growth ratios; the target is under 1 s for 10,000 steps on 1,000
 variables.
 """
 
 from __future__ import annotations
 
 import argparse
+import resource
 import subprocess
 import sys
 import tempfile
@@ -54,16 +55,20 @@ def plan_text(variables: int, steps: int) -> str:
     return " ".join(actions)
 
 
-def run_once(model: Path, plan: Path) -> float:
+def run_once(model: Path, plan: Path, extra: list[str]) -> tuple[float, float]:
+    """Wall-clock and CPU seconds of one `ethasp judge` process."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
     run = subprocess.run([sys.executable, "-m", "ethasp.cli", "judge", str(model),
                           "--plan-file", str(plan), "--principle", "deontology",
-                          "--principle", "do-no-harm", "--json"],
+                          "--principle", "do-no-harm", "--json", *extra],
                          capture_output=True, text=True, cwd=ROOT)
     elapsed = time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if run.returncode != 0:
         raise SystemExit(f"ethasp judge failed: {run.stderr.strip()}")
-    return elapsed
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return elapsed, cpu
 
 
 def main() -> None:
@@ -71,7 +76,10 @@ def main() -> None:
     parser.add_argument("--variables", type=int, default=1000)
     parser.add_argument("--steps", type=int, nargs="+", default=[1000, 2000, 5000, 10000])
     parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--with-reasons", action="store_true",
+                        help="also compute reasons (by default --reasons-limit 0: verdicts only)")
     args = parser.parse_args()
+    extra = [] if args.with_reasons else ["--reasons-limit", "0"]
     with tempfile.TemporaryDirectory() as folder:
         model = Path(folder) / "switches.lp"
         model.write_text(model_text(args.variables))
@@ -80,19 +88,21 @@ def main() -> None:
                             "goal(done,true).\n")
         plan1 = Path(folder) / "plan1.txt"
         plan1.write_text("finish")
-        startup = min(run_once(baseline, plan1) for _ in range(args.repeat))
-        print(f"start-up (one-variable model, one-step plan): {startup:.3f} s")
-        print(f"model: {args.variables} variables; principles: deontology, do-no-harm")
-        print(f"{'steps':>8} {'seconds':>9} {'ratio':>7} {'steps ratio':>12}")
+        startup = min(run_once(baseline, plan1, extra) for _ in range(args.repeat))
+        print(f"start-up (one-variable model, one-step plan): {startup[0]:.3f} s "
+              f"wall, {startup[1]:.3f} s CPU")
+        print(f"model: {args.variables} variables; principles: deontology, do-no-harm; "
+              f"reasons: {'yes' if args.with_reasons else 'no'}")
+        print(f"{'steps':>8} {'wall s':>8} {'CPU s':>8} {'CPU ratio':>10} {'steps ratio':>12}")
         previous = None
         for steps in args.steps:
             plan = Path(folder) / f"plan{steps}.txt"
             plan.write_text(plan_text(args.variables, steps))
-            seconds = min(run_once(model, plan) for _ in range(args.repeat))
-            ratio = f"{seconds / previous[1]:.2f}" if previous else "-"
+            wall, cpu = min(run_once(model, plan, extra) for _ in range(args.repeat))
+            ratio = f"{cpu / previous[1]:.2f}" if previous else "-"
             steps_ratio = f"{steps / previous[0]:.2f}" if previous else "-"
-            print(f"{steps:>8} {seconds:>9.3f} {ratio:>7} {steps_ratio:>12}")
-            previous = (steps, seconds)
+            print(f"{steps:>8} {wall:>8.3f} {cpu:>8.3f} {ratio:>10} {steps_ratio:>12}")
+            previous = (steps, cpu)
 
 
 if __name__ == "__main__":

@@ -187,6 +187,48 @@ def command_judge(args: argparse.Namespace) -> int:
     return 0
 
 
+def command_ask(args: argparse.Namespace) -> int:
+    from ethasp.contrast import ask
+    from ethasp.prompt import answer_text
+
+    model = load_model(args)
+    plan = _given_plan(args) if (args.plan or args.plan_file) else None
+    answer = ask(model, args.question, plan, args.principle, args.under, args.max_horizon,
+                 args.time_limit, args.reasons_limit)
+    emit(args, answer.to_json(), answer_text(answer, model.naming))
+    return 0
+
+
+def command_dialogue(args: argparse.Namespace) -> int:
+    from ethasp.dialogue import Dialogue
+    from ethasp.prompt import Prompt
+
+    model = load_model(args)
+    options = dict(max_horizon=args.max_horizon, time_limit=args.time_limit,
+                   reasons_limit=args.reasons_limit)
+    files = [str(path.resolve()) for path in model_paths(args.model)]
+    if args.load:
+        dialogue = Dialogue.load(args.load, model, **options)
+    else:
+        plan = _given_plan(args) if (args.plan or args.plan_file) else None
+        dialogue = Dialogue.start(model, args.principle, plan, files, **options)
+    dialogue.model_files = files
+    interactive = sys.stdin.isatty()
+
+    def read() -> str:
+        return input("ethasp> " if interactive else "")
+
+    def load(path: str) -> Dialogue:
+        loaded = Dialogue.load(path, model, **options)
+        loaded.model_files = files
+        return loaded
+
+    save = None if args.save == "-" else Path(args.save)
+    if interactive:
+        print("ethasp dialogue: type help for the commands, quit to end.")
+    return Prompt(dialogue, save, sys.stdout, load).run(read)
+
+
 def command_query(args: argparse.Namespace) -> int:
     model = load_model(args)
     result = query(model, _given_plan(args), args.formula)
@@ -266,6 +308,51 @@ def build_parser() -> argparse.ArgumentParser:
     asking.add_argument("formula", metavar="FORMULA", help="the formula (see the README)")
     _add_plan_arguments(asking)
     asking.set_defaults(run=command_query)
+
+    contrast = commands.add_parser(
+        "ask", help="answer a contrastive question 'why A rather than B?' about a plan",
+        description="Answer contrastive questions about a plan: the plan of --plan, or else "
+                    "the plan that 'ethasp plan --principle P' makes. The question's "
+                    "constraints and the principle Q (--under, default P) restrict the model; "
+                    "its plan (the contrast) is judged and explained beside the original. "
+                    "Questions: 'why A', 'why not A', 'why A rather than B', 'why A before B'.")
+    _add_model_arguments(contrast)
+    contrast.add_argument("--question", action="append", required=True, metavar='"why ..."',
+                          help="the question (repeatable: all are imposed together)")
+    given = contrast.add_mutually_exclusive_group()
+    given.add_argument("--plan", metavar='"A1 A2 ..."', help="the plan asked about")
+    given.add_argument("--plan-file", metavar="FILE", help="read the plan asked about from FILE")
+    contrast.add_argument("--principle", default="deontology", metavar="P",
+                          help="the principle the plan is made and judged under "
+                               "(default deontology)")
+    contrast.add_argument("--under", default=None, metavar="Q",
+                          help="the principle the contrast plan must satisfy (default P)")
+    _add_search_arguments(contrast)
+    contrast.add_argument("--reasons-limit", type=int, default=DEFAULT_REASONS_LIMIT,
+                          metavar="N", help="at most N reasons of each kind per judgement")
+    contrast.set_defaults(run=command_ask)
+
+    talk = commands.add_parser(
+        "dialogue", help="explore contrastive questions interactively",
+        description="An interactive dialogue (the paper's iterative process): ask questions "
+                    "about the current plan; their constraints accumulate; undo, switch "
+                    "principle, save and load. Type help at the prompt. The dialogue is "
+                    "saved when it ends (also on Ctrl-C or end of input).")
+    _add_model_arguments(talk)
+    given = talk.add_mutually_exclusive_group()
+    given.add_argument("--plan", metavar='"A1 A2 ..."', help="the first plan")
+    given.add_argument("--plan-file", metavar="FILE", help="read the first plan from FILE")
+    talk.add_argument("--principle", default="deontology", metavar="P",
+                      help="the principle the first plan is made and judged under "
+                           "(default deontology)")
+    talk.add_argument("--load", metavar="FILE", help="resume a saved dialogue")
+    talk.add_argument("--save", default="ethasp-dialogue.json", metavar="FILE",
+                      help="where the dialogue is saved when it ends "
+                           "(default ethasp-dialogue.json; - for nowhere)")
+    _add_search_arguments(talk)
+    talk.add_argument("--reasons-limit", type=int, default=DEFAULT_REASONS_LIMIT, metavar="N",
+                      help="at most N reasons of each kind per judgement")
+    talk.set_defaults(run=command_dialogue)
     return parser
 
 
@@ -280,6 +367,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("ethasp: interrupted", file=sys.stderr)
         return 130
+    except BrokenPipeError:
+        # The reader went away (e.g. ethasp ... | head): stop quietly.
+        sys.stderr.close()
+        return 1
 
 
 if __name__ == "__main__":

@@ -69,6 +69,11 @@ class Question:
             raise InputError(f"question: expected 'why ...', got {text.strip()!r} "
                              "(forms: why A | why not A | why A rather than B | why A before B)")
         rest = words[1].strip()
+        tokens = rest.lower().split()
+        if tokens[-1] == "before" or tokens[-2:] == ["rather", "than"] or tokens[-1] == "not":
+            raise InputError(f"question: missing action at the end of {text.strip()!r}")
+        if tokens[0] == "before" or tokens[:2] == ["rather", "than"]:
+            raise InputError(f"question: missing action before '{tokens[0]}' in {text.strip()!r}")
         split = _split_outside_parentheses(rest)
         if split is not None:
             first, keyword, second = (part.strip() for part in split)

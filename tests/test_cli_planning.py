@@ -69,3 +69,18 @@ def test_scripts_refused_unless_allowed(tmp_path):
     assert run.returncode == 2 and "--allow-scripts" in run.stderr
     run = ethasp("plan", str(path), "--allow-scripts", "--json")
     assert run.returncode == 0 and json.loads(run.stdout)["plan"] == []
+
+
+def test_installed_package_holds_every_encoding_and_model(tmp_path):
+    """A non-editable install carries the encodings and bundled models (run from elsewhere)."""
+    code = ("import ethasp.resources as r, json; "
+            "print(json.dumps([sorted(str(p.relative_to(r.ENCODINGS)) for p in r.ENCODINGS.rglob('*.lp')),"
+            " sorted(str(p.relative_to(r.MODELS)) for p in r.MODELS.rglob('*') if p.is_file()"
+            " and p.suffix in ('.lp', '.pddl'))]))")
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path)
+    assert run.returncode == 0, run.stderr
+    encodings, models = json.loads(run.stdout)
+    assert encodings == sorted(str(p.relative_to(ROOT / "encodings"))
+                               for p in (ROOT / "encodings").rglob("*.lp"))
+    assert models == sorted(str(p.relative_to(MODELS)) for p in MODELS.rglob("*")
+                            if p.is_file() and p.suffix in (".lp", ".pddl"))

@@ -1,0 +1,317 @@
+"""Contrastive questions answered (steps 1 to 5 of the paper's iterative process).
+
+A question "Why A rather than B?" about the original plan becomes constraint
+facts (``contrast(Q,C)``, :mod:`ethasp.question`) that the fixed encoding
+``encodings/questions.lp`` reads.  The question's constraints and the chosen
+principle restrict the model (the HModel, :mod:`ethasp.restriction`), which is
+solved for the contrast plan (the HPlan).  If the HModel has no plan, the
+principle is dropped and the model solved again (step 3), so that the
+explanation shows why the contrast is impermissible.  If there is no plan even
+then, a minimal subset of the question's constraints that conflict is found
+with solver assumptions (each constraint is switched on by an assumption on
+``active(Q,C)``).  Both plans are judged and explained (step 4,
+:mod:`ethasp.judgement`), and the contrastive explanation sets the reasons of
+the two side by side (step 5).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Sequence
+
+import clingo
+from clorm import Predicate, Raw, unify
+
+from ethasp.errors import InputError
+from ethasp.judgement import Judgement, judge
+from ethasp.model import Model
+from ethasp.plan import Plan, parse_action
+from ethasp.principles import select_principles
+from ethasp.question import Question
+from ethasp.reasons import DEFAULT_LIMIT
+from ethasp.restriction import HPlanResult, plan_with_principles
+from ethasp.search import BOUNDED, DEFAULT_MAX_HORIZON, FOUND, NONE
+from ethasp import words
+
+QUESTIONS = "questions.lp"
+DEFAULT_PRINCIPLE = "deontology"
+
+
+class Contrast(Predicate, name="contrast"):
+    question: Raw
+    constraint: Raw
+
+
+class Met(Predicate, name="met"):
+    question: Raw
+    constraint: Raw
+    time: int
+
+
+class UnknownAction(Predicate, name="unknown_action"):
+    action: Raw
+
+
+def _active(question: clingo.Symbol, constraint: clingo.Symbol) -> clingo.Symbol:
+    return clingo.Function("active", [question, constraint])
+
+
+@dataclass(frozen=True)
+class Constraint:
+    """One constraint of a question: ``contrast(Q,C)``."""
+
+    question: clingo.Symbol
+    term: clingo.Symbol
+
+    def fact(self) -> Contrast:
+        return Contrast(question=Raw(self.question), constraint=Raw(self.term))
+
+    def __str__(self) -> str:
+        return str(self.term)
+
+
+def constraints_of(model: Model, questions: Sequence[Question], first: int = 1) -> list[Constraint]:
+    """The constraints of the questions, their actions resolved to model terms."""
+    result = []
+    for number, question in enumerate(questions, start=first):
+        name = clingo.Function("q", [clingo.Number(number)])
+        action = parse_action(question.action)
+        other = parse_action(question.other) if question.other is not None else None
+        result += [Constraint(name, term) for term in question.contrasts(action, other)]
+    return result
+
+
+def check_question(model: Model, question: Question, plan: Plan) -> list[Constraint]:
+    """The question's constraints, after checking it against the plan it is about.
+
+    Raises InputError if it names an action the model lacks, or if the plan
+    already meets all its constraints (then there is nothing to contrast: e.g.
+    "why not A" about a plan that uses A).
+    """
+    constraints = constraints_of(model, [question])
+    horizon = len(plan)
+    time = [f"time(0..{horizon})", f"horizon({horizon})"] + ([f"step(1..{horizon})"] if horizon else [])
+    symbols = model.solve_once(["model.lp", QUESTIONS],
+                               [c.fact() for c in constraints] + list(plan.facts()) + time)
+    answer = unify([Met, UnknownAction], symbols)
+    unknown = sorted(str(atom.action) for atom in answer.query(UnknownAction).all())
+    if unknown:
+        raise InputError(f"question '{question}': unknown action {unknown[0]}")
+    met = {str(atom.constraint) for atom in answer.query(Met).all()}
+    if all(str(c) in met for c in constraints):
+        raise InputError(f"question '{question}': the plan already meets its contrast "
+                         f"({', '.join(map(str, constraints))}); ask about what the plan does")
+    return constraints
+
+
+# -- the contrast plan -------------------------------------------------------------
+
+@dataclass
+class ContrastSearch:
+    """The search for the contrast plan: the HPlan, with the principle or without."""
+
+    result: HPlanResult
+    principle_dropped: bool
+    conflict: list[Constraint] = field(default_factory=list)
+    dropped_because: str = ""
+
+
+def _hplan(model: Model, principles: list[str], constraints: Sequence[Constraint],
+           active: Sequence[Constraint], max_horizon: int, time_limit: float | None) -> HPlanResult:
+    on = set(active)
+    assumptions = [(_active(c.question, c.term), c in on) for c in constraints]
+    return plan_with_principles(model, principles, max_horizon, time_limit,
+                                encodings=[QUESTIONS], facts=[c.fact() for c in constraints],
+                                assumptions=assumptions)
+
+
+def minimal_conflict(model: Model, constraints: Sequence[Constraint], max_horizon: int,
+                     time_limit: float | None) -> list[Constraint]:
+    """A subset-minimal set of constraints under which the model has no plan (proven).
+
+    Deletion-based: a constraint is left out whenever the others still have no
+    plan, proven; a search cut by the horizon keeps the constraint.
+    """
+    core = list(constraints)
+    for constraint in list(core):
+        trial = [c for c in core if c != constraint]
+        if _hplan(model, [], constraints, trial, max_horizon, time_limit).status == NONE:
+            core = trial
+    return core
+
+
+def contrast_plan(model: Model, constraints: Sequence[Constraint], under: str,
+                  max_horizon: int = DEFAULT_MAX_HORIZON,
+                  time_limit: float | None = None) -> ContrastSearch:
+    """The HPlan of the constraints and the principle ``under`` (steps 2 and 3)."""
+    result = _hplan(model, [under], constraints, constraints, max_horizon, time_limit)
+    if result.status == FOUND:
+        return ContrastSearch(result, False)
+    dropped = _hplan(model, [], constraints, constraints, max_horizon, time_limit)
+    conflict = (minimal_conflict(model, constraints, max_horizon, time_limit)
+                if dropped.status == NONE else [])
+    return ContrastSearch(dropped, True, conflict, result.proof)
+
+
+# -- answers -----------------------------------------------------------------------
+
+@dataclass
+class Side:
+    """One plan of a contrastive explanation, judged under one principle."""
+
+    plan: Plan
+    principle: str
+    judgement: Judgement
+
+    def to_json(self, model: Model | None = None) -> dict:
+        explanation = self.judgement.explanation
+        return {
+            "plan": self.plan.to_list(),
+            "principle": self.principle,
+            "permissible": self.judgement.permissible,
+            "status": self.judgement.status,
+            "sufficient_reasons": explanation.sufficient_reasons if explanation else [],
+            "necessary_reasons": explanation.necessary_reasons if explanation else [],
+            "chosen_reason": explanation.chosen_reason if explanation else [],
+            "explanation": explanation.text if explanation else "",
+        }
+
+
+@dataclass
+class Answer:
+    """The answer to contrastive questions about a plan.
+
+    ``original`` is the plan asked about, judged under ``principle``;
+    ``contrast`` the contrast plan (HPlan) judged under ``under``, or None if
+    there is none.  ``status`` is that of the contrast plan's search (found,
+    none: proven, bounded); ``principle_dropped`` says that no plan met the
+    constraints and ``under`` together, so the principle was left out;
+    ``conflict`` lists a minimal set of constraints that no plan meets.
+    ``difference`` holds the literals of the chosen reasons that only one side
+    has.
+    """
+
+    questions: list[Question]
+    principle: str
+    under: str
+    original: Side
+    contrast: Side | None
+    status: str
+    proof: str
+    principle_dropped: bool
+    constraints: list[Constraint]
+    conflict: list[Constraint]
+    difference: dict[str, list[str]]
+    explanation: str
+    dropped_because: str = ""
+
+    def to_json(self) -> dict:
+        return {
+            "questions": [str(q) for q in self.questions],
+            "original": self.original.to_json(),
+            "contrast": self.contrast.to_json() if self.contrast else None,
+            "constraints": [str(c) for c in self.constraints],
+            "status": self.status,
+            "proof": self.proof,
+            "principle_dropped": self.principle_dropped,
+            "principle_dropped_because": self.dropped_because,
+            "conflict": [str(c) for c in self.conflict],
+            "reason_difference": self.difference,
+            "explanation": self.explanation,
+        }
+
+
+def _difference(original: Side, contrast: Side | None) -> dict[str, list[str]]:
+    mine = original.judgement.explanation.chosen_reason if original.judgement.explanation else []
+    theirs = (contrast.judgement.explanation.chosen_reason
+              if contrast and contrast.judgement.explanation else [])
+    return {"original_only": [lit for lit in mine if lit not in theirs],
+            "contrast_only": [lit for lit in theirs if lit not in mine]}
+
+
+def _side_sentences(side: Side, modal: str, opening: str, alternatively: bool) -> str:
+    explanation = side.judgement.explanation
+    labels = explanation.labels
+    option = f"{words.agent(labels)} {modal} {words.plan_phrase(labels, side.plan)}."
+    option = f"Alternatively, {option}" if alternatively else words.capitalize(option)
+    verdict = words.verdict_sentence(explanation, opening, principle=True, pronoun=True)
+    if side.judgement.status == BOUNDED:
+        verdict = verdict[:-1] + " (as far as searched)."
+    return f"{option} {verdict}"
+
+
+def contrastive_text(original: Side, contrast: Side | None, conflict: Sequence[Constraint],
+                     status: str) -> str:
+    """The words of a contrastive explanation (step 5)."""
+    text = _side_sentences(original, "could", "This would be", alternatively=False)
+    if contrast is not None:
+        return f"{text} {_side_sentences(contrast, 'could', 'Doing so is', alternatively=True)}"
+    if status == NONE:
+        reason = ", ".join(map(str, conflict)) if conflict else "the goal"
+        return f"{text} There is no alternative plan: no plan meets {reason}."
+    return f"{text} No alternative plan was found within the search bounds."
+
+
+def _judge_side(model: Model, plan: Plan, principle: str, max_horizon: int,
+                time_limit: float | None, reasons_limit: int) -> Side:
+    report = judge(model, plan, [principle], max_horizon, time_limit, reasons_limit)
+    return Side(plan, principle, report.judgements[0])
+
+
+def original_plan(model: Model, principle: str, max_horizon: int = DEFAULT_MAX_HORIZON,
+                  time_limit: float | None = None) -> Plan:
+    """The plan that plan search under the principle makes (the plan asked about)."""
+    result = plan_with_principles(model, [principle], max_horizon, time_limit)
+    if result.plan is None:
+        raise InputError(f"no plan to ask about: {result.proof}")
+    return result.plan
+
+
+def answer_questions(model: Model, questions: Sequence[Question], plan: Plan,
+                     principle: str, under: str, previous: Sequence[Constraint] = (),
+                     max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
+                     reasons_limit: int = DEFAULT_LIMIT) -> Answer:
+    """Answer the questions about ``plan`` (judged under ``principle``) with a
+    contrast plan under ``under``; ``previous`` constraints stay imposed."""
+    principle = select_principles([principle])[0].name
+    under = select_principles([under])[0].name
+    new: list[Constraint] = []
+    asked = max((c.question.arguments[0].number for c in previous), default=0)
+    for index, question in enumerate(questions):
+        for constraint in check_question(model, question, plan):
+            number = asked + index + 1
+            new.append(Constraint(clingo.Function("q", [clingo.Number(number)]), constraint.term))
+    constraints = list(previous) + new
+    original = _judge_side(model, plan, principle, max_horizon, time_limit, reasons_limit)
+    search = contrast_plan(model, constraints, under, max_horizon, time_limit)
+    contrast = None
+    if search.result.plan is not None:
+        contrast = _judge_side(model, search.result.plan, under, max_horizon, time_limit,
+                               reasons_limit)
+    return Answer(list(questions), principle, under, original, contrast, search.result.status,
+                  search.result.proof, search.principle_dropped, constraints, search.conflict,
+                  _difference(original, contrast),
+                  contrastive_text(original, contrast, search.conflict, search.result.status),
+                  search.dropped_because)
+
+
+def ask(model: Model, question: str | Question | Sequence[str | Question],
+        plan: Plan | None = None, principle: str = DEFAULT_PRINCIPLE, under: str | None = None,
+        max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
+        reasons_limit: int = DEFAULT_LIMIT) -> Answer:
+    """Ask "why A rather than B?" about a plan.
+
+    The plan asked about is ``plan``, or else the plan that plan search under
+    ``principle`` makes; it is judged under ``principle``.  The contrast plan
+    must satisfy ``under`` (default: ``principle``).  Questions are text (see
+    :mod:`ethasp.question`) or :class:`Question` objects.
+    """
+    items = [question] if isinstance(question, (str, Question)) else list(question)
+    questions = [q if isinstance(q, Question) else Question.parse(q) for q in items]
+    if not questions:
+        raise InputError("no question given")
+    if plan is None:
+        plan = original_plan(model, principle, max_horizon, time_limit)
+    return answer_questions(model, questions, plan, principle, under or principle,
+                            max_horizon=max_horizon, time_limit=time_limit,
+                            reasons_limit=reasons_limit)

@@ -1,0 +1,174 @@
+"""The iterative explanation process (step 6 of the paper) as a dialogue.
+
+A dialogue starts from a plan (given, or made by plan search under a
+principle).  Each question asked is about the current plan; its constraints
+join those of the questions before (the HModel grows), and the contrast plan
+found becomes the current plan.  Questions can be undone, the principle the
+next contrast must satisfy can be switched, and the whole dialogue can be
+saved to JSON and loaded again (loading asks the saved questions anew).
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Sequence
+
+from ethasp.contrast import Answer, Constraint, answer_questions, original_plan
+from ethasp.errors import InputError
+from ethasp.judgement import JudgementReport, judge
+from ethasp.model import Model
+from ethasp.plan import Plan
+from ethasp.principles import select_principles
+from ethasp.question import Question
+from ethasp.reasons import DEFAULT_LIMIT
+from ethasp.search import DEFAULT_MAX_HORIZON
+
+FORMAT = "ethasp-dialogue"
+VERSION = 1
+
+
+@dataclass
+class Step:
+    """One question of the dialogue, the principle it was asked under, its answer."""
+
+    question: Question
+    under: str
+    answer: Answer
+
+
+@dataclass
+class Dialogue:
+    """An exploration of contrastive questions about a plan.
+
+    ``principle`` is the principle the first plan is made and judged under;
+    ``under`` the principle that the next contrast plan must satisfy (switch
+    it with :meth:`switch_principle`).  ``model_files`` are recorded when the
+    dialogue is saved, so that :meth:`load` can find the model again.
+    """
+
+    model: Model
+    principle: str
+    plan: Plan
+    under: str = ""
+    steps: list[Step] = field(default_factory=list)
+    model_files: list[str] = field(default_factory=list)
+    max_horizon: int = DEFAULT_MAX_HORIZON
+    time_limit: float | None = None
+    reasons_limit: int = DEFAULT_LIMIT
+
+    @classmethod
+    def start(cls, model: Model, principle: str, plan: Plan | None = None,
+              model_files: Sequence[str] = (), max_horizon: int = DEFAULT_MAX_HORIZON,
+              time_limit: float | None = None, reasons_limit: int = DEFAULT_LIMIT) -> "Dialogue":
+        """A dialogue about ``plan``, or about the plan made under ``principle``."""
+        principle = select_principles([principle])[0].name
+        if plan is None:
+            plan = original_plan(model, principle, max_horizon, time_limit)
+        return cls(model, principle, plan, principle, [], list(model_files), max_horizon,
+                   time_limit, reasons_limit)
+
+    # -- state --------------------------------------------------------------------
+
+    @property
+    def current_plan(self) -> Plan:
+        """The plan now discussed: the last contrast plan found, else the first plan."""
+        for step in reversed(self.steps):
+            if step.answer.contrast is not None:
+                return step.answer.contrast.plan
+        return self.plan
+
+    @property
+    def current_principle(self) -> str:
+        """The principle the current plan was made under."""
+        for step in reversed(self.steps):
+            if step.answer.contrast is not None:
+                return step.under
+        return self.principle
+
+    @property
+    def constraints(self) -> list[Constraint]:
+        """The constraints of every question asked so far."""
+        return self.steps[-1].answer.constraints if self.steps else []
+
+    def current(self) -> JudgementReport:
+        """The current plan, judged and explained under its principle."""
+        return judge(self.model, self.current_plan, [self.current_principle], self.max_horizon,
+                     self.time_limit, self.reasons_limit)
+
+    # -- moves --------------------------------------------------------------------
+
+    def ask(self, question: str | Question) -> Answer:
+        """Ask about the current plan; the question's constraints are kept."""
+        if not isinstance(question, Question):
+            question = Question.parse(question)
+        answer = answer_questions(self.model, [question], self.current_plan,
+                                  self.current_principle, self.under, self.constraints,
+                                  self.max_horizon, self.time_limit, self.reasons_limit)
+        self.steps.append(Step(question, self.under, answer))
+        return answer
+
+    def undo(self) -> Step:
+        """Take back the last question (and its constraints)."""
+        if not self.steps:
+            raise InputError("nothing to undo: no question asked yet")
+        return self.steps.pop()
+
+    def switch_principle(self, name: str) -> str:
+        """The principle the next contrast plans must satisfy."""
+        self.under = select_principles([name])[0].name
+        return self.under
+
+    # -- saving -------------------------------------------------------------------
+
+    def to_json(self) -> dict:
+        return {
+            "format": FORMAT,
+            "version": VERSION,
+            "model": list(self.model_files),
+            "principle": self.principle,
+            "plan": self.plan.to_list(),
+            "under": self.under,
+            "steps": [{"question": step.question.to_json(), "under": step.under,
+                       "answer": step.answer.to_json()} for step in self.steps],
+        }
+
+    def save(self, path: str | Path) -> None:
+        """Write the whole dialogue to a JSON file."""
+        Path(path).write_text(json.dumps(self.to_json(), indent=2) + "\n")
+
+    @classmethod
+    def from_json(cls, data: dict, model: Model | None = None,
+                  max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
+                  reasons_limit: int = DEFAULT_LIMIT) -> "Dialogue":
+        """Rebuild a saved dialogue, asking its questions again in order."""
+        if not isinstance(data, dict) or data.get("format") != FORMAT:
+            raise InputError("not a saved ethasp dialogue")
+        if model is None:
+            if not data.get("model"):
+                raise InputError("the saved dialogue names no model files; give the model")
+            model = Model.load(data["model"])
+        try:
+            plan = Plan.parse(" ".join(data["plan"]))
+            dialogue = cls(model, select_principles([data["principle"]])[0].name, plan,
+                           data["principle"], [], list(data.get("model", [])), max_horizon,
+                           time_limit, reasons_limit)
+            for step in data.get("steps", []):
+                dialogue.switch_principle(step["under"])
+                dialogue.ask(Question.from_json(step["question"]))
+            dialogue.switch_principle(data.get("under", dialogue.principle))
+        except (KeyError, TypeError) as error:
+            raise InputError(f"saved dialogue is incomplete: missing {error}") from None
+        return dialogue
+
+    @classmethod
+    def load(cls, path: str | Path, model: Model | None = None, **options) -> "Dialogue":
+        """Load a dialogue saved with :meth:`save`."""
+        try:
+            data = json.loads(Path(path).read_text())
+        except FileNotFoundError:
+            raise InputError(f"{path}: no such file") from None
+        except (OSError, json.JSONDecodeError) as error:
+            raise InputError(f"{path}: not a saved dialogue ({error})") from None
+        return cls.from_json(data, model, **options)

@@ -1,0 +1,156 @@
+"""The interactive prompt of ``ethasp dialogue`` (reads commands line by line)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Callable, TextIO
+
+from ethasp.contrast import Answer
+from ethasp.dialogue import Dialogue
+from ethasp.errors import InputError
+
+HELP = """\
+Commands:
+  why A | why not A | why A rather than B | why A before B
+                     ask about the current plan; the question's constraints
+                     stay imposed on later contrast plans
+  principle NAME     the principle later contrast plans must satisfy
+                     (deontology, utilitarianism, do-no-harm)
+  plan               show the current plan and its explanation
+  history            the questions asked so far, with their principles
+  undo               take back the last question
+  save FILE          save the whole dialogue to FILE (JSON)
+  load FILE          load a dialogue saved before
+  help               this text
+  quit               end the dialogue (it is saved, see --save)"""
+
+
+def answer_text(answer: Answer, naming) -> str:
+    """An answer in words, then the plans, verdicts and constraints."""
+    lines = [answer.explanation]
+    original = answer.original
+    lines.append(f"  plan asked about: {naming.actions(original.plan) or '(empty)'} "
+                 f"({original.principle}: {_verdict(original)})")
+    if answer.contrast is not None:
+        contrast = answer.contrast
+        lines.append(f"  contrast plan: {naming.actions(contrast.plan) or '(empty)'} "
+                     f"({contrast.principle}: {_verdict(contrast)})")
+    else:
+        lines.append(f"  contrast plan: none ({answer.status}: {answer.proof})")
+    if answer.principle_dropped:
+        lines.append(f"  the principle {answer.under} was dropped for the contrast: "
+                     f"{answer.dropped_because}")
+    lines.append(f"  constraints: {', '.join(map(str, answer.constraints))}")
+    if answer.conflict:
+        lines.append(f"  conflicting constraints: {', '.join(map(str, answer.conflict))}")
+    difference = answer.difference
+    if difference["original_only"] or difference["contrast_only"]:
+        lines.append(f"  reasons only for the plan asked about: "
+                     f"{', '.join(difference['original_only']) or 'none'}; "
+                     f"only for the contrast: {', '.join(difference['contrast_only']) or 'none'}")
+    return "\n".join(lines)
+
+
+def _verdict(side) -> str:
+    word = "permissible" if side.judgement.permissible else "impermissible"
+    return word if side.judgement.status == "proven" else f"{word}, bounded"
+
+
+class Prompt:
+    """Runs a dialogue from lines of text; saves it when it ends."""
+
+    def __init__(self, dialogue: Dialogue, save_path: Path | None, output: TextIO,
+                 load: Callable[[str], Dialogue]):
+        self.dialogue = dialogue
+        self.save_path = save_path
+        self.output = output
+        self.load = load
+
+    def say(self, text: str) -> None:
+        print(text, file=self.output, flush=True)
+
+    def show_current(self) -> None:
+        report = self.dialogue.current()
+        judgement = report.judgements[0]
+        naming = self.dialogue.model.naming
+        text = judgement.explanation.text if judgement.explanation else ""
+        self.say(f"current plan: {naming.actions(report.plan) or '(empty)'} "
+                 f"({judgement.principle}: {'permissible' if judgement.permissible else 'impermissible'})")
+        if text:
+            self.say(text)
+        self.say(f"next contrasts must satisfy: {self.dialogue.under}")
+
+    def handle(self, line: str) -> bool:
+        """Carry out one command; False when the dialogue should end."""
+        words = line.strip().split(None, 1)
+        if not words:
+            return True
+        command, rest = words[0].lower(), (words[1].strip() if len(words) > 1 else "")
+        if command in ("quit", "exit"):
+            return False
+        if command == "help":
+            self.say(HELP)
+        elif command == "why":
+            answer = self.dialogue.ask(line.strip())
+            self.say(answer_text(answer, self.dialogue.model.naming))
+        elif command == "principle":
+            if not rest:
+                self.say(f"next contrasts must satisfy: {self.dialogue.under}")
+            else:
+                self.say(f"next contrasts must satisfy: {self.dialogue.switch_principle(rest)}")
+        elif command in ("plan", "show"):
+            self.show_current()
+        elif command == "history":
+            if not self.dialogue.steps:
+                self.say("no question asked yet")
+            for number, step in enumerate(self.dialogue.steps, start=1):
+                own = [c for c in step.answer.constraints
+                       if c.question == step.answer.constraints[-1].question]
+                self.say(f"{number}. {step.question} (under {step.under}): "
+                         f"{', '.join(map(str, own))}")
+        elif command == "undo":
+            step = self.dialogue.undo()
+            self.say(f"took back: {step.question}")
+            self.show_current()
+        elif command == "save":
+            if not rest:
+                raise InputError("save: give a file name")
+            self.dialogue.save(rest)
+            self.say(f"saved to {rest}")
+        elif command == "load":
+            if not rest:
+                raise InputError("load: give a file name")
+            self.dialogue = self.load(rest)
+            self.say(f"loaded {rest} ({len(self.dialogue.steps)} questions)")
+            self.show_current()
+        else:
+            raise InputError(f"unknown command {command!r} (type help)")
+        return True
+
+    def run(self, read: Callable[[], str]) -> int:
+        """Read and carry out commands until quit, end of input or Ctrl-C."""
+        self.show_current()
+        try:
+            while True:
+                try:
+                    line = read()
+                except EOFError:
+                    break
+                try:
+                    if not self.handle(line):
+                        break
+                except InputError as error:
+                    self.say(f"error: {error}")
+        except KeyboardInterrupt:
+            self.say("")
+        finally:
+            if self.save_path is not None:
+                self.dialogue.save(self.save_path)
+                self.say(f"dialogue saved to {self.save_path}")
+        return 0
+
+
+def transcript(dialogue: Dialogue) -> str:
+    """The dialogue's answers as JSON text."""
+    return json.dumps(dialogue.to_json(), indent=2)

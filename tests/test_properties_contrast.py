@@ -1,0 +1,60 @@
+"""Property tests: contrast plans on random models meet the question's
+constraints, and the principle whenever it was not dropped (brute-force
+checks written from the definitions)."""
+
+import random
+
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from ethasp import InputError, Model, Plan
+from ethasp.contrast import ask
+from oracle import random_model
+
+PRINCIPLES = ["deontology", "utilitarianism", "do-no-harm"]
+
+
+def meets(plan: list[str], kind: str, a: str, b: str | None) -> bool:
+    if kind == "why":
+        return a not in plan
+    if kind == "why-not":
+        return a in plan
+    if kind == "rather-than":
+        return a not in plan and b in plan
+    # "why a before b": contrast b before a
+    return any(x == b and a in plan[i + 1:] for i, x in enumerate(plan))
+
+
+@settings(max_examples=120, deadline=None)
+@given(st.integers(min_value=0, max_value=10**9), st.sampled_from(PRINCIPLES),
+       st.sampled_from(["why", "why-not", "rather-than", "before"]))
+def test_contrast_plans_meet_the_constraints(seed, under, kind):
+    spec = random_model(seed)
+    rng = random.Random(seed)
+    length = spec.shortest_plan_length()
+    if length is None:
+        return
+    model = Model.from_string(spec.to_asp())
+    from ethasp.search import find_plan
+    plan = [str(a) for a in find_plan(model).plan]
+    a, b = rng.choice(spec.actions), rng.choice(spec.actions)
+    text = {"why": f"why {a}", "why-not": f"why not {a}",
+            "rather-than": f"why {a} rather than {b}", "before": f"why {a} before {b}"}[kind]
+    try:
+        answer = ask(model, text, plan=Plan.parse(" ".join(plan)), principle="deontology",
+                     under=under, max_horizon=16)
+    except InputError as error:
+        # Only when the plan already meets the contrast.
+        assert "already meets" in str(error)
+        assert meets(plan, kind, a, b)
+        return
+    assert not meets(plan, kind, a, b)
+    if answer.contrast is None:
+        assert answer.status in ("none", "bounded")
+        return
+    contrast = [str(x) for x in answer.contrast.plan]
+    assert spec.is_plan(contrast)
+    assert meets(contrast, kind, a, b)
+    if not answer.principle_dropped:
+        assert spec.permissible(contrast, under)
+    assert answer.contrast.judgement.permissible == spec.permissible(contrast, under)
