@@ -29,15 +29,27 @@ from ethasp.errors import InputError
 from ethasp.model import Model
 from ethasp.plan import Plan
 from ethasp.search import BOUNDED, DEFAULT_MAX_HORIZON, FOUND, NONE, Search
+from ethasp.principles import Principle, select_principles
+from ethasp.resources import ENCODINGS
 from ethasp.utilitarianism import PROVEN, BestReachable, best_reachable
 
-PRINCIPLES = ("deontology", "utilitarianism", "do-no-harm")
+RESTRICTIONS = "restrictions"
 
-RESTRICTIONS = {
-    "deontology": "restrictions/deontology.lp",
-    "utilitarianism": "restrictions/utilitarianism.lp",
-    "do-no-harm": "restrictions/do_no_harm.lp",
-}
+
+def _principles(names: Sequence[str]) -> list[Principle]:
+    """The principles named, each once, each with a restriction encoding.
+
+    A principle ``NAME`` (``encodings/principles/NAME.lp``) restricts plan
+    search with ``encodings/restrictions/NAME.lp``; one without it can judge
+    plans but not generate them.
+    """
+    chosen = select_principles(names)
+    for principle in chosen:
+        if not (ENCODINGS / RESTRICTIONS / f"{principle.asp_name}.lp").is_file():
+            raise InputError(f"principle {principle.name} has no restriction encoding "
+                             f"({RESTRICTIONS}/{principle.asp_name}.lp): it can judge plans "
+                             "but not generate them")
+    return chosen
 
 
 def principle_names(names: Sequence[str]) -> list[str]:
@@ -45,14 +57,7 @@ def principle_names(names: Sequence[str]) -> list[str]:
 
     Raises InputError for an unknown name.
     """
-    result: list[str] = []
-    for name in names:
-        canonical = name.strip().lower().replace("_", "-")
-        if canonical not in PRINCIPLES:
-            raise InputError(f"unknown principle {name!r} (one of {', '.join(PRINCIPLES)})")
-        if canonical not in result:
-            result.append(canonical)
-    return result
+    return [principle.name for principle in _principles(names)]
 
 
 # -- HPlans ------------------------------------------------------------------
@@ -95,8 +100,8 @@ class HPlanResult:
 
 
 def restriction_encodings(principles: Sequence[str]) -> list[str]:
-    """The restriction encodings of the principles (names as in PRINCIPLES)."""
-    return [RESTRICTIONS[name] for name in principle_names(principles)]
+    """The restriction encodings of the principles."""
+    return [f"{RESTRICTIONS}/{principle.asp_name}.lp" for principle in _principles(principles)]
 
 
 def plan_with_principles(model: Model, principles: Sequence[str],
@@ -111,11 +116,12 @@ def plan_with_principles(model: Model, principles: Sequence[str],
     ``encodings``, ``facts`` and ``assumptions`` add further constraints to the
     HModel (the constraints of contrastive questions, for instance).
     """
-    names = principle_names(principles)
+    chosen = _principles(principles)
+    names = [principle.name for principle in chosen]
     deadline = None if time_limit is None else time.monotonic() + time_limit
     facts = list(facts)
     best: BestReachable | None = None
-    if "utilitarianism" in names:
+    if any(principle.reads_alternatives for principle in chosen):
         best = best_reachable(model, max_horizon, time_limit)
         if best.utility is None:
             return HPlanResult(BOUNDED, names, horizon=best.searched, best=best,
