@@ -5,16 +5,50 @@ Long, "Understanding a Robot's Guiding Ethical Principles via Automatically
 Generated Explanations" (IEEE CASE 2021).
 """
 
-from ethasp.errors import InputError
-from ethasp.formula import Formula, format_formula, format_literal, parse_formula
-from ethasp.judgement import Judgement, JudgementReport, QueryResult, judge, query
-from ethasp.model import Model
-from ethasp.plan import Plan
-from ethasp.restriction import HPlanResult, plan_with_principles
-from ethasp.search import SearchResult, find_plan
-from ethasp.validation import Validation, validate
+from importlib import import_module
+from typing import Any
+
+# Names are imported on first use, so that a command (ethasp plan) loads only
+# the modules it needs.
+_HOMES = {
+    "InputError": "ethasp.errors",
+    "Formula": "ethasp.formula",
+    "format_formula": "ethasp.formula",
+    "format_literal": "ethasp.formula",
+    "parse_formula": "ethasp.formula",
+    "Judgement": "ethasp.judgement",
+    "JudgementReport": "ethasp.judgement",
+    "QueryResult": "ethasp.judgement",
+    "judge": "ethasp.judgement",
+    "query": "ethasp.judgement",
+    "Model": "ethasp.model",
+    "Plan": "ethasp.plan",
+    "Explanation": "ethasp.reasons",
+    "explain": "ethasp.reasons",
+    "HPlanResult": "ethasp.restriction",
+    "plan_with_principles": "ethasp.restriction",
+    "SearchResult": "ethasp.search",
+    "find_plan": "ethasp.search",
+    "Validation": "ethasp.validation",
+    "validate": "ethasp.validation",
+}
+
+
+def __getattr__(name: str) -> Any:
+    if name not in _HOMES:
+        raise AttributeError(f"module 'ethasp' has no attribute {name!r}")
+    value = getattr(import_module(_HOMES[name]), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_HOMES))
+
 
 __all__ = [
+    "Explanation",
+    "explain",
     "Formula",
     "InputError",
     "Judgement",

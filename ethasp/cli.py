@@ -8,15 +8,19 @@ import sys
 from pathlib import Path
 from typing import Sequence
 
+from typing import TYPE_CHECKING
+
 from ethasp.errors import InputError
-from ethasp.judgement import JudgementReport, judge, query
-from ethasp.reasons import DEFAULT_LIMIT as DEFAULT_REASONS_LIMIT
 from ethasp.model import Model
 from ethasp.plan import Plan
 from ethasp.resources import MODELS
-from ethasp.restriction import plan_with_principles
 from ethasp.search import DEFAULT_MAX_HORIZON, FOUND, find_plan
-from ethasp.validation import validate
+
+if TYPE_CHECKING:
+    from ethasp.judgement import JudgementReport
+
+# Judgements, reasons, formulas and restrictions are imported by the commands
+# that use them, so that ethasp plan starts quickly.
 
 DESCRIPTION = """\
 Ethical plan explanation with Answer Set Programming (clingo), after Krarup,
@@ -81,6 +85,9 @@ def command_plan(args: argparse.Namespace) -> int:
 
 def command_plan_permissible(args: argparse.Namespace, model: Model) -> int:
     """ethasp plan --principle: a shortest HPlan, then its judgement."""
+    from ethasp.judgement import judge
+    from ethasp.restriction import plan_with_principles
+
     result = plan_with_principles(model, args.principle, args.max_horizon, args.time_limit,
                                   all_plans=args.all)
     under = " and ".join(result.principles)
@@ -108,6 +115,8 @@ def command_plan_permissible(args: argparse.Namespace, model: Model) -> int:
 
 
 def command_validate(args: argparse.Namespace) -> int:
+    from ethasp.validation import validate
+
     model = load_model(args)
     validation = validate(model, Plan.parse(args.plan))
     if validation.valid:
@@ -119,7 +128,7 @@ def command_validate(args: argparse.Namespace) -> int:
     return 0 if validation.valid else 2
 
 
-def _judgement_text(report: JudgementReport, model: Model) -> str:
+def _judgement_text(report: "JudgementReport", model: Model) -> str:
     naming = model.naming
     lines = [f"plan: {naming.actions(report.plan)}" if len(report.plan) else "plan: (empty)",
              f"final state: {naming.facts(report.final_state)} (utility {report.utility})"]
@@ -160,7 +169,7 @@ def _add_plan_arguments(parser: argparse.ArgumentParser) -> None:
                        help="read the plan from FILE (actions separated by white space)")
 
 
-def _explanation_text(report: JudgementReport) -> list[str]:
+def _explanation_text(report: "JudgementReport") -> list[str]:
     """Each judgement's explanation, then its reasons (ethasp/reasons.py)."""
     lines = []
     for judgement in report.judgements:
@@ -176,8 +185,19 @@ def _explanation_text(report: JudgementReport) -> list[str]:
     return lines
 
 
+def _reasons_limit(args: argparse.Namespace) -> None:
+    """--reasons-limit, by default ethasp.reasons.DEFAULT_LIMIT (imported only here)."""
+    if args.reasons_limit is None:
+        from ethasp.reasons import DEFAULT_LIMIT
+
+        args.reasons_limit = DEFAULT_LIMIT
+
+
 def command_judge(args: argparse.Namespace) -> int:
+    from ethasp.judgement import judge
+
     model = load_model(args)
+    _reasons_limit(args)
     if args.reasons_limit < 0:
         raise InputError("--reasons-limit must be at least 0")
     report = judge(model, _given_plan(args), args.principle, args.max_horizon,
@@ -191,6 +211,7 @@ def command_ask(args: argparse.Namespace) -> int:
     from ethasp.contrast import ask
     from ethasp.prompt import answer_text
 
+    _reasons_limit(args)
     model = load_model(args)
     plan = _given_plan(args) if (args.plan or args.plan_file) else None
     answer = ask(model, args.question, plan, args.principle, args.under, args.max_horizon,
@@ -203,6 +224,7 @@ def command_dialogue(args: argparse.Namespace) -> int:
     from ethasp.dialogue import Dialogue
     from ethasp.prompt import Prompt
 
+    _reasons_limit(args)
     model = load_model(args)
     options = dict(max_horizon=args.max_horizon, time_limit=args.time_limit,
                    reasons_limit=args.reasons_limit)
@@ -230,6 +252,8 @@ def command_dialogue(args: argparse.Namespace) -> int:
 
 
 def command_query(args: argparse.Namespace) -> int:
+    from ethasp.judgement import query
+
     model = load_model(args)
     result = query(model, _given_plan(args), args.formula)
     emit(args, result.to_json(), "true" if result.value else "false")
@@ -295,9 +319,10 @@ def build_parser() -> argparse.ArgumentParser:
                               f"at most N steps (default {DEFAULT_MAX_HORIZON})")
     judging.add_argument("--time-limit", type=float, default=None, metavar="SECONDS",
                          help="stop that search after SECONDS and report 'bounded'")
-    judging.add_argument("--reasons-limit", type=int, default=DEFAULT_REASONS_LIMIT, metavar="N",
+    judging.add_argument("--reasons-limit", type=int, default=None, metavar="N",
                          help="compute at most N sufficient and N necessary reasons per "
-                              f"judgement (default {DEFAULT_REASONS_LIMIT}; 0: no explanations)")
+                              "judgement (default: ethasp.reasons.DEFAULT_LIMIT; "
+                              "0: no explanations)")
     judging.set_defaults(run=command_judge)
 
     asking = commands.add_parser(
@@ -328,7 +353,7 @@ def build_parser() -> argparse.ArgumentParser:
     contrast.add_argument("--under", default=None, metavar="Q",
                           help="the principle the contrast plan must satisfy (default P)")
     _add_search_arguments(contrast)
-    contrast.add_argument("--reasons-limit", type=int, default=DEFAULT_REASONS_LIMIT,
+    contrast.add_argument("--reasons-limit", type=int, default=None,
                           metavar="N", help="at most N reasons of each kind per judgement")
     contrast.set_defaults(run=command_ask)
 
@@ -350,7 +375,7 @@ def build_parser() -> argparse.ArgumentParser:
                       help="where the dialogue is saved when it ends "
                            "(default ethasp-dialogue.json; - for nowhere)")
     _add_search_arguments(talk)
-    talk.add_argument("--reasons-limit", type=int, default=DEFAULT_REASONS_LIMIT, metavar="N",
+    talk.add_argument("--reasons-limit", type=int, default=None, metavar="N",
                       help="at most N reasons of each kind per judgement")
     talk.set_defaults(run=command_dialogue)
     return parser

@@ -36,6 +36,11 @@ DEFAULT_MAX_HORIZON = 64
 PLANNING = ("model.lp", "relaxed.lp", "search/transition.lp")
 LOOPFREE = "loopfree"
 
+# Plain shortest-plan search: redundant mutex constraints and a solver
+# configuration that did best on the PDDL benchmark and on held-out instances.
+SHORTEST = ("search/mutex.lp",)
+SHORTEST_OPTIONS = ("--configuration=trendy",)
+
 
 @dataclass
 class SearchResult:
@@ -80,18 +85,20 @@ class Search:
     constraints) written with the step(T)/horizon(T) convention; ``goal``
     says whether the goal must hold at the horizon; ``optimize`` asks for an
     optimal model at each horizon (for ``#maximize``/``#minimize`` statements
-    in the encodings).
+    in the encodings); ``options`` are further clingo command-line options.
     """
 
     def __init__(self, model: Model, encodings: Sequence[str] = (), facts: Iterable = (),
                  goal: bool = True, optimize: bool = False,
-                 assumptions: Sequence[tuple[clingo.Symbol, bool]] = ()):
+                 assumptions: Sequence[tuple[clingo.Symbol, bool]] = (),
+                 options: Sequence[str] = ()):
         self.model = model
         self.goal = goal
         self.optimize = optimize
         self.assumptions = list(assumptions)
         self.messages = Messages()
-        self.ctl = model.control(["--opt-mode=opt"] if optimize else [], self.messages)
+        self.ctl = model.control((["--opt-mode=opt"] if optimize else []) + list(options),
+                                 self.messages)
         files = list(PLANNING) + (["search/goal.lp"] if goal else []) + list(encodings)
         try:
             self.ctl.add("base", [], time_parts())
@@ -258,4 +265,5 @@ class Search:
 def find_plan(model: Model, max_horizon: int = DEFAULT_MAX_HORIZON,
               time_limit: float | None = None, all_plans: bool = False) -> SearchResult:
     """A shortest plan for the model (all shortest plans with ``all_plans``)."""
-    return Search(model).run(max_horizon, time_limit, all_plans)
+    search = Search(model, SHORTEST, options=SHORTEST_OPTIONS)
+    return search.run(max_horizon, time_limit, all_plans)
