@@ -161,12 +161,13 @@ def _given_plan(args: argparse.Namespace) -> Plan:
         raise InputError(f"{args.plan_file}: cannot be read ({exc})") from None
 
 
-def _add_plan_arguments(parser: argparse.ArgumentParser) -> None:
-    given = parser.add_mutually_exclusive_group(required=True)
+def _add_plan_arguments(parser: argparse.ArgumentParser, required: bool = True,
+                        what: str = "the plan") -> None:
+    given = parser.add_mutually_exclusive_group(required=required)
     given.add_argument("--plan", metavar='"A1 A2 ..."',
-                       help="the plan: action terms separated by spaces")
+                       help=f"{what}: action terms separated by spaces")
     given.add_argument("--plan-file", metavar="FILE",
-                       help="read the plan from FILE (actions separated by white space)")
+                       help=f"read {what} from FILE (actions separated by white space)")
 
 
 def _explanation_text(report: "JudgementReport") -> list[str]:
@@ -344,9 +345,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_model_arguments(contrast)
     contrast.add_argument("--question", action="append", required=True, metavar='"why ..."',
                           help="the question (repeatable: all are imposed together)")
-    given = contrast.add_mutually_exclusive_group()
-    given.add_argument("--plan", metavar='"A1 A2 ..."', help="the plan asked about")
-    given.add_argument("--plan-file", metavar="FILE", help="read the plan asked about from FILE")
+    _add_plan_arguments(contrast, required=False, what="the plan asked about")
     contrast.add_argument("--principle", default="deontology", metavar="P",
                           help="the principle the plan is made and judged under "
                                "(default deontology)")
@@ -364,9 +363,7 @@ def build_parser() -> argparse.ArgumentParser:
                     "principle, save and load. Type help at the prompt. The dialogue is "
                     "saved when it ends (also on Ctrl-C or end of input).")
     _add_model_arguments(talk)
-    given = talk.add_mutually_exclusive_group()
-    given.add_argument("--plan", metavar='"A1 A2 ..."', help="the first plan")
-    given.add_argument("--plan-file", metavar="FILE", help="read the first plan from FILE")
+    _add_plan_arguments(talk, required=False, what="the first plan")
     talk.add_argument("--principle", default="deontology", metavar="P",
                       help="the principle the first plan is made and judged under "
                            "(default deontology)")
