@@ -226,3 +226,46 @@ def test_bad_input(trolley_model):
         explain(trolley_model, Plan.parse("pull"), "kant")
     with pytest.raises(InputError, match="at least 1"):
         explain(trolley_model, Plan.parse("pull"), "deontology", limit=0)
+
+
+# -- command line -------------------------------------------------------------------
+
+def ethasp_cli(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "ethasp.cli", *args], capture_output=True,
+                          text=True, cwd=ROOT)
+
+
+def test_cli_judge_json_has_reasons_and_explanation():
+    run = ethasp_cli("judge", str(TROLLEY), "--plan", "pull", "--json")
+    assert run.returncode == 0, run.stderr
+    judgements = {j["principle"]: j for j in json.loads(run.stdout)["judgements"]}
+    harm = judgements["do-no-harm"]
+    assert harm["sufficient_reasons"] == [["Bad(one_will_die)", "Caused(one_will_die)"]]
+    assert sorted(harm["necessary_reasons"]) == [["Bad(one_will_die)"], ["Caused(one_will_die)"]]
+    assert harm["explanation"] == PAPER_TEXTS[("do-no-harm", "pull")]
+    assert judgements["deontology"]["explanation"] == PAPER_TEXTS[("deontology", "pull")]
+    assert judgements["utilitarianism"]["explanation"] == PAPER_TEXTS[("utilitarianism", "pull")]
+
+
+def test_cli_judge_text_shows_the_explanation_first_and_limits():
+    run = ethasp_cli("judge", "trolley", "--plan", "refrain", "--principle", "do-no-harm",
+                     "--reasons-limit", "1")
+    assert run.returncode == 0, run.stderr
+    lines = run.stdout.splitlines()
+    assert lines[0] == "do-no-harm: " + PAPER_TEXTS[("do-no-harm", "refrain")]
+    assert "limit reached" in lines[1]
+    run = ethasp_cli("judge", "trolley", "--plan", "refrain", "--reasons-limit", "0", "--json")
+    assert "explanation" not in json.loads(run.stdout)["judgements"][0]
+
+
+def test_cli_bad_reasons_limit():
+    run = ethasp_cli("judge", "trolley", "--plan", "pull", "--reasons-limit", "-2")
+    assert run.returncode == 2 and run.stderr.count("\n") == 1
+    assert "Traceback" not in run.stderr
+
+
+def test_comparison_words_fall_back_to_counterparts():
+    model = Model.load([MODELS / "heist.lp"])
+    result = explain(model, Plan.parse("scout steal give_jewels"), "utilitarianism")
+    assert result.text.endswith("impermissible because the owner's loss of the jewels is "
+                                "worse than the owner keeping the jewels.")
