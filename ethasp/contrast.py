@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 from typing import Sequence
 
 import clingo
-from clorm import Predicate, Raw, unify
+from clorm import Raw, unify
 
 from ethasp.errors import InputError
 from ethasp.judgement import Judgement, judge
@@ -32,24 +32,12 @@ from ethasp.reasons import DEFAULT_LIMIT
 from ethasp.restriction import HPlanResult, plan_with_principles
 from ethasp.search import BOUNDED, DEFAULT_MAX_HORIZON, FOUND, NONE
 from ethasp import words
+from ethasp.vocabulary import Contrast, Met, UnknownAction
 
 QUESTIONS = "questions.lp"
 DEFAULT_PRINCIPLE = "deontology"
 
 
-class Contrast(Predicate, name="contrast"):
-    question: Raw
-    constraint: Raw
-
-
-class Met(Predicate, name="met"):
-    question: Raw
-    constraint: Raw
-    time: int
-
-
-class UnknownAction(Predicate, name="unknown_action"):
-    action: Raw
 
 
 def _active(question: clingo.Symbol, constraint: clingo.Symbol) -> clingo.Symbol:

@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 from typing import Iterable, Sequence
 
 import clingo
-from clorm import ConstantStr, Predicate, Raw, StringField, unify
+from clorm import Raw, unify
 
 from ethasp.errors import InputError
 from ethasp.formula import format_literal
@@ -38,6 +38,9 @@ from ethasp.principles import Principle, select_principles
 from ethasp.resources import encoding
 from ethasp.search import DEFAULT_MAX_HORIZON, Search
 from ethasp.validation import read_validation, validate
+from ethasp.vocabulary import (ActionLabel, AgentLabel, Alternative, ComparisonAtom, Conj,
+                               Conjunct, Explain, FactLabel, Mention, OtherState, OtherThan,
+                               ReasonAtom, Verdict)
 
 DEFAULT_LIMIT = 10
 
@@ -50,78 +53,6 @@ RELEVANCE = ("--opt-mode=opt", "--opt-strategy=usc")
 
 # The name of the alternative state compared with for utilitarianism (conj/3).
 OTHER = clingo.Function("other")
-
-
-# -- the ASP vocabulary read back -----------------------------------------------
-
-class ReasonAtom(Predicate, name="reason"):
-    atom: Raw
-    value: ConstantStr
-
-
-class VerdictAtom(Predicate, name="verdict"):
-    name: Raw
-    value: ConstantStr
-
-
-class Mention(Predicate, name="mention"):
-    atom: Raw
-    side: ConstantStr
-    variable: Raw
-    value: ConstantStr
-
-
-class ComparisonAtom(Predicate, name="comparison"):
-    atom: Raw
-    relation: ConstantStr
-
-
-class Conjunct(Predicate, name="conjunct"):
-    name: Raw
-    variable: Raw
-    value: ConstantStr
-
-
-class OtherState(Predicate, name="other_state"):
-    variable: Raw
-    value: ConstantStr
-    time: int
-
-
-class OtherThan(Predicate, name="other_than"):
-    variable: Raw
-    value: ConstantStr
-
-
-class Explain(Predicate, name="explain"):
-    name: Raw
-
-
-class AlternativeFact(Predicate, name="alternative"):
-    name: Raw
-
-
-class ConjFact(Predicate, name="conj"):
-    name: Raw
-    variable: Raw
-    value: ConstantStr
-
-
-class AgentLabel(Predicate, name="agent_label"):
-    name: str = StringField
-    possessive: str = StringField
-
-
-class ActionLabel(Predicate, name="action_label"):
-    action: Raw
-    phrase: str = StringField
-    gerund: str = StringField
-
-
-class FactLabel(Predicate, name="fact_label"):
-    variable: Raw
-    value: ConstantStr
-    phrase: str = StringField
 
 
 # -- results --------------------------------------------------------------------
@@ -320,8 +251,8 @@ def explain(model: Model, plan: Plan, principle: str | Principle, limit: int = D
                      for lit in validation.final_state]
             alternative = best_other_state(model, final, max_horizon, time_limit)
         if alternative is not None:
-            facts.append(AlternativeFact(name=Raw(OTHER)))
-            facts += [ConjFact(name=Raw(OTHER), variable=Raw(v), value=b) for v, b in alternative]
+            facts.append(Alternative(name=Raw(OTHER)))
+            facts += [Conj(name=Raw(OTHER), variable=Raw(v), value=b) for v, b in alternative]
             compared = sorted(str(v) if b == "true" else f"-{v}" for v, b in alternative)
     base = list(BASE) + [chosen.encoding] + list(REASONS)
 
@@ -336,7 +267,7 @@ def explain(model: Model, plan: Plan, principle: str | Principle, limit: int = D
     validation = read_validation(plan, symbols)
     if not validation.valid:
         raise InputError(f"not a plan: {validation.message(model.naming)}")
-    verdict = unify([VerdictAtom], symbols).query(VerdictAtom).all()
+    verdict = unify([Verdict], symbols).query(Verdict).all()
     permissible = any(v.value == "true" for v in verdict)
     conj: dict[clingo.Symbol, list[tuple[clingo.Symbol, str]]] = {}
     for member in unify([Conjunct], symbols).query(Conjunct).all():

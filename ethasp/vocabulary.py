@@ -6,7 +6,7 @@ that can be any ground term (action and variable names) are kept as
 :class:`clorm.Raw`, so ``push(man)`` stays a term.
 """
 
-from clorm import ConstantStr, Predicate, Raw
+from clorm import ConstantStr, Predicate, Raw, StringField
 
 
 # -- the planning model -------------------------------------------------------
@@ -120,3 +120,77 @@ class AtHorizon(Predicate, name="at_horizon"):
 
 class UpperBound(Predicate, name="upper_bound"):
     bound: int
+
+
+# -- reasons and their words (encodings/reasons/) --------------------------------
+
+class ReasonAtom(Predicate, name="reason"):
+    atom: Raw
+    value: ConstantStr
+
+
+class Mention(Predicate, name="mention"):
+    atom: Raw
+    side: ConstantStr
+    variable: Raw
+    value: ConstantStr
+
+
+class ComparisonAtom(Predicate, name="comparison"):
+    atom: Raw
+    relation: ConstantStr
+
+
+class Conjunct(Predicate, name="conjunct"):
+    name: Raw
+    variable: Raw
+    value: ConstantStr
+
+
+class OtherState(Predicate, name="other_state"):
+    variable: Raw
+    value: ConstantStr
+    time: int
+
+
+class OtherThan(Predicate, name="other_than"):
+    variable: Raw
+    value: ConstantStr
+
+
+class Explain(Predicate, name="explain"):
+    name: Raw
+
+
+class AgentLabel(Predicate, name="agent_label"):
+    name: str = StringField
+    possessive: str = StringField
+
+
+class ActionLabel(Predicate, name="action_label"):
+    action: Raw
+    phrase: str = StringField
+    gerund: str = StringField
+
+
+class FactLabel(Predicate, name="fact_label"):
+    variable: Raw
+    value: ConstantStr
+    phrase: str = StringField
+
+
+# -- contrastive questions (questions.lp) -----------------------------------------
+
+class Contrast(Predicate, name="contrast"):
+    question: Raw
+    constraint: Raw
+
+
+class Met(Predicate, name="met"):
+    question: Raw
+    constraint: Raw
+    time: int
+
+
+class UnknownAction(Predicate, name="unknown_action"):
+    action: Raw

@@ -2,7 +2,7 @@
 
 import pytest
 
-from conftest import MODELS, answer_sets
+from conftest import answer_sets
 from ethasp import InputError
 from ethasp.question import Question
 
