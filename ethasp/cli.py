@@ -54,6 +54,10 @@ def load_model(args: argparse.Namespace) -> Model:
     return Model.load(model_paths(args.model), allow_scripts=args.allow_scripts)
 
 
+def _steps(count: int) -> str:
+    return f"{count} step" if count == 1 else f"{count} steps"
+
+
 def emit(args: argparse.Namespace, data: dict, text: str) -> None:
     print(json.dumps(data, indent=2) if args.json else text)
 
@@ -67,12 +71,12 @@ def command_plan(args: argparse.Namespace) -> int:
     result = find_plan(model, args.max_horizon, args.time_limit, all_plans=args.all)
     if result.status == FOUND:
         if args.all:
-            lines = [f"{len(result.plans)} shortest plans of {result.horizon} steps:"]
+            lines = [f"{len(result.plans)} shortest plans of {_steps(result.horizon)}:"]
             lines += [f"  {model.naming.actions(plan)}" if len(plan) else "  (empty plan)"
                       for plan in result.plans]
             text = "\n".join(lines)
         else:
-            text = (f"plan of {result.horizon} steps: {model.naming.actions(result.plan)}"
+            text = (f"plan of {_steps(result.horizon)}: {model.naming.actions(result.plan)}"
                     if len(result.plan)
                     else "plan of 0 steps: the goal holds initially")
     elif result.status == "none":
@@ -95,14 +99,14 @@ def command_plan_permissible(args: argparse.Namespace, model: Model) -> int:
     if result.status == FOUND:
         shown = [model.naming.actions(plan) if len(plan) else "(empty plan)"
                  for plan in (result.plans if args.all else [result.plan])]
-        head = f"plan of {result.horizon} steps permissible under {under}"
-        lines = ([f"{len(shown)} shortest plans of {result.horizon} steps permissible under "
+        head = f"plan of {_steps(result.horizon)} permissible under {under}"
+        lines = ([f"{len(shown)} shortest plans of {_steps(result.horizon)} permissible under "
                   f"{under}:"] + [f"  {plan}" for plan in shown] if args.all
                  else [f"{head}: {shown[0]}"])
         # The judgement of the (first) HPlan, as ethasp judge prints it, minus its plan line.
         report = judge(model, result.plan, result.principles, args.max_horizon, args.time_limit)
         data["judgements"] = report.to_json()["judgements"]
-        lines += _judgement_text(report, model).split("\n")[1:]
+        lines += _explanation_text(report) + _judgement_text(report, model).split("\n")[1:]
     elif result.status == "none":
         lines = [f"no permissible plan exists: {result.proof}"]
     else:
@@ -120,7 +124,7 @@ def command_validate(args: argparse.Namespace) -> int:
     model = load_model(args)
     validation = validate(model, Plan.parse(args.plan))
     if validation.valid:
-        text = (f"valid plan of {len(validation.plan)} steps; "
+        text = (f"valid plan of {_steps(len(validation.plan))}; "
                 f"final state: {model.naming.facts(validation.final_state)}")
     else:
         text = f"not a plan: {validation.message(model.naming)}"

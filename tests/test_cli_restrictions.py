@@ -45,8 +45,11 @@ def test_several_principles_and_no_permissible_plan():
 
 def test_text_output_names_the_principle_and_the_verdict():
     run = ethasp("plan", TROLLEY, "--principle", "do-no-harm")
-    assert run.stdout.startswith("plan of 1 steps permissible under do-no-harm: refrain")
+    assert run.stdout.startswith("plan of 1 step permissible under do-no-harm: refrain")
     assert "do-no-harm: permissible (proven)" in run.stdout
+    # The HPlan's explanation is shown, as ethasp judge shows it.
+    assert ("The man can refrain from action. Doing so is permissible because this way the "
+            "death of the five persons is not caused by the man's action.") in run.stdout
 
 
 def test_bounded_is_not_none():
