@@ -31,6 +31,7 @@ from ethasp.question import Question
 from ethasp.reasons import DEFAULT_LIMIT
 from ethasp.restriction import HPlanResult, plan_with_principles
 from ethasp.search import BOUNDED, DEFAULT_MAX_HORIZON, FOUND, NONE
+from ethasp.validation import validate
 from ethasp import words
 from ethasp.vocabulary import Contrast, Met, UnknownAction
 
@@ -263,6 +264,9 @@ def answer_questions(model: Model, questions: Sequence[Question], plan: Plan,
     contrast plan under ``under``; ``previous`` constraints stay imposed."""
     principle = select_principles([principle])[0].name
     under = select_principles([under])[0].name
+    validation = validate(model, plan)
+    if not validation.valid:
+        raise InputError(f"not a plan: {validation.message(model.naming)}")
     new: list[Constraint] = []
     asked = max((c.question.arguments[0].number for c in previous), default=0)
     for index, question in enumerate(questions):

@@ -108,6 +108,10 @@ def test_questions_are_checked_against_the_plan(trolley):
         ask(trolley, "why not jump", plan=Plan.parse("pull"))
     with pytest.raises(InputError, match="already meets"):
         ask(trolley, "why not pull", plan=Plan.parse("pull"))
+    with pytest.raises(InputError, match="unknown action jump at step 1"):
+        ask(trolley, "why pull", plan=Plan.parse("jump"))
+    with pytest.raises(InputError, match="not a plan"):
+        ask(trolley, "why pull", plan=Plan.parse(""))
     with pytest.raises(InputError, match="unknown principle"):
         ask(trolley, "why pull", plan=Plan.parse("pull"), principle="kindness")
 
