@@ -49,7 +49,7 @@ class SearchResult:
     ``plan`` is a shortest plan (or None), ``plans`` all shortest plans when
     they were asked for, ``horizon`` the last horizon searched, and ``proof``
     says why there is no plan (status ``none``) or what cut the search short
-    (status ``bounded``).  ``symbols`` are the shown atoms of the model found.
+    (status ``bounded``).
     """
 
     status: str
@@ -57,8 +57,6 @@ class SearchResult:
     horizon: int = 0
     proof: str = ""
     plans: list[Plan] = field(default_factory=list)
-    symbols: list[clingo.Symbol] = field(default_factory=list)
-    optimum: list[int] | None = None
 
     def to_json(self) -> dict:
         return {
@@ -84,8 +82,10 @@ class Search:
     ``encodings`` are further time-indexed encodings (restrictions, question
     constraints) written with the step(T)/horizon(T) convention; ``goal``
     says whether the goal must hold at the horizon; ``optimize`` asks for an
-    optimal model at each horizon (for ``#maximize``/``#minimize`` statements
-    in the encodings); ``options`` are further clingo command-line options.
+    optimal model (for ``#maximize``/``#minimize`` statements in the
+    encodings), at the horizons a driver chooses with :meth:`solve_at`;
+    ``options`` are further clingo command-line options.  :meth:`run` searches
+    shortest plans, horizon after horizon.
     """
 
     def __init__(self, model: Model, encodings: Sequence[str] = (), facts: Iterable = (),
@@ -213,32 +213,28 @@ class Search:
     # -- the search -------------------------------------------------------------
 
     def run(self, max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
-            all_plans: bool = False, min_horizon: int = 0) -> SearchResult:
-        """Search horizons min_horizon, min_horizon+1, ... up to max_horizon."""
+            all_plans: bool = False) -> SearchResult:
+        """Search horizons 0, 1, ... up to max_horizon for a shortest plan."""
+        if self.optimize:
+            raise ValueError("Search.run looks for plans, not optima: use solve_at")
         if max_horizon < 0:
             raise InputError("the maximal horizon must be at least 0")
         deadline = None if time_limit is None else time.monotonic() + time_limit
         if self.goal and self._is_fact("unreachable_goal"):
             return SearchResult(NONE, horizon=0,
                                 proof="the goal is unreachable even ignoring delete effects")
-        self.ctl.configuration.solve.models = "0" if (all_plans or self.optimize) else "1"
+        self.ctl.configuration.solve.models = "0" if all_plans else "1"
         checkpoints = _powers_of_two(max_horizon) | {max_horizon}
         for horizon in range(0, max_horizon + 1):
             self._ground_to(horizon)
-            if horizon < min_horizon:
-                self.ctl.release_external(clingo.Function(CHECK_MARKER, [clingo.Number(horizon)]))
-                continue
             query = clingo.Function(CHECK_MARKER, [clingo.Number(horizon)])
             self.ctl.assign_external(query, True)
-            satisfiable, models, cost = self._solve(self.assumptions, deadline, all_plans)
+            satisfiable, models, _ = self._solve(self.assumptions, deadline, all_plans)
             if satisfiable is None:
-                if models and self.optimize:
-                    return self._result(BOUNDED, horizon, models, cost,
-                                        proof=f"time limit reached at horizon {horizon}")
                 return SearchResult(BOUNDED, horizon=horizon,
                                     proof=f"time limit reached at horizon {horizon}")
             if satisfiable:
-                return self._result(FOUND, horizon, models, cost, all_plans=all_plans)
+                return self._found(horizon, models, all_plans)
             self.ctl.release_external(query)
             if horizon in checkpoints and horizon > 0:
                 exists = self._simple_path_exists(horizon, deadline)
@@ -253,13 +249,12 @@ class Search:
         return SearchResult(BOUNDED, horizon=max_horizon,
                             proof=f"no plan up to horizon {max_horizon} (the maximal horizon)")
 
-    def _result(self, status, horizon, models, cost, proof="", all_plans=False) -> SearchResult:
+    def _found(self, horizon: int, models, all_plans: bool) -> SearchResult:
         plans = [Plan.from_occurs(unify([Occurs], symbols).query(Occurs).all())
                  for symbols in models]
         unique = list(dict.fromkeys(plans))
-        return SearchResult(status, plan=unique[0] if unique else None, horizon=horizon,
-                            proof=proof, plans=unique if all_plans else [],
-                            symbols=models[0] if models else [], optimum=cost)
+        return SearchResult(FOUND, plan=unique[0], horizon=horizon,
+                            plans=unique if all_plans else [])
 
 
 def find_plan(model: Model, max_horizon: int = DEFAULT_MAX_HORIZON,
