@@ -23,7 +23,6 @@ as GEq(s_n, s) for that state s; its reasons are those of this one comparison.
 
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass, field
 from typing import Iterable, Sequence
 
@@ -36,10 +35,11 @@ from ethasp.model import Messages, Model
 from ethasp.plan import Plan
 from ethasp.principles import Principle, select_principles
 from ethasp.resources import encoding
-from ethasp.search import DEFAULT_MAX_HORIZON, Search
+from ethasp.search import DEFAULT_MAX_HORIZON
+from ethasp.utilitarianism import best_reachable
 from ethasp.validation import read_validation, validate
 from ethasp.vocabulary import (ActionLabel, AgentLabel, Alternative, ComparisonAtom, Conj,
-                               Conjunct, Explain, FactLabel, Mention, OtherState, OtherThan,
+                               Conjunct, Explain, FactLabel, Mention, OtherThan,
                                ReasonAtom, Verdict)
 
 DEFAULT_LIMIT = 10
@@ -167,34 +167,12 @@ def best_other_state(model: Model, final: Sequence[tuple[clingo.Symbol, str]],
     """A best reachable state other than ``final`` (variable, value pairs),
     goal states first among equally good ones; None if there is none.
 
-    Horizons 0, 1, 2, ... are solved once each (``encodings/search/best.lp``
-    with ``reasons/other_state.lp``, no goal); the search stops when the
-    utility found meets the upper bound of ``best.lp``, when no longer path
-    without a repeated state exists (every reachable state was searched), or
-    at ``max_horizon`` / ``time_limit`` (then the state is the best found).
+    :func:`ethasp.utilitarianism.best_reachable` with ``reasons/other_state.lp``;
+    when the search is cut (``max_horizon``, ``time_limit``), the best found.
     """
-    deadline = None if time_limit is None else time.monotonic() + time_limit
     facts = [OtherThan(variable=Raw(v), value=b) for v, b in final]
-    search = Search(model, ["search/best.lp", "reasons/other_state.lp"], facts=facts,
-                    goal=False, optimize=True)
-    best: list[tuple[clingo.Symbol, str]] | None = None
-    for horizon in range(0, max_horizon + 1):
-        satisfiable, symbols, cost = search.solve_at(horizon, deadline)
-        if symbols and cost is not None:
-            # The search may idle, so a horizon's optimum is at least as good
-            # as every earlier one (and wins ties by the goal preference).
-            answer = unify([OtherState], symbols)
-            best = sorted(((a.variable.symbol, a.value) for a in answer.query(OtherState).all()),
-                          key=lambda pair: str(pair[0]))
-            bounds = [s for s in symbols if s.name == "upper_bound" and len(s.arguments) == 1]
-            if bounds and -cost[0] >= bounds[0].arguments[0].number:
-                break
-        if satisfiable is None:
-            break
-        exists = search.simple_path_exists(horizon + 1, deadline)
-        if not exists:
-            break
-    return best
+    best = best_reachable(model, max_horizon, time_limit, ["reasons/other_state.lp"], facts)
+    return best.facts if best.state is not None else None
 
 
 def _labels(symbols: Iterable[clingo.Symbol]) -> Labels:

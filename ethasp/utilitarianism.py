@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
+from typing import Iterable, Sequence
 
 import clingo
 from clorm import Raw, unify
@@ -78,12 +79,27 @@ def _horizons(max_horizon: int) -> list[int]:
     return result
 
 
+def _lower(cost: list[int], other: list[int]) -> bool:
+    """Is a clingo cost vector lower than another?  A priority level without
+    ground elements yet (a lower one, added by later horizons) counts as 0."""
+    width = max(len(cost), len(other))
+    return cost + [0] * (width - len(cost)) < other + [0] * (width - len(other))
+
+
 def best_reachable(model: Model, max_horizon: int = DEFAULT_MAX_HORIZON,
-                   time_limit: float | None = None) -> BestReachable:
-    """A best state reachable from the initial state, by optimisation."""
+                   time_limit: float | None = None, encodings: Sequence[str] = (),
+                   facts: Iterable = ()) -> BestReachable:
+    """A best state reachable from the initial state, by optimisation.
+
+    ``encodings`` and ``facts`` add constraints or lower-priority preferences
+    on the state at the horizon (e.g. ``reasons/other_state.lp``: a best
+    state other than a given one, goal states first on ties); the priority-0
+    level of the cost is the utility of ``search/best.lp``.
+    """
     deadline = None if time_limit is None else time.monotonic() + time_limit
-    search = Search(model, ["search/best.lp"], goal=False, optimize=True)
+    search = Search(model, ["search/best.lp", *encodings], facts, goal=False, optimize=True)
     best: BestReachable | None = None
+    best_cost: list[int] | None = None
     bound: int | None = None
     horizon = 0
 
@@ -95,15 +111,17 @@ def best_reachable(model: Model, max_horizon: int = DEFAULT_MAX_HORIZON,
     for horizon in _horizons(max_horizon):
         satisfiable, symbols, cost = search.solve_at(horizon, deadline)
         if symbols and cost:
-            facts = unify([AtHorizon, UpperBound], symbols)
-            bound = next(iter(facts.query(UpperBound).all())).bound
-            utility = -cost[0]
-            if best is None or utility > best.utility:
+            facts_found = unify([AtHorizon, UpperBound], symbols)
+            bound = next(iter(facts_found.query(UpperBound).all())).bound
+            # The search may idle, so an optimum at a larger horizon is at least
+            # as good, in every priority level, as one at a smaller horizon.
+            if best_cost is None or _lower(cost, best_cost):
                 pairs = sorted(((atom.variable.symbol, atom.value)
-                                for atom in facts.query(AtHorizon).all()
+                                for atom in facts_found.query(AtHorizon).all()
                                 if atom.time == horizon), key=str)
                 best = BestReachable(BOUNDED, "", sorted(literal(v, b) for v, b in pairs),
-                                     utility, horizon, horizon, pairs)
+                                     -cost[0], horizon, horizon, pairs)
+                best_cost = cost
         if satisfiable is None:
             return finish(BOUNDED, f"time limit reached at horizon {horizon}")
         if best is not None and best.utility == bound:

@@ -147,12 +147,6 @@ class Conjunct(Predicate, name="conjunct"):
     value: ConstantStr
 
 
-class OtherState(Predicate, name="other_state"):
-    variable: Raw
-    value: ConstantStr
-    time: int
-
-
 class OtherThan(Predicate, name="other_than"):
     variable: Raw
     value: ConstantStr
