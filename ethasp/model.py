@@ -157,12 +157,11 @@ class Model:
                 ctl.add("base", [], source.text)
         return ctl
 
-    def solve_once(self, encodings: Sequence[str], facts: Iterable = (),
-                   arguments: Sequence[str] = ()) -> list[clingo.Symbol]:
-        """Ground and solve model + encodings + facts; the shown atoms of the first model.
+    def ground(self, encodings: Sequence[str], facts: Iterable = (),
+               arguments: Sequence[str] = ()) -> clingo.Control:
+        """A control object with model + encodings + facts, grounded (base part).
 
-        For deterministic programs (checks, traces); raises InputError on
-        grounding errors and returns [] if there is no model.
+        Raises InputError on grounding errors.
         """
         messages = Messages()
         ctl = self.control(arguments, messages)
@@ -175,12 +174,20 @@ class Model:
             ctl.ground([("base", [])])
         except RuntimeError:
             messages.raise_first("grounding failed")
-        shown: list[clingo.Symbol] = []
+        return ctl
+
+    def solve_once(self, encodings: Sequence[str], facts: Iterable = (),
+                   arguments: Sequence[str] = ()) -> list[clingo.Symbol]:
+        """Ground and solve model + encodings + facts; the shown atoms of the first model.
+
+        For deterministic programs (checks, traces); raises InputError on
+        grounding errors and returns [] if there is no model.
+        """
+        ctl = self.ground(encodings, facts, arguments)  # kept alive while solving
         with ctl.solve(yield_=True) as handle:
             for answer in handle:
-                shown = list(answer.symbols(shown=True))
-                break
-        return shown
+                return list(answer.symbols(shown=True))
+        return []
 
     def check(self) -> None:
         """Raise InputError naming the first defect found by check.lp."""
@@ -192,12 +199,5 @@ class Model:
 
     def facts(self, predicates) -> FactBase:
         """The model's facts of the given clorm predicates (its rules grounded)."""
-        messages = Messages()
-        ctl = self.control(messages=messages)
-        try:
-            ctl.load(str(encoding("model.lp")))
-            ctl.ground([("base", [])])
-        except RuntimeError:
-            messages.raise_first("grounding failed")
-        symbols = [atom.symbol for atom in ctl.symbolic_atoms if atom.is_fact]
-        return unify(list(predicates), symbols)
+        ctl = self.ground(["model.lp"])
+        return unify(list(predicates), [atom.symbol for atom in ctl.symbolic_atoms if atom.is_fact])

@@ -31,10 +31,9 @@ from clorm import Raw, unify
 
 from ethasp.errors import InputError
 from ethasp.formula import format_literal
-from ethasp.model import Messages, Model
+from ethasp.model import Model
 from ethasp.plan import Plan
 from ethasp.principles import Principle, select_principles
-from ethasp.resources import encoding
 from ethasp.search import DEFAULT_MAX_HORIZON
 from ethasp.utilitarianism import best_reachable
 from ethasp.validation import read_validation, validate
@@ -136,17 +135,7 @@ def _solve(model: Model, files: Sequence[str], facts: Iterable, arguments: Seque
     """Models (shown atoms) of model + encodings + facts, and whether the
     search was exhausted.  ``models`` is clingo's model limit (0: all; with
     optimisation only the last, optimal, model is kept)."""
-    messages = Messages()
-    ctl = model.control([*arguments, str(models)], messages)
-    try:
-        for name in files:
-            ctl.load(str(encoding(name)))
-        text = "".join(f"{fact}.\n" for fact in facts)
-        if text:
-            ctl.add("base", [], text)
-        ctl.ground([("base", [])])
-    except RuntimeError:
-        messages.raise_first("grounding failed")
+    ctl = model.ground(files, facts, [*arguments, str(models)])
     found: list[list[clingo.Symbol]] = []
     with ctl.solve(yield_=True) as handle:
         for answer in handle:
