@@ -54,6 +54,17 @@ def load_model(args: argparse.Namespace) -> Model:
     return Model.load(model_paths(args.model), allow_scripts=args.allow_scripts)
 
 
+def _seconds(text: str) -> float:
+    """A --time-limit: a positive number of seconds."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number of seconds: {text!r}") from None
+    if not value > 0:
+        raise argparse.ArgumentTypeError(f"must be more than 0 seconds: {text!r}")
+    return value
+
+
 def _steps(count: int) -> str:
     return f"{count} step" if count == 1 else f"{count} steps"
 
@@ -279,7 +290,7 @@ def _add_model_arguments(parser: argparse.ArgumentParser) -> None:
 def _add_search_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--max-horizon", type=int, default=DEFAULT_MAX_HORIZON, metavar="N",
                         help=f"search plans of at most N steps (default {DEFAULT_MAX_HORIZON})")
-    parser.add_argument("--time-limit", type=float, default=None, metavar="SECONDS",
+    parser.add_argument("--time-limit", type=_seconds, default=None, metavar="SECONDS",
                         help="stop searching after SECONDS and report 'bounded'")
 
 
@@ -322,7 +333,7 @@ def build_parser() -> argparse.ArgumentParser:
     judging.add_argument("--max-horizon", type=int, default=DEFAULT_MAX_HORIZON, metavar="N",
                          help="search a best reachable state among the states reachable in "
                               f"at most N steps (default {DEFAULT_MAX_HORIZON})")
-    judging.add_argument("--time-limit", type=float, default=None, metavar="SECONDS",
+    judging.add_argument("--time-limit", type=_seconds, default=None, metavar="SECONDS",
                          help="stop that search after SECONDS and report 'bounded'")
     judging.add_argument("--reasons-limit", type=int, default=None, metavar="N",
                          help="compute at most N sufficient and N necessary reasons per "

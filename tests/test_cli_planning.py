@@ -84,3 +84,9 @@ def test_installed_package_holds_every_encoding_and_model(tmp_path):
                                for p in (ROOT / "encodings").rglob("*.lp"))
     assert models == sorted(str(p.relative_to(MODELS)) for p in MODELS.rglob("*")
                             if p.is_file() and p.suffix in (".lp", ".pddl"))
+
+
+def test_time_limit_must_be_positive():
+    run = ethasp("plan", TROLLEY, "--time-limit", "-1")
+    assert run.returncode == 2 and "must be more than 0 seconds" in run.stderr
+    assert "Traceback" not in run.stderr
