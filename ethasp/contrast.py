@@ -33,7 +33,7 @@ from ethasp.restriction import HPlanResult, plan_with_principles
 from ethasp.search import BOUNDED, DEFAULT_MAX_HORIZON, FOUND, NONE
 from ethasp.validation import validate
 from ethasp import words
-from ethasp.vocabulary import Contrast, Met, UnknownAction
+from ethasp.vocabulary import Answered, Contrast, UnknownAction
 
 QUESTIONS = "questions.lp"
 DEFAULT_PRINCIPLE = "deontology"
@@ -82,12 +82,11 @@ def check_question(model: Model, question: Question, plan: Plan) -> list[Constra
     time = [f"time(0..{horizon})", f"horizon({horizon})"] + ([f"step(1..{horizon})"] if horizon else [])
     symbols = model.solve_once(["model.lp", QUESTIONS],
                                [c.fact() for c in constraints] + list(plan.facts()) + time)
-    answer = unify([Met, UnknownAction], symbols)
+    answer = unify([Answered, UnknownAction], symbols)
     unknown = sorted(str(atom.action) for atom in answer.query(UnknownAction).all())
     if unknown:
         raise InputError(f"question '{question}': unknown action {unknown[0]}")
-    met = {str(atom.constraint) for atom in answer.query(Met).all()}
-    if all(str(c) in met for c in constraints):
+    if list(answer.query(Answered).all()):
         raise InputError(f"question '{question}': the plan already meets its contrast "
                          f"({', '.join(map(str, constraints))}); ask about what the plan does")
     return constraints

@@ -180,9 +180,8 @@ class Contrast(Predicate, name="contrast"):
     constraint: Raw
 
 
-class Met(Predicate, name="met"):
+class Answered(Predicate, name="answered"):
     question: Raw
-    constraint: Raw
     time: int
 
 
