@@ -59,7 +59,7 @@ def run_once(model: Path, plan: Path, extra: list[str]) -> tuple[float, float]:
     """Wall-clock and CPU seconds of one `ethasp judge` process."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
-    run = subprocess.run([sys.executable, "-m", "ethasp.cli", "judge", str(model),
+    run = subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", "judge", str(model),
                           "--plan-file", str(plan), "--principle", "deontology",
                           "--principle", "do-no-harm", "--json", *extra],
                          capture_output=True, text=True, cwd=ROOT)

@@ -2,7 +2,7 @@
 
 Each instance is solved by a whole process, timed from outside:
 
-* ``python -m ethasp.cli plan DOMAIN PROBLEM --json`` (shortest plans), and
+* ``python -m ethasp.interfaces.cli plan DOMAIN PROBLEM --json`` (shortest plans), and
 * Fast Downward (``astar(lmcut())``, also optimal) from the PyPI package
   ``up-fast-downward``, through its driver script ``fast-downward.py``.
 
@@ -105,7 +105,7 @@ def instances(folder: Path, quick: bool) -> list[Instance]:
 
 def run_ethasp(instance: Instance, time_limit: float) -> Run:
     env = {**os.environ, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
-    command = [sys.executable, "-m", "ethasp.cli", "plan", str(instance.domain),
+    command = [sys.executable, "-m", "ethasp.interfaces.cli", "plan", str(instance.domain),
                str(instance.problem), "--json", "--time-limit", str(time_limit)]
     start = time.perf_counter()
     done = subprocess.run(command, capture_output=True, text=True, env=env, cwd=ROOT)

@@ -51,7 +51,7 @@ def run_ethasp(n: int, principle: str, folder: Path) -> tuple[float, dict]:
     model, plan = folder / f"model{n}.lp", folder / f"plan{n}.txt"
     model.write_text(model_text(n))
     plan.write_text(plan_text(n))
-    command = [sys.executable, "-m", "ethasp.cli", "judge", str(model), "--plan-file", str(plan),
+    command = [sys.executable, "-m", "ethasp.interfaces.cli", "judge", str(model), "--plan-file", str(plan),
                "--principle", principle, "--json", "--reasons-limit", "10"]
     start = time.perf_counter()
     run = subprocess.run(command, capture_output=True, text=True, cwd=ROOT)

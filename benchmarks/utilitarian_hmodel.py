@@ -11,7 +11,7 @@ although relaxed reachability cannot tell.  R = N/2 and K = N/4.
 Three searches on the same model, in one run:
 
 * plain: a shortest plan (``ethasp.find_plan``), ignoring ethics;
-* HModel: a shortest utilitarian HPlan (``ethasp.restriction``): the best
+* HModel: a shortest utilitarian HPlan (``ethasp.principles.restriction``): the best
   reachable utility by optimisation, then plan search for a goal state that
   attains it;
 * Algorithm 1 of the paper: candidate states of the weighted variables in
@@ -49,7 +49,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from ethasp import Model, find_plan  # noqa: E402
-from ethasp.restriction import plan_with_principles  # noqa: E402
+from ethasp.principles.restriction import plan_with_principles  # noqa: E402
 
 MAX_HORIZON = 64
 

@@ -19,7 +19,7 @@ MODELS = _first_existing(_HERE / "asp", _HERE.parent / "asp")
 
 
 def encoding(name: str) -> Path:
-    """The path of an encoding, e.g. ``encoding("search/transition.lp")``."""
+    """The path of an encoding, e.g. ``encoding("planning/transition.lp")``."""
     path = ENCODINGS / name
     if not path.is_file():
         raise FileNotFoundError(f"encoding not found: {path}")

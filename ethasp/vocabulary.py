@@ -1,7 +1,7 @@
 """Typed clorm predicates for the ASP vocabulary that crosses into Python.
 
 The planning model's own vocabulary (``variable/1`` ... ``utility/3``, see
-``encodings/model.lp``) and the atoms that the encodings report back.  Terms
+``encodings/planning/model.lp``) and the atoms that the encodings report back.  Terms
 that can be any ground term (action and variable names) are kept as
 :class:`clorm.Raw`, so ``push(man)`` stays a term.
 """
@@ -86,7 +86,7 @@ class UnreachableGoal(Predicate, name="unreachable_goal"):
     pass
 
 
-# -- judgements and the language L (language.lp, judge.lp, search/best.lp) ----
+# -- judgements and the language L (language.lp, judge.lp, judgement/best.lp) ----
 
 class Verdict(Predicate, name="verdict"):
     name: Raw

@@ -1,7 +1,7 @@
 """Brute-force reference for reasons: prime implicants by enumeration.
 
 Formulas of L are nested tuples over atom strings (ASP terms of
-``encodings/language.lp``): ``("neg", F)``, ``("and", F, G)``, ``("or", F, G)``,
+``encodings/judgement/language.lp``): ``("neg", F)``, ``("and", F, G)``, ``("or", F, G)``,
 ``("imp", F, G)``, ``("all", [F, ...])``, ``("any", [F, ...])``, or an atom.
 Every assignment of the atoms is enumerated; the background theory is written
 here again from its description in ``encodings/reasons/theory.lp``.  Used

@@ -4,7 +4,7 @@ import pytest
 
 from conftest import MODELS
 from ethasp import InputError, Model, Plan, find_plan, validate
-from ethasp.search import Search
+from ethasp.planning.search import Search
 
 
 def trolley() -> Model:

@@ -10,7 +10,7 @@ TROLLEY = str(MODELS / "trolley.lp")
 
 
 def ethasp(*args: str, cwd=ROOT) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "ethasp.cli", *args], capture_output=True,
+    return subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", *args], capture_output=True,
                           text=True, cwd=cwd)
 
 

@@ -6,13 +6,13 @@ import sys
 
 from conftest import MODELS, ROOT
 from ethasp import Model
-from ethasp.restriction import plan_with_principles
+from ethasp.principles.restriction import plan_with_principles
 
 TROLLEY = str(MODELS / "trolley.lp")
 
 
 def ethasp(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "ethasp.cli", *args], capture_output=True,
+    return subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", *args], capture_output=True,
                           text=True, cwd=ROOT)
 
 

@@ -9,8 +9,8 @@ import pytest
 
 from conftest import MODELS, ROOT
 from ethasp import InputError, Model, Plan
-from ethasp.contrast import ask
-from ethasp.dialogue import Dialogue
+from ethasp.questions.contrast import ask
+from ethasp.questions.dialogue import Dialogue
 
 CONDUCTOR = (
     "The man could refrain from action. This would be permissible under the do-no-harm "
@@ -134,7 +134,7 @@ def test_dialogue_accumulates_undoes_switches_and_saves(trolley, tmp_path):
 
 
 def ethasp(*args, stdin=None, cwd=ROOT):
-    return subprocess.run([sys.executable, "-m", "ethasp.cli", *args], input=stdin,
+    return subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", *args], input=stdin,
                           capture_output=True, text=True, cwd=cwd)
 
 

@@ -4,7 +4,7 @@ import pytest
 
 from conftest import MODELS, only_answer
 
-LANGUAGE = ["model.lp", "trace.lp", "language.lp"]
+LANGUAGE = ["planning/model.lp", "planning/trace.lp", "judgement/language.lp"]
 
 # Utilities: u(x) = -2 (bad action), u(y) = 3 (good), u(z) = 0 (neutral);
 # u(a) = 4, u(-a) = -1, u(b) = -3, u(-b) = 0.  Plan: x then y.
@@ -83,7 +83,7 @@ def test_several_formulas_at_once_do_not_interfere():
     assert {"verdict(f,true)", "verdict(g,false)"} <= answer
 
 
-PRINCIPLES = ["model.lp", "trace.lp", "language.lp", "principles/deontology.lp",
+PRINCIPLES = ["planning/model.lp", "planning/trace.lp", "judgement/language.lp", "principles/deontology.lp",
               "principles/do_no_harm.lp", "principles/utilitarianism.lp"]
 
 
@@ -111,6 +111,6 @@ def test_principle_encodings_on_the_footbridge_dilemma():
 
 
 def test_utility_of_final_state():
-    answer = only_answer(["model.lp", "trace.lp", "judge.lp"], SMALL)
+    answer = only_answer(["planning/model.lp", "planning/trace.lp", "judgement/judge.lp"], SMALL)
     # final: a (4), -b (0), -c (0)
     assert "utility_of_final(4)" in answer

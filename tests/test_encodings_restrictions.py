@@ -2,7 +2,7 @@
 
 from conftest import MODELS, answer_sets
 
-SEARCH = ["model.lp", "relaxed.lp", "search/transition.lp", "search/goal.lp"]
+SEARCH = ["planning/model.lp", "planning/relaxed.lp", "planning/transition.lp", "planning/goal.lp"]
 
 
 def fixed(horizon: int) -> str:
@@ -87,7 +87,7 @@ def test_produced_flags_are_part_of_the_state_for_the_loop_free_check():
     # With p true initially, "on" sets p again: only the produced flag changes.
     model = """variable(p). init(p). action(on; off). eff(on, p, true). eff(off, p, false).
                goal(p, false). utility(p, true, -1). simple_path."""
-    loopfree = ["model.lp", "relaxed.lp", "search/transition.lp", "search/loopfree.lp"]
+    loopfree = ["planning/model.lp", "planning/relaxed.lp", "planning/transition.lp", "planning/loopfree.lp"]
     assert answer_sets(loopfree, model + fixed(2)) == []
     assert answer_sets(loopfree + ["restrictions/do_no_harm.lp"], model + fixed(2)) != []
     assert answer_sets(loopfree + ["restrictions/do_no_harm.lp"], model + fixed(3)) == []

@@ -6,7 +6,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from ethasp import InputError, format_formula, format_literal, parse_formula
-from ethasp.formula import Elements
+from ethasp.principles.formula import Elements
 
 F = clingo.Function
 ELEMENTS = Elements(

@@ -8,8 +8,8 @@ import pytest
 
 from conftest import MODELS, ROOT
 from ethasp import InputError, Model, Plan, judge, query
-from ethasp.principles import available_principles, select_principles
-from ethasp.utilitarianism import best_reachable
+from ethasp.principles.principle import available_principles, select_principles
+from ethasp.principles.utilitarianism import best_reachable
 
 TROLLEY = str(MODELS / "trolley.lp")
 FOOTBRIDGE = str(MODELS / "footbridge.lp")
@@ -24,7 +24,7 @@ PAPER = {
 
 
 def ethasp(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "ethasp.cli", *args], capture_output=True,
+    return subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", *args], capture_output=True,
                           text=True, cwd=ROOT)
 
 

@@ -15,9 +15,9 @@ from hypothesis import given, strategies as st
 
 from conftest import ENCODINGS, MODELS, ROOT
 from ethasp import InputError, Model, Plan, find_plan, validate
-from ethasp.naming import (ASP_NAME, PddlNaming, asp_name_to_pddl, pddl_atom_to_term,
+from ethasp.planning.naming import (ASP_NAME, PddlNaming, asp_name_to_pddl, pddl_atom_to_term,
                            pddl_name_to_asp, term_to_pddl)
-from ethasp.pddl import PddlFile, translate
+from ethasp.planning.pddl import PddlFile, translate
 
 PDDL = MODELS / "pddl"
 TROLLEY_PDDL = [str(PDDL / "trolley-domain.pddl"), str(PDDL / "trolley-problem.pddl"),
@@ -27,7 +27,7 @@ VOCABULARY = ("variable", "action", "pre", "eff", "init", "goal", "utility")
 
 def ethasp(*args: str, cwd=ROOT) -> subprocess.CompletedProcess:
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    return subprocess.run([sys.executable, "-m", "ethasp.cli", *args], capture_output=True,
+    return subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", *args], capture_output=True,
                           text=True, cwd=cwd, env=env)
 
 
@@ -38,8 +38,8 @@ def translated(domain: str, problem: str) -> str:
 def ground_model(program: str) -> dict[str, set[str]]:
     """The atoms of the model vocabulary after grounding pddl.lp + model.lp + program."""
     ctl = clingo.Control(logger=lambda code, message: None)
-    ctl.load(str(ENCODINGS / "pddl.lp"))
-    ctl.load(str(ENCODINGS / "model.lp"))
+    ctl.load(str(ENCODINGS / "planning/pddl.lp"))
+    ctl.load(str(ENCODINGS / "planning/model.lp"))
     ctl.add("base", [], program)
     ctl.ground([("base", [])])
     atoms: dict[str, set[str]] = {name: set() for name in VOCABULARY + ("has_type",)}
@@ -52,7 +52,7 @@ def ground_model(program: str) -> dict[str, set[str]]:
 
 def model_atoms(model: Model) -> dict[str, set[str]]:
     ctl = model.control()
-    ctl.load(str(ENCODINGS / "model.lp"))
+    ctl.load(str(ENCODINGS / "planning/model.lp"))
     ctl.ground([("base", [])])
     atoms: dict[str, set[str]] = {name: set() for name in VOCABULARY}
     for atom in ctl.symbolic_atoms:
@@ -163,7 +163,7 @@ def test_translation_grounds_to_the_model():
 
 
 def test_translated_model_passes_the_check_and_plans():
-    model = Model.from_string((ENCODINGS / "pddl.lp").read_text()
+    model = Model.from_string((ENCODINGS / "planning/pddl.lp").read_text()
                               + translated(ROOMS_DOMAIN, ROOMS_PROBLEM))
     result = find_plan(model)
     assert result.status == "found" and str(result.plan) == "go(r2_d2,hall,kitchen)"
@@ -346,8 +346,6 @@ def _without_plan(data):
     return {key: value for key, value in data.items() if key not in ("model", "files")}
 
 
-@pytest.mark.skipif(not (ROOT / "ethasp" / "judgement.py").is_file(),
-                    reason="ethasp judge is not there")
 def test_trolley_verdicts_agree():
     for asp_plan, pddl_plan in [("pull", "(pull)"), ("refrain", "(refrain)")]:
         asp = ethasp("judge", str(MODELS / "trolley.lp"), "--plan", asp_plan, "--json")
@@ -358,8 +356,6 @@ def test_trolley_verdicts_agree():
     assert run.returncode == 0 and "(not (five-will-die)) (done) (one-will-die)" in run.stdout
 
 
-@pytest.mark.skipif(not (ROOT / "ethasp" / "judgement.py").is_file(),
-                    reason="ethasp query is not there")
 def test_query_and_principled_plan_on_pddl():
     run = ethasp("query", *TROLLEY_PDDL, "Caused(one_will_die)", "--plan", "(pull)")
     assert run.returncode == 0 and run.stdout.strip() == "true", run.stderr

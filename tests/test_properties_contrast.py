@@ -8,7 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from ethasp import InputError, Model, Plan
-from ethasp.contrast import ask
+from ethasp.questions.contrast import ask
 from oracle import random_model
 
 PRINCIPLES = ["deontology", "utilitarianism", "do-no-harm"]
@@ -35,7 +35,7 @@ def test_contrast_plans_meet_the_constraints(seed, under, kind):
     if length is None:
         return
     model = Model.from_string(spec.to_asp())
-    from ethasp.search import find_plan
+    from ethasp.planning.search import find_plan
     plan = [str(a) for a in find_plan(model).plan]
     a, b = rng.choice(spec.actions), rng.choice(spec.actions)
     text = {"why": f"why {a}", "why-not": f"why not {a}",

@@ -12,7 +12,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from ethasp import Model
-from ethasp.restriction import plan_with_principles
+from ethasp.principles.restriction import plan_with_principles
 
 # The three principles of the paper (the oracle knows these).
 PRINCIPLES = ("deontology", "utilitarianism", "do-no-harm")

@@ -4,9 +4,9 @@ import pytest
 
 from conftest import answer_sets
 from ethasp import InputError
-from ethasp.question import Question
+from ethasp.questions.question import Question
 
-SETUP = ["model.lp", "relaxed.lp", "search/transition.lp", "search/goal.lp", "questions.lp"]
+SETUP = ["planning/model.lp", "planning/relaxed.lp", "planning/transition.lp", "planning/goal.lp", "questions/questions.lp"]
 
 # a -> b -> c in any order; goal c.
 CHAIN = """
@@ -80,11 +80,11 @@ def test_met_and_unknown_actions_on_a_given_plan():
     given = "occurs(a,1). occurs(b,2). occurs(c,3). time(0..3). step(1..3). horizon(3)."
     facts = ("contrast(q,used(a)). contrast(q,unused(d)). contrast(q,before(b,a)). "
              "contrast(q,before(a,c)). contrast(r,used(jump)).")
-    answer = answer_sets(["model.lp", "questions.lp"], CHAIN + given + facts)[0]
+    answer = answer_sets(["planning/model.lp", "questions/questions.lp"], CHAIN + given + facts)[0]
     met = {a for a in answer if a.startswith("met(")}
     assert met == {"met(q,used(a),3)", "met(q,unused(d),3)", "met(q,before(a,c),3)"}
     assert "unknown_action(jump)" in answer
     assert not any(a.startswith("answered(") for a in answer)
     facts = "contrast(q,used(a)). contrast(q,unused(d)). contrast(r,used(d))."
-    answer = answer_sets(["model.lp", "questions.lp"], CHAIN + given + facts)[0]
+    answer = answer_sets(["planning/model.lp", "questions/questions.lp"], CHAIN + given + facts)[0]
     assert {a for a in answer if a.startswith("answered(")} == {"answered(q,3)"}

@@ -11,11 +11,11 @@ import clingo
 
 from conftest import ENCODINGS, MODELS, ROOT, answer_sets
 from ethasp import Model, Plan
-from ethasp.reasons import explain
-from ethasp.words import option_sentence, principle_phrase, reason_clause
+from ethasp.reasons.reasons import explain
+from ethasp.reasons.words import option_sentence, principle_phrase, reason_clause
 
 TROLLEY = MODELS / "trolley.lp"
-BASE = ["model.lp", "trace.lp", "language.lp"]
+BASE = ["planning/model.lp", "planning/trace.lp", "judgement/language.lp"]
 CORE = ["reasons/literals.lp", "reasons/theory.lp", "reasons/evaluate.lp"]
 ENUMERATE = ("0", "--heuristic=Domain", "--enum-mode=domRec")
 
@@ -125,8 +125,8 @@ def reason_sets_raw(program: str, kind: list[str]):
 def test_other_state_prefers_goal_states_on_ties():
     program = ("time(0..1). step(1). horizon(1). other_than(five_will_die,false). "
                "other_than(one_will_die,true). other_than(done,true).")
-    answers = optimal_answers(["model.lp", "relaxed.lp", "search/transition.lp",
-                               "search/best.lp", "reasons/other_state.lp", TROLLEY], program)
+    answers = optimal_answers(["planning/model.lp", "planning/relaxed.lp", "planning/transition.lp",
+                               "judgement/best.lp", "reasons/other_state.lp", TROLLEY], program)
     assert answers and all("at_horizon(done,true,1)" in a and "occurs(refrain,1)" in a
                            for a in answers)
 
@@ -231,7 +231,7 @@ def test_bad_input(trolley_model):
 # -- command line -------------------------------------------------------------------
 
 def ethasp_cli(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "ethasp.cli", *args], capture_output=True,
+    return subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", *args], capture_output=True,
                           text=True, cwd=ROOT)
 
 

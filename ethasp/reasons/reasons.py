@@ -12,7 +12,7 @@ enumerated lazily, at most ``limit`` of each, by clingo's domain-heuristic
 enumeration of subset-minimal answer sets.  The reason an explanation uses is
 the most relevant necessary reason, chosen by optimisation
 (``relevance.lp``); its words are chosen in ``comparison.lp`` and rendered by
-:mod:`ethasp.words`.
+:mod:`ethasp.reasons.words`.
 
 For utilitarianism, whose formula ranges over all reachable states, the
 formula is explained against one alternative: a best reachable state other
@@ -30,20 +30,24 @@ import clingo
 from clorm import Raw, unify
 
 from ethasp.errors import InputError
-from ethasp.formula import format_literal
-from ethasp.model import Model
-from ethasp.plan import Plan
-from ethasp.principles import Principle, select_principles
-from ethasp.search import DEFAULT_MAX_HORIZON
-from ethasp.utilitarianism import best_reachable
-from ethasp.validation import read_validation, validate
+from ethasp.principles.formula import format_literal
+from ethasp.planning.model import Model
+from ethasp.planning.plan import Plan
+from ethasp.principles.principle import Principle, select_principles
+from ethasp.planning.search import DEFAULT_MAX_HORIZON
+from ethasp.principles.utilitarianism import best_reachable
+from ethasp.planning.validation import read_validation, validate
+from ethasp.principles.judgement import JudgementReport
+from ethasp.principles.judgement import judge as judge_verdicts
+from ethasp.reasons.explanation import Comparison, Explanation, Labels, Literal
+from ethasp.reasons.words import non_contrastive
 from ethasp.vocabulary import (ActionLabel, AgentLabel, Alternative, ComparisonAtom, Conj,
                                Conjunct, Explain, FactLabel, Mention, OtherThan,
                                ReasonAtom, Verdict)
 
 DEFAULT_LIMIT = 10
 
-BASE = ("model.lp", "trace.lp", "language.lp")
+BASE = ("planning/model.lp", "planning/trace.lp", "judgement/language.lp")
 REASONS = ("reasons/literals.lp", "reasons/theory.lp", "reasons/evaluate.lp")
 ENUMERATION = ("--heuristic=Domain", "--enum-mode=domRec")
 # Core-guided optimisation: the relevance criteria count literals, and each
@@ -52,80 +56,6 @@ RELEVANCE = ("--opt-mode=opt", "--opt-strategy=usc")
 
 # The name of the alternative state compared with for utilitarianism (conj/3).
 OTHER = clingo.Function("other")
-
-
-# -- results --------------------------------------------------------------------
-
-@dataclass(frozen=True)
-class Literal:
-    """A literal of L: an atom (``caused(V,B)``, ``good(E)``, ``bad(E)``,
-    ``neutral(E)``, ``geq(C,D)``, as terms of ``language.lp``) and its value."""
-
-    atom: clingo.Symbol
-    value: bool
-
-    def term(self) -> clingo.Symbol:
-        return self.atom if self.value else clingo.Function("neg", [self.atom])
-
-
-@dataclass
-class Comparison:
-    """What the words of a GEq atom mention: the facts of each side (variable,
-    value) and how the left side actually compares (better, equal, worse)."""
-
-    left: list[tuple[clingo.Symbol, bool]]
-    right: list[tuple[clingo.Symbol, bool]]
-    relation: str
-
-
-@dataclass
-class Labels:
-    """The model's label facts (``encodings/reasons/labels.lp``)."""
-
-    agent: str | None = None
-    possessive: str | None = None
-    actions: dict[clingo.Symbol, tuple[str, str]] = field(default_factory=dict)
-    facts: dict[tuple[clingo.Symbol, bool], str] = field(default_factory=dict)
-
-
-@dataclass
-class Explanation:
-    """Why a plan is (im)permissible under one principle.
-
-    ``sufficient_reasons`` and ``necessary_reasons`` are lists of reasons, each
-    a list of literals in the formula syntax (``Bad(a2)``, ``not
-    Caused(five_will_die)``); at most ``limit`` of each are computed, and
-    ``truncated`` says that the limit cut an enumeration short (more reasons
-    may exist).  ``chosen_reason`` is the most relevant necessary reason (empty
-    when the verdict holds whatever the atoms' values), ``text`` its words.
-    ``alternative`` is the state compared with (utilitarianism), as literals
-    ``v`` / ``-v``.  ``literals`` holds the chosen reason as :class:`Literal`
-    objects, with ``comparisons`` and ``labels``, for building other texts
-    (see :mod:`ethasp.words`).
-    """
-
-    principle: str
-    plan: Plan
-    permissible: bool
-    sufficient_reasons: list[list[str]]
-    necessary_reasons: list[list[str]]
-    chosen_reason: list[str]
-    text: str
-    truncated: bool
-    alternative: list[str] | None = None
-    literals: list[Literal] = field(default_factory=list)
-    comparisons: dict[clingo.Symbol, Comparison] = field(default_factory=dict)
-    labels: Labels = field(default_factory=Labels)
-
-    def to_json(self) -> dict:
-        data = {"sufficient_reasons": self.sufficient_reasons,
-                "necessary_reasons": self.necessary_reasons,
-                "chosen_reason": self.chosen_reason,
-                "explanation": self.text,
-                "reasons_truncated": self.truncated}
-        if self.alternative is not None:
-            data["compared_state"] = self.alternative
-        return data
 
 
 # -- clingo calls ---------------------------------------------------------------
@@ -202,8 +132,6 @@ def explain(model: Model, plan: Plan, principle: str | Principle, limit: int = D
     state is searched (``max_horizon``, ``time_limit``).  Raises InputError if
     the plan is not a plan or the principle unknown.
     """
-    from ethasp.words import non_contrastive  # words depend on this module's data
-
     if limit < 1:
         raise InputError("the reasons limit must be at least 1")
     chosen = principle if isinstance(principle, Principle) else select_principles([principle])[0]
@@ -260,3 +188,25 @@ def explain(model: Model, plan: Plan, principle: str | Principle, limit: int = D
         labels=_labels(symbols))
     explanation.text = non_contrastive(explanation)
     return explanation
+
+
+def judge(model: Model, plan: Plan, principles: Iterable[str] | None = None,
+          max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
+          reasons_limit: int | None = DEFAULT_LIMIT) -> JudgementReport:
+    """Judge a plan under the principles (all when None) and explain each verdict.
+
+    Each judgement gets an explanation with at most ``reasons_limit``
+    sufficient and necessary reasons (none when 0 or None).  Raises InputError
+    if the plan is not a plan.
+    """
+    report = judge_verdicts(model, plan, principles, max_horizon, time_limit)
+    chosen = select_principles(principles)
+    for principle, judgement in zip(chosen, report.judgements):
+        if reasons_limit:
+            # An impermissible utilitarian plan is explained against the better
+            # state found; otherwise explain() searches a best other state.
+            best = judgement.best_reachable
+            other = best.facts if best is not None and not judgement.permissible else None
+            judgement.explanation = explain(model, plan, principle, reasons_limit, other,
+                                            max_horizon, time_limit)
+    return report

@@ -6,8 +6,8 @@ import json
 from pathlib import Path
 from typing import Callable, TextIO
 
-from ethasp.contrast import Answer
-from ethasp.dialogue import Dialogue
+from ethasp.questions.contrast import Answer
+from ethasp.questions.dialogue import Dialogue
 from ethasp.errors import InputError
 
 HELP = """\

@@ -15,15 +15,16 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Sequence
 
-from ethasp.contrast import Answer, Constraint, answer_questions, original_plan
+from ethasp.questions.contrast import Answer, Constraint, answer_questions, original_plan
 from ethasp.errors import InputError
-from ethasp.judgement import JudgementReport, judge
-from ethasp.model import Model
-from ethasp.plan import Plan
-from ethasp.principles import select_principles
-from ethasp.question import Question
-from ethasp.reasons import DEFAULT_LIMIT
-from ethasp.search import DEFAULT_MAX_HORIZON
+from ethasp.principles.judgement import JudgementReport
+from ethasp.reasons.reasons import judge
+from ethasp.planning.model import Model
+from ethasp.planning.plan import Plan
+from ethasp.principles.principle import select_principles
+from ethasp.questions.question import Question
+from ethasp.reasons.reasons import DEFAULT_LIMIT
+from ethasp.planning.search import DEFAULT_MAX_HORIZON
 
 FORMAT = "ethasp-dialogue"
 VERSION = 1

@@ -11,13 +11,13 @@ from typing import Sequence
 from typing import TYPE_CHECKING
 
 from ethasp.errors import InputError
-from ethasp.model import Model
-from ethasp.plan import Plan
+from ethasp.planning.model import Model
+from ethasp.planning.plan import Plan
 from ethasp.resources import MODELS
-from ethasp.search import DEFAULT_MAX_HORIZON, FOUND, find_plan
+from ethasp.planning.search import DEFAULT_MAX_HORIZON, FOUND, find_plan
 
 if TYPE_CHECKING:
-    from ethasp.judgement import JudgementReport
+    from ethasp.principles.judgement import JudgementReport
 
 # Judgements, reasons, formulas and restrictions are imported by the commands
 # that use them, so that ethasp plan starts quickly.
@@ -101,8 +101,8 @@ def command_plan(args: argparse.Namespace) -> int:
 
 def command_plan_permissible(args: argparse.Namespace, model: Model) -> int:
     """ethasp plan --principle: a shortest HPlan, then its judgement."""
-    from ethasp.judgement import judge
-    from ethasp.restriction import plan_with_principles
+    from ethasp.reasons.reasons import judge
+    from ethasp.principles.restriction import plan_with_principles
 
     result = plan_with_principles(model, args.principle, args.max_horizon, args.time_limit,
                                   all_plans=args.all)
@@ -131,7 +131,7 @@ def command_plan_permissible(args: argparse.Namespace, model: Model) -> int:
 
 
 def command_validate(args: argparse.Namespace) -> int:
-    from ethasp.validation import validate
+    from ethasp.planning.validation import validate
 
     model = load_model(args)
     validation = validate(model, Plan.parse(args.plan))
@@ -205,13 +205,13 @@ def _explanation_text(report: "JudgementReport") -> list[str]:
 def _reasons_limit(args: argparse.Namespace) -> None:
     """--reasons-limit, by default ethasp.reasons.DEFAULT_LIMIT (imported only here)."""
     if args.reasons_limit is None:
-        from ethasp.reasons import DEFAULT_LIMIT
+        from ethasp.reasons.reasons import DEFAULT_LIMIT
 
         args.reasons_limit = DEFAULT_LIMIT
 
 
 def command_judge(args: argparse.Namespace) -> int:
-    from ethasp.judgement import judge
+    from ethasp.reasons.reasons import judge
 
     model = load_model(args)
     _reasons_limit(args)
@@ -225,8 +225,8 @@ def command_judge(args: argparse.Namespace) -> int:
 
 
 def command_ask(args: argparse.Namespace) -> int:
-    from ethasp.contrast import ask
-    from ethasp.prompt import answer_text
+    from ethasp.questions.contrast import ask
+    from ethasp.interfaces.prompt import answer_text
 
     _reasons_limit(args)
     model = load_model(args)
@@ -238,8 +238,8 @@ def command_ask(args: argparse.Namespace) -> int:
 
 
 def command_dialogue(args: argparse.Namespace) -> int:
-    from ethasp.dialogue import Dialogue
-    from ethasp.prompt import Prompt
+    from ethasp.questions.dialogue import Dialogue
+    from ethasp.interfaces.prompt import Prompt
 
     _reasons_limit(args)
     model = load_model(args)
@@ -269,7 +269,7 @@ def command_dialogue(args: argparse.Namespace) -> int:
 
 
 def command_query(args: argparse.Namespace) -> int:
-    from ethasp.judgement import query
+    from ethasp.principles.judgement import query
 
     model = load_model(args)
     result = query(model, _given_plan(args), args.formula)

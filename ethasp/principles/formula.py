@@ -17,7 +17,7 @@ Actions and variables are ASP terms of the model (``pull``, ``push(man)``,
 ``at(robot,r1)``); ``v`` is the fact "v is true" and ``-v`` the fact "v is
 false".  The operator names are case-insensitive.
 
-A parsed formula is the ASP term that ``encodings/language.lp`` evaluates
+A parsed formula is the ASP term that ``encodings/judgement/language.lp`` evaluates
 (``bad(action(pull))``, ``caused(five_will_die,false)``, ``neg/1``, ``and/2``,
 ``or/2``, ``imp/2``, ``geq(C,D)``), plus the members of the conjunctions of
 facts that GEq compares, named ``c(1)``, ``c(2)``, ... (``conj/3`` facts).

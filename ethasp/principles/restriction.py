@@ -9,7 +9,7 @@ the search by all of them.
 
 Utilitarianism needs the best utility of a reachable state first: it comes
 from clingo optimisation over the reachable states, goal or not
-(:func:`ethasp.utilitarianism.best_reachable`, ``encodings/search/best.lp``),
+(:func:`ethasp.utilitarianism.best_reachable`, ``encodings/judgement/best.lp``),
 proven best or only a lower bound.  The plan search then keeps the plans whose
 final state is at least that good (``best_utility/1``).
 
@@ -26,12 +26,12 @@ from typing import Sequence
 import clingo
 
 from ethasp.errors import InputError
-from ethasp.model import Model
-from ethasp.plan import Plan
-from ethasp.search import BOUNDED, DEFAULT_MAX_HORIZON, FOUND, NONE, Search
-from ethasp.principles import Principle, select_principles
+from ethasp.planning.model import Model
+from ethasp.planning.plan import Plan
+from ethasp.planning.search import BOUNDED, DEFAULT_MAX_HORIZON, FOUND, NONE, Search
+from ethasp.principles.principle import Principle, select_principles
 from ethasp.resources import ENCODINGS
-from ethasp.utilitarianism import PROVEN, BestReachable, best_reachable
+from ethasp.principles.utilitarianism import PROVEN, BestReachable, best_reachable
 
 RESTRICTIONS = "restrictions"
 

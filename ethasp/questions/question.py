@@ -10,7 +10,7 @@ or PDDL action expressions for PDDL models)::
     why A before B         contrast: B is used before A
 
 A question becomes constraint facts ``contrast(Q,C)`` read by the fixed
-encoding ``encodings/questions.lp``; no rule text is generated.
+encoding ``encodings/questions/questions.lp``; no rule text is generated.
 """
 
 from __future__ import annotations

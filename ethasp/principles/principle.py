@@ -2,12 +2,12 @@
 
 A file ``encodings/principles/NAME.lp`` is the principle NAME (on the command
 line and in the API with ``-`` for ``_``: ``do_no_harm.lp`` is ``do-no-harm``).
-It defines ``formula(NAME, F)``, a formula of L (``encodings/language.lp``)
+It defines ``formula(NAME, F)``, a formula of L (``encodings/judgement/language.lp``)
 that holds exactly when the plan is permissible.  A principle whose encoding
 reads ``alternative/1`` is given a best reachable state as ``alternative(best)``
 with its facts ``conj(best,V,B)``; its formula must be falsified by one
 reachable state, as utilitarianism's ``/\\_i GEq(s_n, s_i)`` is (see
-:mod:`ethasp.judgement`).
+:mod:`ethasp.principles.judgement`).
 """
 
 from __future__ import annotations

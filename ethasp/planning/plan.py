@@ -9,7 +9,7 @@ import clingo
 from clorm import Raw
 
 from ethasp.errors import InputError
-from ethasp.naming import pddl_atom_to_term
+from ethasp.planning.naming import pddl_atom_to_term
 from ethasp.vocabulary import Occurs
 
 

@@ -1,4 +1,4 @@
-"""Planning models: ASP files or text in the vocabulary of encodings/model.lp."""
+"""Planning models: ASP files or text in the vocabulary of encodings/planning/model.lp."""
 
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ from clingo import ast
 from clorm import FactBase, unify
 
 from ethasp.errors import InputError
-from ethasp.naming import Naming, PddlNaming
+from ethasp.planning.naming import Naming, PddlNaming
 from ethasp.resources import encoding
 from ethasp.vocabulary import Error
 
@@ -67,7 +67,7 @@ class Model:
 
     Build one with :meth:`load` (files) or :meth:`from_string`; both check that
     the sources parse, refuse ``#script`` blocks unless ``allow_scripts``, and
-    check the model with ``encodings/check.lp``.
+    check the model with ``encodings/planning/check.lp``.
     """
 
     sources: list[Source] = field(default_factory=list)
@@ -82,16 +82,16 @@ class Model:
         """Load a model from ASP files, or a PDDL domain and problem plus ASP files.
 
         Files ending in ``.pddl`` are translated into rules (see
-        :mod:`ethasp.pddl`); the model then shows actions in PDDL form.
+        :mod:`ethasp.planning.pddl`); the model then shows actions in PDDL form.
         """
         paths = [Path(path) for path in paths]
         sources, naming = [], Naming()
         if any(path.suffix.lower() == ".pddl" for path in paths):
-            from ethasp.pddl import split_paths, translate_files
+            from ethasp.planning.pddl import split_paths, translate_files
 
             pddl_paths, paths = split_paths(paths)
             program, name = translate_files(pddl_paths)
-            sources.append(Source(name, encoding("pddl.lp").read_text() + program))
+            sources.append(Source(name, encoding("planning/pddl.lp").read_text() + program))
             naming = PddlNaming()
         for path in paths:
             if not path.is_file():
@@ -191,7 +191,7 @@ class Model:
 
     def check(self) -> None:
         """Raise InputError naming the first defect found by check.lp."""
-        symbols = self.solve_once(["model.lp", "check.lp"])
+        symbols = self.solve_once(["planning/model.lp", "planning/check.lp"])
         errors = sorted(unify([Error], symbols).query(Error).all(), key=lambda e: str(e.problem))
         if errors:
             names = ", ".join(source.name for source in self.sources)
@@ -199,5 +199,5 @@ class Model:
 
     def facts(self, predicates) -> FactBase:
         """The model's facts of the given clorm predicates (its rules grounded)."""
-        ctl = self.ground(["model.lp"])
+        ctl = self.ground(["planning/model.lp"])
         return unify(list(predicates), [atom.symbol for atom in ctl.symbolic_atoms if atom.is_fact])

@@ -1,6 +1,6 @@
 """A best reachable state, by clingo optimisation (for utilitarianism).
 
-The states are never listed: ``encodings/search/best.lp`` maximises the
+The states are never listed: ``encodings/judgement/best.lp`` maximises the
 utility of the state at the horizon of a search without the goal, so the
 optimum at horizon h is a best state among those reachable in at most h steps
 (the search may idle).  Horizons 0, 1, 2, 4, 8, ... (and the maximal horizon)
@@ -9,7 +9,7 @@ are solved, each once.  The result is ``proven`` a best reachable state when
 * its utility equals ``upper_bound`` (per variable, the best utility of a
   relaxed reachable value): no reachable state can do better; or
 * after solving horizon h, no path of h+1 actions without a repeated state
-  exists (``encodings/search/loopfree.lp``): every reachable state is then
+  exists (``encodings/planning/loopfree.lp``): every reachable state is then
   reachable in at most h steps, and all of them were searched;
 
 and ``bounded`` otherwise (maximal horizon or time limit reached): a better
@@ -25,9 +25,9 @@ from typing import Iterable, Sequence
 import clingo
 from clorm import Raw, unify
 
-from ethasp.model import Model
-from ethasp.search import DEFAULT_MAX_HORIZON, Search
-from ethasp.validation import literal
+from ethasp.planning.model import Model
+from ethasp.planning.search import DEFAULT_MAX_HORIZON, Search
+from ethasp.planning.validation import literal
 from ethasp.vocabulary import Alternative, AtHorizon, Conj, UpperBound
 
 PROVEN, BOUNDED = "proven", "bounded"
@@ -94,10 +94,10 @@ def best_reachable(model: Model, max_horizon: int = DEFAULT_MAX_HORIZON,
     ``encodings`` and ``facts`` add constraints or lower-priority preferences
     on the state at the horizon (e.g. ``reasons/other_state.lp``: a best
     state other than a given one, goal states first on ties); the priority-0
-    level of the cost is the utility of ``search/best.lp``.
+    level of the cost is the utility of ``judgement/best.lp``.
     """
     deadline = None if time_limit is None else time.monotonic() + time_limit
-    search = Search(model, ["search/best.lp", *encodings], facts, goal=False, optimize=True)
+    search = Search(model, ["judgement/best.lp", *encodings], facts, goal=False, optimize=True)
     best: BestReachable | None = None
     best_cost: list[int] | None = None
     bound: int | None = None

@@ -1,4 +1,4 @@
-"""Validation of a given action sequence against a model (encodings/trace.lp)."""
+"""Validation of a given action sequence against a model (encodings/planning/trace.lp)."""
 
 from __future__ import annotations
 
@@ -8,12 +8,12 @@ import clingo
 from clorm import unify
 
 from ethasp.errors import InputError
-from ethasp.model import Model
-from ethasp.naming import Naming
-from ethasp.plan import Plan
+from ethasp.planning.model import Model
+from ethasp.planning.naming import Naming
+from ethasp.planning.plan import Plan
 from ethasp.vocabulary import Failure, Final, Invalid, IsPlan, Unmet, UnmetGoal
 
-TRACE = ("model.lp", "trace.lp")
+TRACE = ("planning/model.lp", "planning/trace.lp")
 
 
 def literal(variable: clingo.Symbol, value: str) -> str:

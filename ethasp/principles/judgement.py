@@ -1,13 +1,13 @@
 """Judgements of plans under ethical principles, and queries in the language L.
 
-One clingo call evaluates the plan's trace (``encodings/trace.lp``), the
-language L (``encodings/language.lp``), the utility of the final state
-(``encodings/judge.lp``) and the chosen principles (``encodings/principles/``);
+One clingo call evaluates the plan's trace (``encodings/planning/trace.lp``), the
+language L (``encodings/judgement/language.lp``), the utility of the final state
+(``encodings/judgement/judge.lp``) and the chosen principles (``encodings/principles/``);
 this module reads the ``verdict/2`` atoms back.
 
 Every judgement has a status.  Deontology and do-no-harm depend on the plan
 alone: ``proven``.  Utilitarianism compares the final state with a best
-reachable state found by optimisation (:mod:`ethasp.utilitarianism`):
+reachable state found by optimisation (:mod:`ethasp.principles.utilitarianism`):
 
 * the final state is worse than a state found: ``impermissible``, ``proven``
   (that state is reachable, whether or not it is a best one);
@@ -25,18 +25,17 @@ import clingo
 from clorm import unify
 
 from ethasp.errors import InputError
-from ethasp.formula import Elements, parse_formula
-from ethasp.model import Model
-from ethasp.plan import Plan
-from ethasp.principles import Principle, select_principles
-from ethasp.reasons import DEFAULT_LIMIT, Explanation, explain
-from ethasp.search import DEFAULT_MAX_HORIZON
-from ethasp.utilitarianism import BOUNDED, PROVEN, BestReachable, best_reachable
-from ethasp.validation import Validation, read_validation, validate
+from ethasp.principles.formula import Elements, parse_formula
+from ethasp.planning.model import Model
+from ethasp.planning.plan import Plan
+from ethasp.principles.principle import Principle, select_principles
+from ethasp.planning.search import DEFAULT_MAX_HORIZON
+from ethasp.principles.utilitarianism import BOUNDED, PROVEN, BestReachable, best_reachable
+from ethasp.planning.validation import Validation, read_validation, validate
 from ethasp.vocabulary import UtilityOfFinal, Verdict
 
-JUDGE = ("model.lp", "trace.lp", "language.lp", "judge.lp")
-QUERY = ("model.lp", "trace.lp", "language.lp")
+JUDGE = ("planning/model.lp", "planning/trace.lp", "judgement/language.lp", "judgement/judge.lp")
+QUERY = ("planning/model.lp", "planning/trace.lp", "judgement/language.lp")
 QUERY_NAME = clingo.Function("query")
 
 
@@ -49,7 +48,7 @@ class Judgement:
     which a better reachable state could overturn), and ``proof`` says why.
     Principles that compare with reachable states report ``best_reachable``.
     ``formula`` is the ASP name of the principle's formula (``formula(N,F)``).
-    ``explanation`` holds its reasons and words (:mod:`ethasp.reasons`).
+    ``explanation`` holds its reasons and words (:mod:`ethasp.reasons.reasons`).
     """
 
     principle: str
@@ -58,7 +57,7 @@ class Judgement:
     proof: str
     formula: str
     best_reachable: BestReachable | None = None
-    explanation: Explanation | None = None
+    explanation: "Explanation | None" = None  # ethasp.reasons.explanation.Explanation
 
     def to_json(self) -> dict:
         """The judgement as one JSON object (the single place that builds it)."""
@@ -122,14 +121,12 @@ def _judgement(principle: Principle, permissible: bool, best: BestReachable | No
 
 def judge(model: Model, plan: Plan, principles: Iterable[str] | None = None,
           max_horizon: int = DEFAULT_MAX_HORIZON,
-          time_limit: float | None = None,
-          reasons_limit: int | None = DEFAULT_LIMIT) -> JudgementReport:
-    """Judge a plan under the principles (all when None).
+          time_limit: float | None = None) -> JudgementReport:
+    """Judge a plan under the principles (all when None), without explanations.
 
     ``max_horizon`` and ``time_limit`` bound the search for a best reachable
-    state (utilitarianism).  Each judgement gets an explanation with at most
-    ``reasons_limit`` sufficient and necessary reasons (none when 0 or None).
-    Raises InputError if the plan is not a plan.
+    state (utilitarianism).  Raises InputError if the plan is not a plan.
+    (:func:`ethasp.reasons.reasons.judge` adds the explanations.)
     """
     chosen = select_principles(principles)
     facts: list = list(plan.facts())
@@ -147,18 +144,11 @@ def judge(model: Model, plan: Plan, principles: Iterable[str] | None = None,
     utility = next(iter(answer.query(UtilityOfFinal).all())).utility
     judgements = [_judgement(principle, verdicts[principle.asp_name], best, utility)
                   for principle in chosen]
-    for principle, judgement in zip(chosen, judgements):
-        if reasons_limit:
-            # An impermissible utilitarian plan is explained against the better
-            # state found; otherwise explain() searches a best other state.
-            other = best.facts if best is not None and not judgement.permissible else None
-            judgement.explanation = explain(model, plan, principle, reasons_limit, other,
-                                            max_horizon, time_limit)
     return JudgementReport(plan, validation.final_state, utility, judgements)
 
 
 def query(model: Model, plan: Plan, formula: str) -> QueryResult:
-    """Evaluate a formula of L (text, see :mod:`ethasp.formula`) for a plan."""
+    """Evaluate a formula of L (text, see :mod:`ethasp.principles.formula`) for a plan."""
     parsed = parse_formula(formula, Elements.of_model(model))
     symbols = model.solve_once(QUERY, list(plan.facts()) + parsed.facts(QUERY_NAME))
     _require_plan(model, read_validation(plan, symbols))

@@ -10,7 +10,7 @@ derived predicates, ...) is refused with an InputError naming it.
 Files are parsed with the ``pddl`` package after lowering their case (PDDL
 is case-insensitive, the package's keywords are not).  The translation does
 not ground anything: it writes rules over the model vocabulary of
-``encodings/model.lp`` and the typing vocabulary of ``encodings/pddl.lp``,
+``encodings/planning/model.lp`` and the typing vocabulary of ``encodings/planning/pddl.lp``,
 and clingo grounds them.  For a domain with ``(:types room robot)`` and
 
     (:action move :parameters (?r - robot ?from ?to - room)
@@ -27,7 +27,7 @@ it writes
 
 plus ``variable/1`` rules for every predicate, ``pddl_object/2`` and
 ``pddl_subtype/2`` facts for objects and types, and ``init/1`` and ``goal/2``
-facts.  Names follow the rule of :mod:`ethasp.naming` (``five-will-die`` is
+facts.  Names follow the rule of :mod:`ethasp.planning.naming` (``five-will-die`` is
 ``five_will_die``).
 """
 
@@ -40,7 +40,7 @@ from pathlib import Path
 from typing import Iterable, Sequence
 
 from ethasp.errors import InputError
-from ethasp.naming import pddl_name_to_asp
+from ethasp.planning.naming import pddl_name_to_asp
 
 FRAGMENT = "ethasp reads STRIPS with :typing, :negative-preconditions and :equality"
 
@@ -348,7 +348,7 @@ class _Translator:
                              f"{problem.domain_name}, not {domain.name} "
                              f"({self.domain_file.name})")
         self.emit(f"% {self.domain_file.name} and {self.problem_file.name}, "
-                  "translated by ethasp (see encodings/pddl.lp)")
+                  "translated by ethasp (see encodings/planning/pddl.lp)")
         self.declarations(domain, problem)
         self.predicates(domain)
         for action in sorted(domain.actions, key=lambda a: str(a.name)):
@@ -358,7 +358,7 @@ class _Translator:
 
 
 def translate(domain: PddlFile, problem: PddlFile) -> str:
-    """The ASP rules of a PDDL domain and problem (to be read with encodings/pddl.lp)."""
+    """The ASP rules of a PDDL domain and problem (to be read with encodings/planning/pddl.lp)."""
     return _Translator(domain, problem).translate()
 
 

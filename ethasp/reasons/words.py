@@ -33,8 +33,8 @@ from typing import Sequence
 
 import clingo
 
-from ethasp.plan import Plan
-from ethasp.reasons import Comparison, Explanation, Labels, Literal
+from ethasp.planning.plan import Plan
+from ethasp.reasons.explanation import Comparison, Explanation, Labels, Literal
 
 DEFAULT_AGENT = "the agent"
 DEFAULT_POSSESSIVE = "its"

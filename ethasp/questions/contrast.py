@@ -1,16 +1,16 @@
 """Contrastive questions answered (steps 1 to 5 of the paper's iterative process).
 
 A question "Why A rather than B?" about the original plan becomes constraint
-facts (``contrast(Q,C)``, :mod:`ethasp.question`) that the fixed encoding
-``encodings/questions.lp`` reads.  The question's constraints and the chosen
-principle restrict the model (the HModel, :mod:`ethasp.restriction`), which is
+facts (``contrast(Q,C)``, :mod:`ethasp.questions.question`) that the fixed encoding
+``encodings/questions/questions.lp`` reads.  The question's constraints and the chosen
+principle restrict the model (the HModel, :mod:`ethasp.principles.restriction`), which is
 solved for the contrast plan (the HPlan).  If the HModel has no plan, the
 principle is dropped and the model solved again (step 3), so that the
 explanation shows why the contrast is impermissible.  If there is no plan even
 then, a minimal subset of the question's constraints that conflict is found
 with solver assumptions (each constraint is switched on by an assumption on
 ``active(Q,C)``).  Both plans are judged and explained (step 4,
-:mod:`ethasp.judgement`), and the contrastive explanation sets the reasons of
+:mod:`ethasp.principles.judgement`), and the contrastive explanation sets the reasons of
 the two side by side (step 5).
 """
 
@@ -23,19 +23,20 @@ import clingo
 from clorm import Raw, unify
 
 from ethasp.errors import InputError
-from ethasp.judgement import Judgement, judge
-from ethasp.model import Model
-from ethasp.plan import Plan, parse_action
-from ethasp.principles import select_principles
-from ethasp.question import Question
-from ethasp.reasons import DEFAULT_LIMIT
-from ethasp.restriction import HPlanResult, plan_with_principles
-from ethasp.search import BOUNDED, DEFAULT_MAX_HORIZON, FOUND, NONE
-from ethasp.validation import validate
-from ethasp import words
+from ethasp.principles.judgement import Judgement
+from ethasp.reasons.reasons import judge
+from ethasp.planning.model import Model
+from ethasp.planning.plan import Plan, parse_action
+from ethasp.principles.principle import select_principles
+from ethasp.questions.question import Question
+from ethasp.reasons.reasons import DEFAULT_LIMIT
+from ethasp.principles.restriction import HPlanResult, plan_with_principles
+from ethasp.planning.search import BOUNDED, DEFAULT_MAX_HORIZON, FOUND, NONE
+from ethasp.planning.validation import validate
+from ethasp.reasons import words
 from ethasp.vocabulary import Answered, Contrast, UnknownAction
 
-QUESTIONS = "questions.lp"
+QUESTIONS = "questions/questions.lp"
 DEFAULT_PRINCIPLE = "deontology"
 
 
@@ -80,7 +81,7 @@ def check_question(model: Model, question: Question, plan: Plan) -> list[Constra
     constraints = constraints_of(model, [question])
     horizon = len(plan)
     time = [f"time(0..{horizon})", f"horizon({horizon})"] + ([f"step(1..{horizon})"] if horizon else [])
-    symbols = model.solve_once(["model.lp", QUESTIONS],
+    symbols = model.solve_once(["planning/model.lp", QUESTIONS],
                                [c.fact() for c in constraints] + list(plan.facts()) + time)
     answer = unify([Answered, UnknownAction], symbols)
     unknown = sorted(str(atom.action) for atom in answer.query(UnknownAction).all())
@@ -295,7 +296,7 @@ def ask(model: Model, question: str | Question | Sequence[str | Question],
     The plan asked about is ``plan``, or else the plan that plan search under
     ``principle`` makes; it is judged under ``principle``.  The contrast plan
     must satisfy ``under`` (default: ``principle``).  Questions are text (see
-    :mod:`ethasp.question`) or :class:`Question` objects.
+    :mod:`ethasp.questions.question`) or :class:`Question` objects.
     """
     items = [question] if isinstance(question, (str, Question)) else list(question)
     questions = [q if isinstance(q, Question) else Question.parse(q) for q in items]

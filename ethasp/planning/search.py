@@ -1,13 +1,13 @@
 """Plan search: shortest plans by increasing horizon, with multi-shot solving.
 
-The encodings are grounded one step at a time (see :mod:`ethasp.incremental`)
+The encodings are grounded one step at a time (see :mod:`ethasp.planning.incremental`)
 and never again.  Every result carries a status:
 
 * ``found``: a plan was found (it is a shortest one: every smaller horizon has
   none);
 * ``none``: there is no plan, with a proof: the goal is not even relaxed
-  reachable (``encodings/relaxed.lp``), or at some horizon no simple path of
-  that length exists (``encodings/search/loopfree.lp``), so every reachable
+  reachable (``encodings/planning/relaxed.lp``), or at some horizon no simple path of
+  that length exists (``encodings/planning/loopfree.lp``), so every reachable
   state has been searched;
 * ``bounded``: the search stopped at ``--max-horizon`` or ``--time-limit``
   without a plan; a plan may still exist.
@@ -23,9 +23,9 @@ import clingo
 from clorm import unify
 
 from ethasp.errors import InputError
-from ethasp.incremental import CHECK, CHECK_MARKER, STEP, add_encodings, time_parts
-from ethasp.model import Messages, Model
-from ethasp.plan import Plan
+from ethasp.planning.incremental import CHECK, CHECK_MARKER, STEP, add_encodings, time_parts
+from ethasp.planning.model import Messages, Model
+from ethasp.planning.plan import Plan
 from ethasp.resources import encoding
 from ethasp.vocabulary import Occurs
 
@@ -33,12 +33,12 @@ FOUND, NONE, BOUNDED = "found", "none", "bounded"
 
 DEFAULT_MAX_HORIZON = 64
 
-PLANNING = ("model.lp", "relaxed.lp", "search/transition.lp")
+PLANNING = ("planning/model.lp", "planning/relaxed.lp", "planning/transition.lp")
 LOOPFREE = "loopfree"
 
 # Plain shortest-plan search: redundant mutex constraints and a solver
 # configuration that did best on the PDDL benchmark and on held-out instances.
-SHORTEST = ("search/mutex.lp",)
+SHORTEST = ("planning/mutex.lp",)
 SHORTEST_OPTIONS = ("--configuration=trendy",)
 
 
@@ -99,11 +99,11 @@ class Search:
         self.messages = Messages()
         self.ctl = model.control((["--opt-mode=opt"] if optimize else []) + list(options),
                                  self.messages)
-        files = list(PLANNING) + (["search/goal.lp"] if goal else []) + list(encodings)
+        files = list(PLANNING) + (["planning/goal.lp"] if goal else []) + list(encodings)
         try:
             self.ctl.add("base", [], time_parts())
             add_encodings(self.ctl, [encoding(name) for name in files], on_message=self.messages)
-            add_encodings(self.ctl, [encoding("search/loopfree.lp")], step_part=LOOPFREE,
+            add_encodings(self.ctl, [encoding("planning/loopfree.lp")], step_part=LOOPFREE,
                           on_message=self.messages)
             fact_text = "".join(f"{fact}.\n" for fact in facts)
             if fact_text:

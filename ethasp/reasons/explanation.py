@@ -1,0 +1,85 @@
+"""Explanations as data: literals of L, comparisons, labels, and the
+explanation of one judgement (read from answer sets by
+:mod:`ethasp.reasons.reasons`, put into words by :mod:`ethasp.reasons.words`)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import clingo
+
+from ethasp.planning.plan import Plan
+
+
+@dataclass(frozen=True)
+class Literal:
+    """A literal of L: an atom (``caused(V,B)``, ``good(E)``, ``bad(E)``,
+    ``neutral(E)``, ``geq(C,D)``, as terms of ``language.lp``) and its value."""
+
+    atom: clingo.Symbol
+    value: bool
+
+    def term(self) -> clingo.Symbol:
+        return self.atom if self.value else clingo.Function("neg", [self.atom])
+
+
+@dataclass
+class Comparison:
+    """What the words of a GEq atom mention: the facts of each side (variable,
+    value) and how the left side actually compares (better, equal, worse)."""
+
+    left: list[tuple[clingo.Symbol, bool]]
+    right: list[tuple[clingo.Symbol, bool]]
+    relation: str
+
+
+@dataclass
+class Labels:
+    """The model's label facts (``encodings/reasons/labels.lp``)."""
+
+    agent: str | None = None
+    possessive: str | None = None
+    actions: dict[clingo.Symbol, tuple[str, str]] = field(default_factory=dict)
+    facts: dict[tuple[clingo.Symbol, bool], str] = field(default_factory=dict)
+
+
+@dataclass
+class Explanation:
+    """Why a plan is (im)permissible under one principle.
+
+    ``sufficient_reasons`` and ``necessary_reasons`` are lists of reasons, each
+    a list of literals in the formula syntax (``Bad(a2)``, ``not
+    Caused(five_will_die)``); at most ``limit`` of each are computed, and
+    ``truncated`` says that the limit cut an enumeration short (more reasons
+    may exist).  ``chosen_reason`` is the most relevant necessary reason (empty
+    when the verdict holds whatever the atoms' values), ``text`` its words.
+    ``alternative`` is the state compared with (utilitarianism), as literals
+    ``v`` / ``-v``.  ``literals`` holds the chosen reason as :class:`Literal`
+    objects, with ``comparisons`` and ``labels``, for building other texts
+    (see :mod:`ethasp.reasons.words`).
+    """
+
+    principle: str
+    plan: Plan
+    permissible: bool
+    sufficient_reasons: list[list[str]]
+    necessary_reasons: list[list[str]]
+    chosen_reason: list[str]
+    text: str
+    truncated: bool
+    alternative: list[str] | None = None
+    literals: list[Literal] = field(default_factory=list)
+    comparisons: dict[clingo.Symbol, Comparison] = field(default_factory=dict)
+    labels: Labels = field(default_factory=Labels)
+
+    def to_json(self) -> dict:
+        data = {"sufficient_reasons": self.sufficient_reasons,
+                "necessary_reasons": self.necessary_reasons,
+                "chosen_reason": self.chosen_reason,
+                "explanation": self.text,
+                "reasons_truncated": self.truncated}
+        if self.alternative is not None:
+            data["compared_state"] = self.alternative
+        return data
+
+

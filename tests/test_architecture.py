@@ -1,0 +1,77 @@
+"""The package's layout shows its architecture: groups by the paper's concepts,
+each importing only the groups below it, and no import cycles."""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+PACKAGE = ROOT / "ethasp"
+
+# Lowest first: a group may import itself and the groups before it.
+LAYERS = ["core", "planning", "principles", "reasons", "questions", "interfaces"]
+CORE = {"ethasp", "ethasp.errors", "ethasp.resources", "ethasp.vocabulary"}
+
+
+def _module(path: Path) -> str:
+    parts = list(path.relative_to(ROOT).with_suffix("").parts)
+    if parts[-1] == "__init__":
+        parts = parts[:-1]
+    return ".".join(parts)
+
+
+def _group(module: str) -> str:
+    if module in CORE:
+        return "core"
+    return module.split(".")[1]
+
+
+def _imports() -> dict[str, set[str]]:
+    """Every ethasp module and the ethasp modules it imports (anywhere in it)."""
+    modules = {_module(path): path for path in PACKAGE.rglob("*.py")}
+    graph: dict[str, set[str]] = {}
+    for name, path in modules.items():
+        found: set[str] = set()
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+                targets = [node.module] + [f"{node.module}.{a.name}" for a in node.names]
+            elif isinstance(node, ast.Import):
+                targets = [alias.name for alias in node.names]
+            else:
+                continue
+            found |= {t for t in targets if t in modules and t != name}
+        graph[name] = found
+    return graph
+
+
+def test_every_module_is_in_a_group():
+    for module in _imports():
+        assert _group(module) in LAYERS, module
+
+
+def test_groups_import_only_groups_below():
+    graph = _imports()
+    for module, targets in graph.items():
+        if module == "ethasp":
+            continue  # the package's lazy exports name every group
+        for target in targets:
+            assert LAYERS.index(_group(target)) <= LAYERS.index(_group(module)), (module, target)
+
+
+def test_no_import_cycles():
+    graph = _imports()
+    graph["ethasp"] = set()  # lazy exports, not imports at load time
+    state: dict[str, int] = {}
+
+    def visit(module: str, path: list[str]) -> None:
+        state[module] = 1
+        for target in sorted(graph[module]):
+            assert state.get(target) != 1, " -> ".join(path + [target])
+            if target not in state:
+                visit(target, path + [target])
+        state[module] = 2
+
+    for module in sorted(graph):
+        if module not in state:
+            visit(module, [module])
