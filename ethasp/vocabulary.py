@@ -186,4 +186,5 @@ class Answered(Predicate, name="answered"):
 
 
 class UnknownAction(Predicate, name="unknown_action"):
+    question: Raw
     action: Raw

@@ -4,7 +4,7 @@ import pytest
 
 from conftest import MODELS
 from ethasp import InputError, Model, Plan, find_plan, validate
-from ethasp.planning.search import Search
+from ethasp.principles.restriction import plan_with_principles
 
 
 def trolley() -> Model:
@@ -122,7 +122,17 @@ def test_missing_file():
         Model.load(["does/not/exist.lp"])
 
 
-def test_search_is_incremental():
-    search = Search(Model.load([MODELS / "rescue.lp"]))
-    result = search.run(max_horizon=10)
-    assert result.status == "found" and search.grounded == len(result.plan)
+def test_searches_share_one_grounding():
+    model = Model.load([MODELS / "rescue.lp"])
+    result = find_plan(model, max_horizon=10)
+    planner = model.planner
+    assert result.status == "found" and planner.grounded == len(result.plan)
+    control = planner.ctl
+    # An HPlan search switches a restriction on in the same control, and grounds
+    # only the horizons it needs beyond those already grounded.
+    hplan = plan_with_principles(model, ["deontology"], max_horizon=10)
+    assert hplan.status == "found" and model.planner is planner and planner.ctl is control
+    assert planner.grounded == len(hplan.plan)
+    # Asking again grounds nothing new.
+    assert find_plan(model, max_horizon=10).plan == result.plan
+    assert planner.grounded == len(hplan.plan)

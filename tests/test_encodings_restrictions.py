@@ -86,7 +86,7 @@ def test_do_no_harm_a_harm_redone_is_caused():
 def test_produced_flags_are_part_of_the_state_for_the_loop_free_check():
     # With p true initially, "on" sets p again: only the produced flag changes.
     model = """variable(p). init(p). action(on; off). eff(on, p, true). eff(off, p, false).
-               goal(p, false). utility(p, true, -1). simple_path."""
+               goal(p, false). utility(p, true, -1). simple_path(c)."""
     loopfree = ["planning/model.lp", "planning/relaxed.lp", "planning/transition.lp", "planning/loopfree.lp"]
     assert answer_sets(loopfree, model + fixed(2)) == []
     assert answer_sets(loopfree + ["restrictions/do_no_harm.lp"], model + fixed(2)) != []

@@ -9,6 +9,7 @@ import pytest
 from conftest import MODELS, ROOT
 from ethasp import InputError, Model, Plan, judge, query
 from ethasp.principles.principle import available_principles, select_principles
+from ethasp.planning.budget import Budget
 from ethasp.principles.utilitarianism import best_reachable
 
 TROLLEY = str(MODELS / "trolley.lp")
@@ -48,9 +49,16 @@ def test_paper_cases_through_the_command_line(case):
         ["deontology", "do-no-harm", "utilitarianism"]
     assert tuple(j["permissible"] for j in data["judgements"]) == PAPER[case]
     assert all(j["status"] == "proven" for j in data["judgements"])
-    best = data["judgements"][2]["best_reachable"]
+    # Utilitarianism: decided by a better state, or the final state is a best one.
+    utilitarian = data["judgements"][2]
+    state = utilitarian["best_reachable" if PAPER[case][2] else "compared_with"]
+    assert state["utility"] == 4
+    assert "-five_will_die" in state["state"] and "done" in state["state"]
+    assert ("compared_with" in utilitarian) != PAPER[case][2]
+    run = ethasp("judge", path, "--plan", plan, "--json", "--best", "--principle",
+                 "utilitarianism", "--reasons-limit", "0")
+    best = json.loads(run.stdout)["judgements"][0]["best_reachable"]
     assert best["utility"] == 4 and best["status"] == "proven" and best["horizon"] == 1
-    assert "-five_will_die" in best["state"] and "done" in best["state"]
 
 
 def test_json_report_of_pull():
@@ -73,7 +81,7 @@ def test_text_report_and_principle_selection():
     assert lines[2:] == ["do-no-harm: impermissible (proven)", "deontology: permissible (proven)"]
     run = ethasp("judge", "trolley", "--plan", "refrain", "--principle", "utilitarianism")
     assert "utilitarianism: impermissible (proven)" in run.stdout
-    assert "best reachable state found: -five_will_die done one_will_die (utility 4" in run.stdout
+    assert "a better reachable state: -five_will_die done one_will_die (utility 4, 1 step away)" in run.stdout
 
 
 @pytest.mark.parametrize("args, message", [
@@ -144,15 +152,15 @@ utility(hurt,true,-10).
 TO_THE_END = "go(0) go(1) go(2) go(3) go(4) go(5) finish"
 
 
-def test_best_reachable_is_found_by_optimisation_and_proven():
-    best = best_reachable(Model.from_string(CHAIN))
+def test_best_reachable_is_found_and_proven():
+    best = best_reachable(Model.from_string(CHAIN).planner, Budget())
     assert best.status == "proven" and best.utility == 6 and "at(6)" in best.state
-    assert best.horizon == 8  # horizons 0, 1, 2, 4, 8: at(6) needs 6 steps
+    assert best.horizon == 6  # exact reachability: at(6) is 6 steps away
     assert "upper bound" in best.proof
 
 
 def test_best_reachable_is_bounded_by_the_horizon():
-    best = best_reachable(Model.from_string(CHAIN), max_horizon=4)
+    best = best_reachable(Model.from_string(CHAIN).planner, Budget(), max_horizon=4)
     assert best.status == "bounded" and best.utility == -2 and best.searched == 4
 
 
@@ -163,10 +171,12 @@ def test_permissible_needs_the_proven_optimum():
     assert judgement.permissible and judgement.status == "bounded"
     judgement = judge(model, Plan.parse("finish"), ["utilitarianism"]).judgements[0]
     assert not judgement.permissible and judgement.status == "proven"
-    # the best plan: permissible, bounded with a small horizon, proven without
+    # the best plan: permissible, proven even with a small horizon (its final
+    # state attains the upper bound, so no search is needed)
     judgement = judge(model, Plan.parse(TO_THE_END), ["utilitarianism"],
                       max_horizon=2).judgements[0]
-    assert judgement.permissible and judgement.status == "bounded"
+    assert judgement.permissible and judgement.status == "proven"
+    assert "upper bound" in judgement.proof
     judgement = judge(model, Plan.parse(TO_THE_END), ["utilitarianism"]).judgements[0]
     assert judgement.permissible and judgement.status == "proven"
 
@@ -176,7 +186,7 @@ def test_impermissible_is_proven_by_any_better_state_found():
     report = judge(model, Plan.parse("harm finish"), ["utilitarianism"], max_horizon=2)
     judgement = report.judgements[0]
     assert report.utility == -12
-    assert judgement.best_reachable.status == "bounded"
+    assert judgement.best_reachable is None and judgement.compared.utility > -12
     assert not judgement.permissible and judgement.status == "proven"
 
 
@@ -187,10 +197,12 @@ def test_time_limit_gives_bounded(tmp_path):
                  "--max-horizon", "1", "--json")
     judgement = json.loads(run.stdout)["judgements"][0]
     assert judgement["status"] == "bounded" and judgement["permissible"]
-    assert judgement["best_reachable"]["status"] == "bounded"
     run = ethasp("judge", str(path), "--plan", "finish", "--principle", "utilitarianism",
                  "--max-horizon", "1")
     assert "permissible as far as searched (bounded, not proven)" in run.stdout
+    cancelled = Budget()
+    cancelled.cancel()
     report = judge(Model.from_string(CHAIN), Plan.parse("finish"), ["utilitarianism"],
-                   time_limit=0.0)
+                   budget=cancelled)
     assert report.judgements[0].status == "bounded"
+    assert "cancelled" in report.judgements[0].proof

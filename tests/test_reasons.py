@@ -123,8 +123,9 @@ def reason_sets_raw(program: str, kind: list[str]):
 
 
 def test_other_state_prefers_goal_states_on_ties():
-    program = ("time(0..1). step(1). horizon(1). other_than(five_will_die,false). "
-               "other_than(one_will_die,true). other_than(done,true).")
+    program = ("time(0..1). step(1). horizon(1). other_state(s). "
+               "other_than(s,five_will_die,false). other_than(s,one_will_die,true). "
+               "other_than(s,done,true).")
     answers = optimal_answers(["planning/model.lp", "planning/relaxed.lp", "planning/transition.lp",
                                "judgement/best.lp", "reasons/other_state.lp", TROLLEY], program)
     assert answers and all("at_horizon(done,true,1)" in a and "occurs(refrain,1)" in a

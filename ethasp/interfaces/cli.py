@@ -11,6 +11,8 @@ from typing import Sequence
 from typing import TYPE_CHECKING
 
 from ethasp.errors import InputError
+from ethasp.interfaces.progress import ProgressLine
+from ethasp.planning.budget import DEFAULT_TIME_LIMIT, Budget
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
 from ethasp.resources import MODELS
@@ -55,15 +57,21 @@ def load_model(args: argparse.Namespace) -> Model:
     return Model.load(model_paths(args.model), allow_scripts=args.allow_scripts)
 
 
-def _seconds(text: str) -> float:
-    """A --time-limit: a positive number of seconds."""
+def _seconds(text: str) -> float | None:
+    """A --time-limit: seconds (0 or inf: no limit)."""
     try:
         value = float(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"not a number of seconds: {text!r}") from None
-    if not value > 0:
-        raise argparse.ArgumentTypeError(f"must be more than 0 seconds: {text!r}")
-    return value
+    if value != value or value < 0:
+        raise argparse.ArgumentTypeError(f"must be 0 (no limit) or more seconds: {text!r}")
+    return None if value == 0 or value == float("inf") else value
+
+
+def budget(args: argparse.Namespace) -> Budget:
+    """The command's budget: its time limit and a progress line on standard error."""
+    args.progress = ProgressLine(enabled=False if getattr(args, "quiet", False) else None)
+    return Budget(getattr(args, "time_limit", None), args.progress)
 
 
 def _steps(count: int) -> str:
@@ -71,6 +79,9 @@ def _steps(count: int) -> str:
 
 
 def emit(args: argparse.Namespace, data: dict, text: str) -> None:
+    progress = getattr(args, "progress", None)
+    if progress is not None:
+        progress.clear()
     print(json.dumps(data, indent=2) if args.json else text)
 
 
@@ -80,7 +91,7 @@ def command_plan(args: argparse.Namespace) -> int:
     model = load_model(args)
     if args.principle:
         return command_plan_permissible(args, model)
-    result = find_plan(model, args.max_horizon, args.time_limit, all_plans=args.all)
+    result = find_plan(model, args.max_horizon, all_plans=args.all, budget=budget(args))
     if result.status == FOUND:
         if args.all:
             lines = [f"{len(result.plans)} shortest plans of {_steps(result.horizon)}:"]
@@ -104,8 +115,9 @@ def command_plan_permissible(args: argparse.Namespace, model: Model) -> int:
     from ethasp.reasons.reasons import judge
     from ethasp.principles.restriction import plan_with_principles
 
-    result = plan_with_principles(model, args.principle, args.max_horizon, args.time_limit,
-                                  all_plans=args.all)
+    limits = budget(args)
+    result = plan_with_principles(model, args.principle, args.max_horizon, all_plans=args.all,
+                                  budget=limits)
     under = " and ".join(result.principles)
     data = result.to_json()
     if result.status == FOUND:
@@ -116,7 +128,7 @@ def command_plan_permissible(args: argparse.Namespace, model: Model) -> int:
                   f"{under}:"] + [f"  {plan}" for plan in shown] if args.all
                  else [f"{head}: {shown[0]}"])
         # The judgement of the (first) HPlan, as ethasp judge prints it, minus its plan line.
-        report = judge(model, result.plan, result.principles, args.max_horizon, args.time_limit)
+        report = judge(model, result.plan, result.principles, args.max_horizon, budget=limits)
         data["judgements"] = report.to_json()["judgements"]
         lines += _explanation_text(report) + _judgement_text(report, model).split("\n")[1:]
     elif result.status == "none":
@@ -154,16 +166,19 @@ def _judgement_text(report: "JudgementReport", model: Model) -> str:
             verdict = f"{verdict} as far as searched (bounded, not proven)"
         else:
             verdict = f"{verdict} (proven)"
-        best = judgement.best_reachable
-        if best is None:
+        if judgement.compared is None and judgement.best_reachable is None:
             lines.append(f"{judgement.principle}: {verdict}")
             continue
         lines.append(f"{judgement.principle}: {verdict}: {judgement.proof}")
-        if best.state is not None:
-            steps = "step" if best.horizon == 1 else "steps"
-            lines.append(f"  best reachable state found: {naming.facts(best.state)} "
-                         f"(utility {best.utility}, within {best.horizon} {steps}; "
-                         f"best: {best.status})")
+        compared, best = judgement.compared, judgement.best_reachable
+        if compared is not None and (best is None or best.found is not compared):
+            kind = "a better reachable state" if not judgement.permissible else "compared with"
+            lines.append(f"  {kind}: {naming.facts(compared.literals)} (utility "
+                         f"{compared.utility}, {_steps(compared.distance)} away)")
+        if best is not None and best.found is not None:
+            lines.append(f"  best reachable state: {naming.facts(best.state)} "
+                         f"(utility {best.utility}, {_steps(best.horizon)} away; "
+                         f"{best.status}: {best.proof})")
     return "\n".join(lines)
 
 
@@ -218,7 +233,7 @@ def command_judge(args: argparse.Namespace) -> int:
     if args.reasons_limit < 0:
         raise InputError("--reasons-limit must be at least 0")
     report = judge(model, _given_plan(args), args.principle, args.max_horizon,
-                   args.time_limit, args.reasons_limit)
+                   reasons_limit=args.reasons_limit, budget=budget(args), best=args.best)
     lines = _explanation_text(report) + [_judgement_text(report, model)]
     emit(args, report.to_json(), "\n".join(lines))
     return 0
@@ -232,7 +247,7 @@ def command_ask(args: argparse.Namespace) -> int:
     model = load_model(args)
     plan = _given_plan(args) if (args.plan or args.plan_file) else None
     answer = ask(model, args.question, plan, args.principle, args.under, args.max_horizon,
-                 args.time_limit, args.reasons_limit)
+                 reasons_limit=args.reasons_limit, budget=budget(args))
     emit(args, answer.to_json(), answer_text(answer, model.naming))
     return 0
 
@@ -245,6 +260,7 @@ def command_dialogue(args: argparse.Namespace) -> int:
     model = load_model(args)
     options = dict(max_horizon=args.max_horizon, time_limit=args.time_limit,
                    reasons_limit=args.reasons_limit)
+    progress = ProgressLine(enabled=False if args.quiet else None)
     files = [str(path.resolve()) for path in model_paths(args.model)]
     if args.load:
         dialogue = Dialogue.load(args.load, model, **options)
@@ -252,6 +268,7 @@ def command_dialogue(args: argparse.Namespace) -> int:
         plan = _given_plan(args) if (args.plan or args.plan_file) else None
         dialogue = Dialogue.start(model, args.principle, plan, files, **options)
     dialogue.model_files = files
+    dialogue.on_progress = progress
     interactive = sys.stdin.isatty()
 
     def read() -> str:
@@ -260,12 +277,13 @@ def command_dialogue(args: argparse.Namespace) -> int:
     def load(path: str) -> Dialogue:
         loaded = Dialogue.load(path, model, **options)
         loaded.model_files = files
+        loaded.on_progress = progress
         return loaded
 
     save = None if args.save == "-" else Path(args.save)
     if interactive:
         print("ethasp dialogue: type help for the commands, quit to end.")
-    return Prompt(dialogue, save, sys.stdout, load).run(read)
+    return Prompt(dialogue, save, sys.stdout, load, progress).run(read)
 
 
 def command_query(args: argparse.Namespace) -> int:
@@ -288,11 +306,21 @@ def _add_model_arguments(parser: argparse.ArgumentParser) -> None:
                         help="run #script blocks in model files (refused by default)")
 
 
-def _add_search_arguments(parser: argparse.ArgumentParser) -> None:
+TIME_LIMIT_HELP = (f"stop searching after SECONDS and answer 'bounded' (default "
+                   f"{DEFAULT_TIME_LIMIT:g}; 0 for no limit)")
+QUIET_HELP = "no progress line on standard error (shown on a terminal after 2 s)"
+
+
+def _add_limits(parser: argparse.ArgumentParser, per: str = "") -> None:
+    parser.add_argument("--time-limit", type=_seconds, default=DEFAULT_TIME_LIMIT,
+                        metavar="SECONDS", help=TIME_LIMIT_HELP + per)
+    parser.add_argument("--quiet", action="store_true", help=QUIET_HELP)
+
+
+def _add_search_arguments(parser: argparse.ArgumentParser, per: str = "") -> None:
     parser.add_argument("--max-horizon", type=int, default=DEFAULT_MAX_HORIZON, metavar="N",
                         help=f"search plans of at most N steps (default {DEFAULT_MAX_HORIZON})")
-    parser.add_argument("--time-limit", type=_seconds, default=None, metavar="SECONDS",
-                        help="stop searching after SECONDS and report 'bounded'")
+    _add_limits(parser, per)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -332,10 +360,12 @@ def build_parser() -> argparse.ArgumentParser:
     judging.add_argument("--principle", action="append", metavar="NAME",
                          help="deontology, do-no-harm or utilitarianism (repeatable)")
     judging.add_argument("--max-horizon", type=int, default=DEFAULT_MAX_HORIZON, metavar="N",
-                         help="search a best reachable state among the states reachable in "
-                              f"at most N steps (default {DEFAULT_MAX_HORIZON})")
-    judging.add_argument("--time-limit", type=_seconds, default=None, metavar="SECONDS",
-                         help="stop that search after SECONDS and report 'bounded'")
+                         help="compare with the states reachable in at most N steps "
+                              f"(default {DEFAULT_MAX_HORIZON})")
+    _add_limits(judging)
+    judging.add_argument("--best", action="store_true",
+                         help="also find a best reachable state (utilitarianism; by default "
+                              "the search stops at the first state that decides the verdict)")
     judging.add_argument("--reasons-limit", type=int, default=None, metavar="N",
                          help="compute at most N sufficient and N necessary reasons per "
                               "judgement (default: ethasp.reasons.DEFAULT_LIMIT; "
@@ -387,7 +417,7 @@ def build_parser() -> argparse.ArgumentParser:
     talk.add_argument("--save", default="ethasp-dialogue.json", metavar="FILE",
                       help="where the dialogue is saved when it ends "
                            "(default ethasp-dialogue.json; - for nowhere)")
-    _add_search_arguments(talk)
+    _add_search_arguments(talk, " per question")
     talk.add_argument("--reasons-limit", type=int, default=None, metavar="N",
                       help="at most N reasons of each kind per judgement")
     talk.set_defaults(run=command_dialogue)

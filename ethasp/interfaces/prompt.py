@@ -9,6 +9,7 @@ from typing import Callable, TextIO
 from ethasp.questions.contrast import Answer
 from ethasp.questions.dialogue import Dialogue
 from ethasp.errors import InputError
+from ethasp.interfaces.progress import ProgressLine
 
 HELP = """\
 Commands:
@@ -61,13 +62,16 @@ class Prompt:
     """Runs a dialogue from lines of text; saves it when it ends."""
 
     def __init__(self, dialogue: Dialogue, save_path: Path | None, output: TextIO,
-                 load: Callable[[str], Dialogue]):
+                 load: Callable[[str], Dialogue], progress: ProgressLine | None = None):
         self.dialogue = dialogue
         self.save_path = save_path
         self.output = output
         self.load = load
+        self.progress = progress
 
     def say(self, text: str) -> None:
+        if self.progress is not None:
+            self.progress.clear()
         print(text, file=self.output, flush=True)
 
     def show_current(self) -> None:

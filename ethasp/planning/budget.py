@@ -18,8 +18,9 @@ import time
 from dataclasses import dataclass
 from typing import Callable
 
-# The default time limit of a command, in seconds (``--time-limit 0`` for none).
-DEFAULT_TIME_LIMIT = 300.0
+# The default time limit of a command line search, in seconds (``ethasp ...
+# --time-limit 0`` for none; the Python API has no limit unless given one).
+DEFAULT_TIME_LIMIT = 120.0
 
 # How often a running solve checks the deadline and the cancellation flag.
 POLL_SECONDS = 0.05
@@ -56,8 +57,8 @@ class Budget:
 
     def __init__(self, time_limit: float | None = None,
                  on_progress: Callable[[Progress], None] | None = None):
-        if time_limit is not None and not time_limit > 0:
-            raise ValueError("a time limit must be more than 0 seconds (None for none)")
+        if time_limit is not None and not time_limit >= 0:
+            raise ValueError("a time limit must be 0 seconds or more (None for none)")
         self.started = time.monotonic()
         self.time_limit = time_limit
         self.deadline = None if time_limit is None else self.started + time_limit

@@ -1,25 +1,36 @@
-"""Turn time-indexed encodings into program parts for multi-shot solving.
+"""Compile time-indexed encodings into program parts for multi-shot solving.
 
-The encodings are written once, over time variables, so that the clingo command
-line can run them with a fixed horizon (``time(0..h). step(1..h). horizon(h).``).
-Three domain atoms mark how a statement depends on time:
+The encodings are written once, over time variables, so that the clingo
+command line can run them with a fixed horizon (``time(0..h). step(1..h).
+horizon(h).``).  Domain atoms in a rule's body, the *markers*, say in which
+program part the rule belongs:
 
-* ``step(T)``: the statement belongs to step ``T``; it goes into the part
-  ``step(t)`` (or a part of another name, see :func:`add_encoding`) with ``T``
-  replaced by the parameter ``t``, and the atom ``step(t)`` is dropped.
-* ``horizon(T)``: the statement is about the last time ``T``; it goes into the
-  part ``check(t)`` with ``T`` replaced by ``t``, where ``horizon(t)`` is an
-  external atom that the driver sets true while ``t`` is the horizon.
+* ``step(T)``: the rule belongs to step ``T``; it goes into a part with the
+  parameter ``t`` for ``T`` (named ``step``, or another name given for the
+  file), and the atom ``step(t)`` is dropped;
+* ``horizon(T)``: the rule is about the last time ``T``; it goes into the
+  part ``check(t)``, where ``horizon(t)`` is an external atom that the driver
+  sets true while ``t`` is the horizon;
+* an *input* ``I(X)``, for the names in :data:`INPUTS`: the rule is about
+  one value ``x`` of an input that a driver gives later (a question, a
+  utility threshold, ...); it goes into part ``I(x)``, or ``I_step(x,t)`` /
+  ``I_check(x,t)`` together with a time marker.  ``I(x)`` is an external atom
+  declared in part ``I(x)``: the driver switches the input on and off.
 * anything else goes into ``base``.
 
-Each part is then grounded once per time step, never again.
+A file may also get a *switch*, an atom added to the body of each of its
+rules (and optimisation statements): its rules then hold only while the
+switch, an external declared in ``base``, is true.  So one grounding serves
+searches with and without a restriction.
+
+Each part is grounded once per parameter value, never again.
 """
 
 from __future__ import annotations
 
 from collections import defaultdict
 from pathlib import Path
-from typing import Callable, Iterable
+from typing import Callable
 
 import clingo
 from clingo import ast
@@ -28,101 +39,130 @@ from ethasp.errors import InputError
 
 STEP = "step"
 CHECK = "check"
-PARAMETER = "t"
+TIME_MARKER = "horizon"
+TIME = "t"
+VALUE = "x"
+
+# Inputs that parameterise parts (see the module docstring).
+INPUTS = ("question", "at_least", "best_utility", "other_state", "simple_path")
+
+
+def part_name(kind: str, input_name: str | None = None) -> str:
+    """The name of a part: ``step``, ``check``, ``question``, ``question_step``, ..."""
+    if input_name is None:
+        return kind
+    return input_name if kind == "base" else f"{input_name}_{kind}"
 
 
 class _Substitute(ast.Transformer):
-    """Replace one variable by the part parameter ``t``."""
+    """Replace variables by part parameters."""
 
-    def __init__(self, name: str):
-        self.name = name
+    def __init__(self, mapping: dict[str, str]):
+        self.mapping = mapping
 
     def visit_Variable(self, node):  # noqa: N802 (clingo's visitor naming)
-        if node.name == self.name:
-            return ast.SymbolicTerm(node.location, clingo.Function(PARAMETER))
+        if node.name in self.mapping:
+            return ast.SymbolicTerm(node.location, clingo.Function(self.mapping[node.name]))
         return node
 
 
-def _marker(literal, name: str) -> str | None:
-    """The variable of a positive body literal ``name(X)``, else None."""
+def _marker(literal) -> tuple[str, str] | None:
+    """(name, variable) of a positive body literal ``name(X)``, else None."""
     if literal.ast_type != ast.ASTType.Literal or literal.sign != ast.Sign.NoSign:
         return None
     atom = literal.atom
     if atom.ast_type != ast.ASTType.SymbolicAtom:
         return None
     symbol = atom.symbol
-    if symbol.ast_type != ast.ASTType.Function or symbol.name != name:
+    if symbol.ast_type != ast.ASTType.Function or len(symbol.arguments) != 1:
         return None
-    if len(symbol.arguments) != 1 or symbol.arguments[0].ast_type != ast.ASTType.Variable:
+    if symbol.arguments[0].ast_type != ast.ASTType.Variable:
         return None
-    return symbol.arguments[0].name
+    return symbol.name, symbol.arguments[0].name
 
 
-def _place(statement, step_part: str):
-    """The part a statement belongs to, and the statement to add there."""
+def _switch_literal(location, switch: clingo.Symbol):
+    atom = ast.SymbolicAtom(ast.SymbolicTerm(location, switch))
+    return ast.Literal(location, ast.Sign.NoSign, atom)
+
+
+def _place(statement, step_part: str, switch: clingo.Symbol | None, where: str,
+           base_part: str = "base"):
+    """The part of a statement, the part's parameters, and the statement to add there."""
     if statement.ast_type not in (ast.ASTType.Rule, ast.ASTType.Minimize):
-        return "base", statement
+        return base_part, (), statement
     body = list(statement.body)
+    time_kind, input_name, mapping, drop = None, None, {}, None
     for index, literal in enumerate(body):
-        for marker, part in ((STEP, step_part), (CHECK_MARKER, CHECK)):
-            variable = _marker(literal, marker)
-            if variable is None:
-                continue
-            if marker == STEP:
-                del body[index]
-            rewritten = statement.update(body=body)
-            return part, _Substitute(variable)(rewritten)
-    return "base", statement
+        found = _marker(literal)
+        if found is None:
+            continue
+        name, variable = found
+        if name == STEP and time_kind is None:
+            time_kind, drop = STEP, index
+            mapping[variable] = TIME
+        elif name == TIME_MARKER and time_kind is None:
+            time_kind = CHECK
+            mapping[variable] = TIME
+        elif name in INPUTS and input_name is None:
+            input_name = name
+            mapping[variable] = VALUE
+    if drop is not None:
+        del body[drop]
+    if switch is not None:
+        body.append(_switch_literal(statement.location, switch))
+    rewritten = statement.update(body=body)
+    if mapping:
+        rewritten = _Substitute(mapping)(rewritten)
+    if input_name is None:
+        if time_kind is None:
+            return base_part, (), rewritten
+        return (step_part if time_kind == STEP else CHECK), (TIME,), rewritten
+    if time_kind is None:
+        return input_name, (VALUE,), rewritten
+    return part_name(time_kind, input_name), (VALUE, TIME), rewritten
 
 
-CHECK_MARKER = "horizon"
+def add_encoding(builder: ast.ProgramBuilder, path: Path | None, step_part: str = STEP,
+                 switch: clingo.Symbol | None = None, text: str | None = None,
+                 on_message: Callable[[clingo.MessageCode, str], None] | None = None,
+                 base_part: str = "base") -> dict[str, tuple[str, ...]]:
+    """Add an encoding (a file, or ``text``) to a program, split into parts.
 
-
-def add_encoding(
-    builder: ast.ProgramBuilder,
-    path: Path,
-    step_part: str = STEP,
-    on_message: Callable[[clingo.MessageCode, str], None] | None = None,
-) -> set[str]:
-    """Add an encoding file to a program, split into parts; return the parts used."""
+    Rules without markers go into ``base_part``.  Returns the parts used,
+    with their parameters.
+    """
+    where = str(path) if path is not None else "<encoding>"
     parts: dict[str, list] = defaultdict(list)
+    params: dict[str, tuple[str, ...]] = {}
 
     def collect(statement):
         if statement.ast_type == ast.ASTType.Program:
             if statement.name != "base" or statement.parameters:
-                raise InputError(f"{path}: encodings for incremental solving must not use #program")
+                raise InputError(f"{where}: encodings for multi-shot solving must not use #program")
             return
-        part, placed = _place(statement, step_part)
+        part, parameters, placed = _place(statement, step_part, switch, where, base_part)
         parts[part].append(placed)
+        params[part] = parameters
 
-    ast.parse_files([str(path)], collect, logger=on_message)
-    location = ast.Location(ast.Position(str(path), 1, 1), ast.Position(str(path), 1, 1))
+    if text is not None:
+        ast.parse_string(text, collect, logger=on_message)
+    else:
+        ast.parse_files([str(path)], collect, logger=on_message)
+    location = ast.Location(ast.Position(where, 1, 1), ast.Position(where, 1, 1))
     for part, statements in parts.items():
-        params = [] if part == "base" else [ast.Id(location, PARAMETER)]
-        builder.add(ast.Program(location, part, params))
+        builder.add(ast.Program(location, part, [ast.Id(location, p) for p in params[part]]))
         for statement in statements:
             builder.add(statement)
-    return set(parts)
+    return params
 
 
-def add_encodings(
-    control: clingo.Control,
-    paths: Iterable[Path],
-    step_part: str = STEP,
-    on_message: Callable[[clingo.MessageCode, str], None] | None = None,
-) -> set[str]:
-    """Add several encodings (see :func:`add_encoding`) to a control object."""
-    used: set[str] = set()
-    with ast.ProgramBuilder(control) as builder:
-        for path in paths:
-            used |= add_encoding(builder, path, step_part, on_message)
-    return used
-
-
-def time_parts() -> str:
-    """The time domain of the incremental parts: ``time/1`` and the horizon external."""
-    return (
-        "#program base. time(0).\n"
-        f"#program {STEP}({PARAMETER}). time({PARAMETER}).\n"
-        f"#program {CHECK}({PARAMETER}). #external {CHECK_MARKER}({PARAMETER}).\n"
-    )
+def time_parts() -> dict[str, tuple[list[str], str]]:
+    """The time domain and the externals of the parts: ``time/1`` and the
+    external ``past(t)`` (step t comes after the end) in ``step(t)``, the
+    horizon external in ``check(t)``, each input's external in its part."""
+    parts = {STEP: ([TIME], f"time({TIME}). #external past({TIME})."),
+             CHECK: ([TIME], f"#external {TIME_MARKER}({TIME}).")}
+    for name in INPUTS:
+        parts[name] = ([VALUE], f"#external {name}({VALUE}).")
+    return parts

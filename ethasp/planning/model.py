@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Iterable, Sequence
+from typing import TYPE_CHECKING, Iterable, Sequence
 
 import clingo
 import clingo.script
@@ -12,7 +12,11 @@ from clingo import ast
 from clorm import FactBase, unify
 
 from ethasp.errors import InputError
+from ethasp.planning.messages import Messages
 from ethasp.planning.naming import Naming, PddlNaming
+
+if TYPE_CHECKING:
+    from ethasp.planning.planner import Planner
 from ethasp.resources import encoding
 from ethasp.vocabulary import Error
 
@@ -24,21 +28,6 @@ class Source:
     name: str
     text: str
     path: Path | None = None
-
-
-class Messages:
-    """Collects clingo's messages; its errors become one-line InputErrors."""
-
-    def __init__(self) -> None:
-        self.errors: list[str] = []
-
-    def __call__(self, code: clingo.MessageCode, message: str) -> None:
-        first = message.split("\n", 1)[0]
-        if code == clingo.MessageCode.RuntimeError or ": error:" in first:
-            self.errors.append(" ".join(message.split()))
-
-    def raise_first(self, fallback: str) -> None:
-        raise InputError(self.errors[0] if self.errors else fallback)
 
 
 def _describe(problem: clingo.Symbol) -> str:
@@ -73,6 +62,7 @@ class Model:
     sources: list[Source] = field(default_factory=list)
     allow_scripts: bool = False
     naming: Naming = field(default_factory=Naming)
+    _planner: "Planner | None" = field(default=None, repr=False, compare=False)
 
     # -- construction ---------------------------------------------------------
 
@@ -189,13 +179,22 @@ class Model:
                 return list(answer.symbols(shown=True))
         return []
 
+    @property
+    def planner(self) -> "Planner":
+        """The model's one grounding (:class:`ethasp.planning.planner.Planner`),
+        made on first use."""
+        if self._planner is None:
+            from ethasp.planning.planner import Planner
+
+            self._planner = Planner(self)
+        return self._planner
+
     def check(self) -> None:
         """Raise InputError naming the first defect found by check.lp."""
-        symbols = self.solve_once(["planning/model.lp", "planning/check.lp"])
-        errors = sorted(unify([Error], symbols).query(Error).all(), key=lambda e: str(e.problem))
+        errors = sorted(self.planner.get("error", 1), key=str)
         if errors:
             names = ", ".join(source.name for source in self.sources)
-            raise InputError(f"{names}: {_describe(errors[0].problem.symbol)}")
+            raise InputError(f"{names}: {_describe(errors[0].arguments[0])}")
 
     def facts(self, predicates) -> FactBase:
         """The model's facts of the given clorm predicates (its rules grounded)."""

@@ -13,9 +13,6 @@ from ethasp.planning.naming import Naming
 from ethasp.planning.plan import Plan
 from ethasp.vocabulary import Failure, Final, Invalid, IsPlan, Unmet, UnmetGoal
 
-TRACE = ("planning/model.lp", "planning/trace.lp")
-
-
 def literal(variable: clingo.Symbol, value: str) -> str:
     """A fact as text: ``v`` for true, ``-v`` for false."""
     return str(variable) if value == "true" else f"-{variable}"
@@ -76,8 +73,9 @@ def _problem(problem: clingo.Symbol) -> str:
 
 
 def validate(model: Model, plan: Plan) -> Validation:
-    """Validate a plan; raise InputError if it names unknown actions."""
-    return read_validation(plan, model.solve_once(TRACE, plan.facts()))
+    """Validate a plan (its trace, computed once per plan by the model's
+    planner); raise InputError if it names unknown actions."""
+    return read_validation(plan, model.planner.trace(plan))
 
 
 def read_validation(plan: Plan, symbols: list[clingo.Symbol]) -> Validation:

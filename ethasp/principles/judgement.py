@@ -1,17 +1,23 @@
 """Judgements of plans under ethical principles, and queries in the language L.
 
-One clingo call evaluates the plan's trace (``encodings/planning/trace.lp``), the
-language L (``encodings/judgement/language.lp``), the utility of the final state
-(``encodings/judgement/judge.lp``) and the chosen principles (``encodings/principles/``);
-this module reads the ``verdict/2`` atoms back.
+Data flow, each step computed once: the plan's trace (the model's planner:
+validity, final state, Caused, the final state's utility,
+``encodings/planning/trace.lp`` and ``encodings/judgement/judge.lp``); for
+principles that compare with reachable states, the state to compare with
+(:mod:`ethasp.principles.utilitarianism`); then one small program over the
+trace's facts evaluates the language L (``encodings/judgement/language.lp``)
+for the formula of every principle chosen (``encodings/principles/``).  This
+module reads the ``verdict/2`` atoms back, and keeps the atoms of the
+formulas that the reasons read (:mod:`ethasp.reasons.reasons`).
 
 Every judgement has a status.  Deontology and do-no-harm depend on the plan
-alone: ``proven``.  Utilitarianism compares the final state with a best
-reachable state found by optimisation (:mod:`ethasp.principles.utilitarianism`):
+alone: ``proven``.  Utilitarianism compares the final state with the
+reachable states:
 
-* the final state is worse than a state found: ``impermissible``, ``proven``
-  (that state is reachable, whether or not it is a best one);
-* otherwise, if the best state is proven best: ``permissible``, ``proven``;
+* a reachable state better than the final state is found: ``impermissible``,
+  ``proven``, at once (the search for a *best* state stops there);
+* no reachable state is better, proven (exact reachability, or the upper
+  bound): ``permissible``, ``proven``;
 * otherwise ``permissible`` as far as searched, ``bounded``: a better
   reachable state may exist.
 """
@@ -19,24 +25,31 @@ reachable state found by optimisation (:mod:`ethasp.principles.utilitarianism`):
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Iterable
+from typing import Iterable, Sequence
 
 import clingo
 from clorm import unify
 
 from ethasp.errors import InputError
-from ethasp.principles.formula import Elements, parse_formula
+from ethasp.planning.budget import Budget
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
-from ethasp.principles.principle import Principle, select_principles
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
-from ethasp.principles.utilitarianism import BOUNDED, PROVEN, BestReachable, best_reachable
 from ethasp.planning.validation import Validation, read_validation, validate
+from ethasp.principles.formula import Elements, parse_formula
+from ethasp.principles.principle import Principle, select_principles
+from ethasp.principles.utilitarianism import (BOUNDED, PROVEN, BestReachable, ReachableState,
+                                              best_reachable, better_state)
 from ethasp.vocabulary import UtilityOfFinal, Verdict
 
-JUDGE = ("planning/model.lp", "planning/trace.lp", "judgement/language.lp", "judgement/judge.lp")
-QUERY = ("planning/model.lp", "planning/trace.lp", "judgement/language.lp")
+# The program that evaluates formulas over a plan's trace.
+FORMULAS = ("planning/model.lp", "judgement/language.lp")
 QUERY_NAME = clingo.Function("query")
+
+# The atoms of a formula's evaluation that its reasons read (reasons/literals.lp,
+# comparison.lp, relevance.lp).
+EVIDENCE = (("formula", 2), ("member", 2), ("conj", 3), ("satisfied", 1), ("verdict", 2),
+            ("worth", 2), ("weight", 2))
 
 
 @dataclass
@@ -46,7 +59,9 @@ class Judgement:
     ``permissible`` is the verdict of the principle's formula; ``status`` is
     ``proven`` or ``bounded`` (a verdict against the states searched so far,
     which a better reachable state could overturn), and ``proof`` says why.
-    Principles that compare with reachable states report ``best_reachable``.
+    Principles that compare with reachable states report the state compared
+    with (``compared``: a better state when impermissible, a best one when
+    permissible) and ``best_reachable`` when a best state was established.
     ``formula`` is the ASP name of the principle's formula (``formula(N,F)``).
     ``explanation`` holds its reasons and words (:mod:`ethasp.reasons.reasons`).
     """
@@ -57,12 +72,15 @@ class Judgement:
     proof: str
     formula: str
     best_reachable: BestReachable | None = None
+    compared: ReachableState | None = None
     explanation: "Explanation | None" = None  # ethasp.reasons.explanation.Explanation
 
     def to_json(self) -> dict:
         """The judgement as one JSON object (the single place that builds it)."""
         data: dict = {"principle": self.principle, "permissible": self.permissible,
                       "status": self.status, "proof": self.proof}
+        if self.compared is not None:
+            data["compared_with"] = self.compared.to_json()
         if self.best_reachable is not None:
             data["best_reachable"] = self.best_reachable.to_json()
         if self.explanation is not None:
@@ -102,56 +120,125 @@ def _require_plan(model: Model, validation: Validation) -> None:
         raise InputError(f"not a plan: {validation.message(model.naming)}")
 
 
-def _judgement(principle: Principle, permissible: bool, best: BestReachable | None,
-               utility: int) -> Judgement:
-    if not principle.reads_alternatives:
-        return Judgement(principle.name, permissible, PROVEN,
-                         "the principle depends on the plan alone", principle.asp_name)
-    assert best is not None
-    if not permissible:
-        proof = (f"a reachable state has utility {best.utility}, more than the final "
-                 f"state's {utility}")
-        return Judgement(principle.name, False, PROVEN, proof, principle.asp_name, best)
-    if best.status == PROVEN:
-        proof = f"the final state is as good as a best reachable state: {best.proof}"
-        return Judgement(principle.name, True, PROVEN, proof, principle.asp_name, best)
-    proof = (f"no better state found ({best.proof}); a better reachable state may exist")
-    return Judgement(principle.name, True, BOUNDED, proof, principle.asp_name, best)
+def trace_facts(model: Model, plan: Plan) -> str:
+    """A valid plan's trace as facts: ``occurs/2``, ``final/2``, ``caused/2``."""
+    text = "".join(f"occurs({action},{step}).\n" for step, action in enumerate(plan, start=1))
+    return text + "".join(f"{symbol}.\n" for symbol in model.planner.trace(plan)
+                          if symbol.name in ("final", "caused"))
+
+
+def final_utility(model: Model, plan: Plan) -> int:
+    """u(s_n) of a plan's final state (``utility_of_final/1`` of judge.lp)."""
+    answer = unify([UtilityOfFinal], model.planner.trace(plan))
+    return next(iter(answer.query(UtilityOfFinal).all())).utility
+
+
+def evaluate(model: Model, plan: Plan, encodings: Sequence[str], facts: str = ""
+             ) -> list[clingo.Symbol]:
+    """Evaluate formulas of L (given by principle encodings and facts) over a
+    plan's trace; every atom of the answer set."""
+    ctl = model.planner.program(list(FORMULAS) + list(encodings),
+                                trace_facts(model, plan) + facts)
+    with ctl.solve(yield_=True) as handle:
+        for answer in handle:
+            return list(answer.symbols(atoms=True))
+    raise InputError("the formulas could not be evaluated (no answer set)")
+
+
+def evidence(symbols: Iterable[clingo.Symbol]) -> list[clingo.Symbol]:
+    """The atoms of an evaluation that reasons read (:data:`EVIDENCE`)."""
+    wanted = set(EVIDENCE)
+    return [s for s in symbols if (s.name, len(s.arguments)) in wanted]
+
+
+def _asp(facts: Iterable) -> str:
+    return "".join(f"{fact}.\n" for fact in facts)
+
+
+@dataclass
+class _Compared:
+    """What the comparing principles are judged against."""
+
+    permissible: bool
+    status: str
+    proof: str
+    state: ReachableState | None
+    best: BestReachable | None
+
+
+def _compare(model: Model, plan: Plan, utility: int, budget: Budget, max_horizon: int,
+             want_best: bool) -> _Compared:
+    """Decide whether a reachable state is better than the final state."""
+    planner = model.planner
+    comparison = better_state(planner, utility, budget, max_horizon)
+    best = comparison.best
+    if want_best and (best is None or best.status != PROVEN):
+        best = best_reachable(planner, budget, max_horizon)
+    if comparison.better is not None:
+        return _Compared(False, PROVEN, comparison.proof + ", more than the final state's "
+                         f"{utility}", comparison.better, best)
+    if comparison.status == PROVEN:
+        if best is None or best.found is None:
+            # No reachable state is better, and the final state is reachable: it is a best one.
+            final = [(s.arguments[0], s.arguments[1].name == "true")
+                     for s in planner.trace(plan) if s.name == "final"]
+            best = BestReachable(PROVEN, f"the final state is reachable and {comparison.proof}",
+                                 ReachableState(final, utility, len(plan)))
+        return _Compared(True, PROVEN, comparison.proof, None, best)
+    return _Compared(True, BOUNDED, f"{comparison.proof}; a better reachable state may exist",
+                     None, best)
 
 
 def judge(model: Model, plan: Plan, principles: Iterable[str] | None = None,
-          max_horizon: int = DEFAULT_MAX_HORIZON,
-          time_limit: float | None = None) -> JudgementReport:
+          max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
+          budget: Budget | None = None, best: bool = False) -> JudgementReport:
     """Judge a plan under the principles (all when None), without explanations.
 
-    ``max_horizon`` and ``time_limit`` bound the search for a best reachable
-    state (utilitarianism).  Raises InputError if the plan is not a plan.
-    (:func:`ethasp.reasons.reasons.judge` adds the explanations.)
+    ``max_horizon`` and ``budget`` (or ``time_limit``) bound the search for a
+    reachable state better than the final state (utilitarianism); with
+    ``best`` the search goes on to a best reachable state.  Raises InputError
+    if the plan is not a plan.  (:func:`ethasp.reasons.reasons.judge` adds the
+    explanations.)
     """
+    budget = budget or Budget(time_limit)
     chosen = select_principles(principles)
-    facts: list = list(plan.facts())
-    best: BestReachable | None = None
-    if any(principle.reads_alternatives for principle in chosen):
-        _require_plan(model, validate(model, plan))  # before a search that may be long
-        best = best_reachable(model, max_horizon, time_limit)
-        facts += best.alternative_facts()
-    encodings = list(JUDGE) + [principle.encoding for principle in chosen]
-    symbols = model.solve_once(encodings, facts)
-    validation = read_validation(plan, symbols)
+    validation = validate(model, plan)
     _require_plan(model, validation)
-    answer = unify([Verdict, UtilityOfFinal], symbols)
-    verdicts = {str(atom.name.symbol): atom.value == "true" for atom in answer.query(Verdict).all()}
-    utility = next(iter(answer.query(UtilityOfFinal).all())).utility
-    judgements = [_judgement(principle, verdicts[principle.asp_name], best, utility)
-                  for principle in chosen]
+    utility = final_utility(model, plan)
+    compared = None
+    facts: list = []
+    if any(principle.reads_alternatives for principle in chosen):
+        compared = _compare(model, plan, utility, budget, max_horizon, best)
+        if compared.state is not None:
+            facts = compared.state.asp_facts()
+        elif compared.best is not None and compared.best.found is not None:
+            facts = compared.best.found.asp_facts()
+    symbols = evaluate(model, plan, [principle.encoding for principle in chosen], _asp(facts))
+    verdicts = {str(atom.name.symbol): atom.value == "true"
+                for atom in unify([Verdict], symbols).query(Verdict).all()}
+    judgements = []
+    for principle in chosen:
+        permissible = verdicts[principle.asp_name]
+        if not principle.reads_alternatives:
+            judgements.append(Judgement(principle.name, permissible, PROVEN,
+                                        "the principle depends on the plan alone",
+                                        principle.asp_name))
+            continue
+        assert compared is not None
+        if permissible != compared.permissible:
+            raise RuntimeError(f"{principle.name}: the formula's verdict disagrees with the "
+                               "comparison of reachable states")
+        judgements.append(Judgement(principle.name, permissible, compared.status,
+                                    compared.proof, principle.asp_name, compared.best,
+                                    compared.state))
     return JudgementReport(plan, validation.final_state, utility, judgements)
 
 
 def query(model: Model, plan: Plan, formula: str) -> QueryResult:
     """Evaluate a formula of L (text, see :mod:`ethasp.principles.formula`) for a plan."""
     parsed = parse_formula(formula, Elements.of_model(model))
-    symbols = model.solve_once(QUERY, list(plan.facts()) + parsed.facts(QUERY_NAME))
-    _require_plan(model, read_validation(plan, symbols))
+    _require_plan(model, validate(model, plan))
+    symbols = evaluate(model, plan, [], _asp(parsed.facts(QUERY_NAME)))
     verdicts = unify([Verdict], symbols).query(Verdict).all()
     value = any(str(atom.name.symbol) == "query" and atom.value == "true" for atom in verdicts)
     return QueryResult(plan, str(parsed), value)

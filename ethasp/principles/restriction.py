@@ -2,16 +2,19 @@
 
 The constraint operator Pi x e of the paper (section "Ethical Plan
 Generation") restricts plan search so that every plan found, an *HPlan*, is a
-plan of the model that satisfies the principle e.  Each principle is an
-encoding in ``encodings/restrictions/`` added to the ordinary multi-shot plan
-search (:class:`ethasp.search.Search`); several principles together restrict
-the search by all of them.
+plan of the model that satisfies the principle e.  Each principle's
+restriction is an encoding in ``encodings/restrictions/``, grounded once in
+the model's planner and switched on for the searches that need it
+(:class:`ethasp.planning.planner.Setting`); several principles together
+restrict the search by all of them.
 
-Utilitarianism needs the best utility of a reachable state first: it comes
-from clingo optimisation over the reachable states, goal or not
-(:func:`ethasp.utilitarianism.best_reachable`, ``encodings/judgement/best.lp``),
-proven best or only a lower bound.  The plan search then keeps the plans whose
-final state is at least that good (``best_utility/1``).
+Utilitarianism needs the best utility of a reachable state first
+(:func:`ethasp.principles.utilitarianism.best_reachable`, exact reachability
+or clingo optimisation), proven best or only a lower bound.  The plan search
+then keeps the plans whose final state is at least that good
+(``best_utility/1``), starting at the length of a shortest path to such a
+goal state when exact reachability knows it, so that no shorter horizon is
+searched in vain; when no goal state is that good, no plan is permissible.
 
 Statuses are those of plan search: ``found`` (a shortest HPlan, permissible
 by a proof), ``none`` (proven: no permissible plan exists) or ``bounded``.
@@ -19,19 +22,18 @@ by a proof), ``none`` (proven: no permissible plan exists) or ``bounded``.
 
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass, field
 from typing import Sequence
-
-import clingo
 
 from ethasp.errors import InputError
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
-from ethasp.planning.search import BOUNDED, DEFAULT_MAX_HORIZON, FOUND, NONE, Search
+from ethasp.planning.budget import Budget
+from ethasp.planning.planner import Constraint, Setting
+from ethasp.planning.search import BOUNDED, DEFAULT_MAX_HORIZON, FOUND, NONE, shortest
 from ethasp.principles.principle import Principle, select_principles
 from ethasp.resources import ENCODINGS
-from ethasp.principles.utilitarianism import PROVEN, BestReachable, best_reachable
+from ethasp.principles.utilitarianism import PROVEN, BestReachable, best_reachable, goal_distance
 
 RESTRICTIONS = "restrictions"
 
@@ -99,39 +101,44 @@ class HPlanResult:
         return data
 
 
-def restriction_encodings(principles: Sequence[str]) -> list[str]:
-    """The restriction encodings of the principles."""
-    return [f"{RESTRICTIONS}/{principle.asp_name}.lp" for principle in _principles(principles)]
-
-
 def plan_with_principles(model: Model, principles: Sequence[str],
                          max_horizon: int = DEFAULT_MAX_HORIZON,
                          time_limit: float | None = None,
                          all_plans: bool = False,
-                         encodings: Sequence[str] = (),
-                         facts: Sequence = (),
-                         assumptions: Sequence[tuple[clingo.Symbol, bool]] = ()) -> HPlanResult:
+                         constraints: Sequence[Constraint] = (),
+                         budget: Budget | None = None) -> HPlanResult:
     """A shortest HPlan: a plan of the model permissible under all the principles.
 
-    ``encodings``, ``facts`` and ``assumptions`` add further constraints to the
-    HModel (the constraints of contrastive questions, for instance).
+    ``constraints`` (of contrastive questions) restrict the HModel further.
+    ``budget`` (or else ``time_limit``) bounds the searches.
     """
+    budget = budget or Budget(time_limit)
+    planner = model.planner
     chosen = _principles(principles)
     names = [principle.name for principle in chosen]
-    deadline = None if time_limit is None else time.monotonic() + time_limit
-    facts = list(facts)
+    setting = Setting(restrictions=frozenset(p.asp_name for p in chosen),
+                      constraints=frozenset(constraints))
     best: BestReachable | None = None
+    start, start_proof = 0, ""
+    plans = "plan meeting the question" if constraints else "plan"
+    under = " and ".join(names) if names else "no principle"
     if any(principle.reads_alternatives for principle in chosen):
-        best = best_reachable(model, max_horizon, time_limit)
+        best = best_reachable(planner, budget, max_horizon)
         if best.utility is None:
             return HPlanResult(BOUNDED, names, horizon=best.searched, best=best,
                                proof=f"no reachable state valued yet: {best.proof}")
-        facts.append(clingo.Function("best_utility", [clingo.Number(best.utility)]))
-    remaining = None if deadline is None else max(0.0, deadline - time.monotonic())
-    search = Search(model, restriction_encodings(names) + list(encodings), facts,
-                    assumptions=assumptions)
-    result = search.run(max_horizon, remaining, all_plans)
-    under = " and ".join(names) if names else "no principle"
+        setting = Setting(restrictions=setting.restrictions, constraints=setting.constraints,
+                          best_utility=best.utility)
+        distance, status, why = goal_distance(planner, best.utility, budget, max_horizon)
+        if distance is None and status == PROVEN:
+            return HPlanResult(NONE, names, None, best.searched,
+                               f"no {plans} is permissible under {under}: no goal state is as "
+                               f"good as a best reachable state (utility {best.utility}); {why}",
+                               best=best)
+        if distance is not None:
+            start, start_proof = distance, why
+    result = shortest(planner, setting, budget, max_horizon, start, start_proof, all_plans,
+                      task=f"plan search under {under}")
     if result.status == FOUND and best is not None and best.status != PROVEN:
         # A plan reaching the best utility found is no proof: a better state may exist.
         return HPlanResult(
@@ -140,11 +147,12 @@ def plan_with_principles(model: Model, principles: Sequence[str],
                   f"better reachable state is not excluded ({best.proof})")
     if result.status == FOUND:
         return HPlanResult(FOUND, names, result.plan, result.horizon,
-                           f"a shortest plan permissible under {under}", result.plans, best)
+                           f"a shortest {plans} permissible under {under}: {result.proof}",
+                           result.plans, best)
     if result.status == NONE:
         # With utilitarianism the search asked for utility >= best.utility, a lower
         # bound of the best reachable utility: no such goal state, no permissible plan.
         return HPlanResult(NONE, names, None, result.horizon,
-                           f"no plan is permissible under {under}: {result.proof}", best=best)
+                           f"no {plans} is permissible under {under}: {result.proof}", best=best)
     return HPlanResult(BOUNDED, names, None, result.horizon,
-                       f"no plan permissible under {under} found: {result.proof}", best=best)
+                       f"no {plans} permissible under {under} found: {result.proof}", best=best)

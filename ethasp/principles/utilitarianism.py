@@ -1,72 +1,278 @@
-"""A best reachable state, by clingo optimisation (for utilitarianism).
+"""Reachable states of high utility, for utilitarianism: proofs, not bounds.
 
-The states are never listed: ``encodings/judgement/best.lp`` maximises the
-utility of the state at the horizon of a search without the goal, so the
-optimum at horizon h is a best state among those reachable in at most h steps
-(the search may idle).  Horizons 0, 1, 2, 4, 8, ... (and the maximal horizon)
-are solved, each once.  The result is ``proven`` a best reachable state when
+Utilitarianism compares the final state of a plan with every reachable state
+(Definition 2 of the paper).  The states are never listed.  Two engines
+answer, the first that can:
 
-* its utility equals ``upper_bound`` (per variable, the best utility of a
-  relaxed reachable value): no reachable state can do better; or
-* after solving horizon h, no path of h+1 actions without a repeated state
-  exists (``encodings/planning/loopfree.lp``): every reachable state is then
-  reachable in at most h steps, and all of them were searched;
+* exact reachability (:mod:`ethasp.planning.reachability`): breadth-first
+  layers of states, computed symbolically; every layer is exact, so a state
+  better than a given utility is found at its shortest distance, and once no
+  new state appears every reachable state is known (``proven``);
+* when its diagrams outgrow their limit, clingo optimisation over the
+  planner's grounding (``encodings/judgement/best.lp``, a search without the
+  goal, at horizons 0, 1, 2, 4, 8, ...), proven by the relaxed upper bound
+  or the loop-free threshold (``encodings/planning/loopfree.lp``).
 
-and ``bounded`` otherwise (maximal horizon or time limit reached): a better
-state may exist, but the state found is reachable.
+Both stop as soon as the question is decided: a state better than the final
+state decides "impermissible" at once; the search for the *best* state goes
+on only for answers that need it (HPlans, ``best_reachable``).  An upper
+bound (per variable, the best utility of a value reachable ignoring delete
+effects) ends a search for the best as soon as a state attains it.
 """
 
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass, field
-from typing import Iterable, Sequence
+from typing import Callable
 
 import clingo
 from clorm import Raw, unify
 
-from ethasp.planning.model import Model
-from ethasp.planning.search import DEFAULT_MAX_HORIZON, Search
-from ethasp.planning.validation import literal
-from ethasp.vocabulary import Alternative, AtHorizon, Conj, UpperBound
+from ethasp.planning.budget import Budget
+from ethasp.planning.planner import Planner, Setting
+from ethasp.planning.reachability import Best, Reachability
+from ethasp.planning.search import DEFAULT_MAX_HORIZON
+from ethasp.vocabulary import Alternative, AtHorizon, Conj
 
 PROVEN, BOUNDED = "proven", "bounded"
 
-# The name of the best state, as a conjunction of facts in ASP (conj/3).
+# The name of a compared state, as a conjunction of facts in ASP (conj/3).
 BEST = clingo.Function("best")
+
+
+def literal(variable: clingo.Symbol, value: bool) -> str:
+    """A fact as text: ``v`` for true, ``-v`` for false."""
+    return str(variable) if value else f"-{variable}"
+
+
+@dataclass
+class ReachableState:
+    """A reachable state: its facts (variable, value), its utility, and the
+    length of a path to it (the shortest, when found by exact reachability)."""
+
+    facts: list[tuple[clingo.Symbol, bool]]
+    utility: int
+    distance: int
+
+    @property
+    def literals(self) -> list[str]:
+        return sorted(literal(v, b) for v, b in self.facts)
+
+    def asp_facts(self, name: clingo.Symbol = BEST) -> list:
+        """``alternative(name)`` and its ``conj(name,V,B)`` facts."""
+        return [Alternative(name=Raw(name))] + [
+            Conj(name=Raw(name), variable=Raw(v), value="true" if b else "false")
+            for v, b in self.facts]
+
+    def to_json(self) -> dict:
+        return {"state": self.literals, "utility": self.utility, "distance": self.distance}
 
 
 @dataclass
 class BestReachable:
     """A best reachable state (as far as searched).
 
-    ``state`` lists its literals (``v`` / ``-v``), ``utility`` is its utility
-    and ``horizon`` the horizon at which it was found; ``searched`` is the last
-    horizon searched.  ``status`` is ``proven`` (no reachable state is better)
-    or ``bounded``, and ``proof`` says why.  ``state`` is None when the time
-    limit struck before any state was found.
+    ``state`` is None when the search stopped before any state was valued.
+    ``status`` is ``proven`` (no reachable state is better) or ``bounded``
+    (a better one may exist), and ``proof`` says why; ``searched`` is how far
+    the search looked (layers or horizon).
     """
 
     status: str
     proof: str
-    state: list[str] | None = None
-    utility: int | None = None
-    horizon: int = 0
+    found: ReachableState | None = None
     searched: int = 0
-    facts: list[tuple[clingo.Symbol, str]] = field(default_factory=list)
+
+    @property
+    def state(self) -> list[str] | None:
+        return self.found.literals if self.found else None
+
+    @property
+    def utility(self) -> int | None:
+        return self.found.utility if self.found else None
+
+    @property
+    def horizon(self) -> int:
+        return self.found.distance if self.found else 0
+
+    @property
+    def facts(self) -> list[tuple[clingo.Symbol, str]]:
+        return [(v, "true" if b else "false") for v, b in self.found.facts] if self.found else []
 
     def alternative_facts(self) -> list:
-        """``alternative(best)`` and its ``conj(best,V,B)`` facts (none if no state)."""
-        if self.state is None:
-            return []
-        return [Alternative(name=Raw(BEST))] + [
-            Conj(name=Raw(BEST), variable=Raw(variable), value=value)
-            for variable, value in self.facts]
+        return self.found.asp_facts() if self.found else []
 
     def to_json(self) -> dict:
         return {"state": self.state, "utility": self.utility, "horizon": self.horizon,
                 "status": self.status, "proof": self.proof}
 
+
+@dataclass
+class Comparison:
+    """Whether some reachable state is better than a given utility.
+
+    ``better`` is a reachable state of higher utility (then the answer is yes,
+    proven), or None: no reachable state is better (``status`` proven) or
+    none was found within the bounds (``bounded``).  ``best`` is a best
+    reachable state when the search established one.
+    """
+
+    status: str
+    proof: str
+    better: ReachableState | None = None
+    best: BestReachable | None = None
+
+
+# -- the exact engine -------------------------------------------------------------
+
+def _state(model_variables, best: Best) -> ReachableState:
+    return ReachableState([(v, v in best.state) for v in model_variables], best.utility,
+                          best.layer)
+
+
+def upper_bound(planner: Planner) -> int:
+    """No reachable state has a higher utility (per variable, the best utility of
+    a value reachable ignoring delete effects: ``upper_bound/1`` of best.lp)."""
+    atoms = planner.search_atoms("upper_bound", 1)
+    return atoms[0].arguments[0].number
+
+
+UB_PROOF = ("utility {u} is the upper bound (per variable, the best utility of a value "
+            "reachable ignoring delete effects)")
+
+
+def _expand(planner: Planner, budget: Budget, max_horizon: int,
+            decided: Callable[[Reachability, int], bool], task: str) -> tuple[Reachability, str]:
+    """Expand the layers of exact reachability until ``decided(r, k)`` holds for
+    a new layer k, every state is known, or a limit; return why it stopped
+    ('' when decided or complete)."""
+    r = planner.reachability()
+    k = 0
+    while True:
+        if k < len(r.layers):
+            if decided(r, k):
+                return r, ""
+            k += 1
+            continue
+        if r.complete:
+            return r, ""
+        if len(r.layers) > max_horizon:
+            return r, f"the layers of states reached within {max_horizon} steps (the maximal horizon)"
+        budget.report(task, horizon=len(r.layers))
+        if not r.expand(budget):
+            return r, r.stopped
+
+
+def best_reachable(planner: Planner, budget: Budget, max_horizon: int = DEFAULT_MAX_HORIZON,
+                   within: str = "all", other_than: list[tuple[clingo.Symbol, bool]] | None = None
+                   ) -> BestReachable:
+    """A best state reachable from the initial state (``within="goal"``: a best
+    goal state), other than the state ``other_than`` if given; among equally
+    good states, goal states first, then the nearest.
+
+    Results are kept by the planner: a question is searched once per model.
+    """
+    key = ("best_reachable", within, frozenset(other_than or ()), max_horizon)
+    if key in planner.memo:
+        return planner.memo[key]
+    result = _best_exact(planner, budget, max_horizon, within, other_than)
+    if result is None:
+        result = _best_by_optimisation(planner, budget, max_horizon, within, other_than)
+    if result.status == PROVEN:
+        planner.memo[key] = result
+    return result
+
+
+def _restriction(r: Reachability, within: str, other_than):
+    states = r.goal() if within == "goal" else None
+    if other_than is not None:
+        avoid = ~r.state([v for v, b in other_than if b])
+        states = avoid if states is None else states & avoid
+    return states
+
+
+def _best_exact(planner: Planner, budget: Budget, max_horizon: int, within: str,
+                other_than) -> BestReachable | None:
+    bound = upper_bound(planner)
+    found: list[Best] = []
+
+    def decided(r: Reachability, k: int) -> bool:
+        best = r.best_in_layer(k, _restriction(r, within, other_than))
+        if best is not None and (not found or best.utility > found[0].utility):
+            found[:] = [best]
+        budget.report("best reachable state", horizon=k,
+                      best=found[0].utility if found else None, bound=bound)
+        return bool(found) and found[0].utility >= bound
+
+    r, stopped = _expand(planner, budget, max_horizon, decided, "best reachable state")
+    variables = planner.ground_model().variables
+    searched = len(r.layers) - 1
+    if found and found[0].utility >= bound:
+        return BestReachable(PROVEN, UB_PROOF.format(u=bound),
+                             _prefer_goal(r, found[0], within, other_than, variables), searched)
+    if not stopped:
+        proof = (f"every reachable state is known (exact reachability: no new state after "
+                 f"{searched} steps)")
+        if not found:
+            return BestReachable(PROVEN, proof + "; none is in the set asked for", None, searched)
+        return BestReachable(PROVEN, proof, _prefer_goal(r, found[0], within, other_than,
+                                                         variables), searched)
+    if "diagram nodes" in stopped and not budget.expired():
+        return None  # the exact engine gave up: optimisation takes over
+    return BestReachable(BOUNDED, f"searched the states reached within {searched} steps; "
+                                  f"stopped: {stopped}",
+                         _state(variables, found[0]) if found else None, searched)
+
+
+def _prefer_goal(r: Reachability, best: Best, within: str, other_than, variables) -> ReachableState:
+    """Among the states as good as ``best`` in the layers computed, a goal state
+    if there is one (the paper's max returns goal states first), else ``best``."""
+    if within != "goal" and r.model.goal:
+        goal_states = _restriction(r, "goal", other_than)
+        candidate = r.best(goal_states)
+        if candidate is not None and candidate.utility == best.utility:
+            return _state(variables, candidate)
+    return _state(variables, best)
+
+
+def better_state(planner: Planner, utility: int, budget: Budget,
+                 max_horizon: int = DEFAULT_MAX_HORIZON) -> Comparison:
+    """Is a reachable state better than ``utility``?  Stops at the first layer
+    that has one (that state is then at its shortest distance)."""
+    bound = upper_bound(planner)
+    if bound <= utility:
+        return Comparison(PROVEN, f"no reachable state is better: {UB_PROOF.format(u=bound)}")
+    found: list[Best] = []
+
+    def decided(r: Reachability, k: int) -> bool:
+        best = r.best_in_layer(k)
+        budget.report("a better reachable state", horizon=k,
+                      best=best.utility if best else None, bound=bound)
+        if best is not None and best.utility > utility:
+            found.append(best)
+            return True
+        return False
+
+    r, stopped = _expand(planner, budget, max_horizon, decided, "a better reachable state")
+    variables = planner.ground_model().variables
+    if found:
+        state = _state(variables, found[0])
+        return Comparison(PROVEN, f"a state of utility {state.utility} is reachable in "
+                                  f"{state.distance} steps", better=state)
+    searched = len(r.layers) - 1
+    if not stopped:
+        best = r.best()
+        result = BestReachable(PROVEN, f"every reachable state is known (exact reachability: "
+                                       f"no new state after {searched} steps)",
+                               _prefer_goal(r, best, "all", None, variables), searched)
+        return Comparison(PROVEN, f"no reachable state is better: {result.proof}", best=result)
+    if "diagram nodes" in stopped and not budget.expired():
+        return _better_by_search(planner, utility, budget, max_horizon)
+    return Comparison(BOUNDED, f"no better state among those reached within {searched} steps; "
+                               f"stopped: {stopped}")
+
+
+# -- the fallback: optimisation and threshold searches in ASP ---------------------------
 
 def _horizons(max_horizon: int) -> list[int]:
     """0, 1, 2, 4, 8, ... up to max_horizon, and max_horizon itself."""
@@ -79,58 +285,95 @@ def _horizons(max_horizon: int) -> list[int]:
     return result
 
 
+def _read_state(symbols, horizon: int) -> list[tuple[clingo.Symbol, bool]]:
+    atoms = unify([AtHorizon], symbols).query(AtHorizon).all()
+    return sorted(((a.variable.symbol, a.value == "true") for a in atoms if a.time == horizon),
+                  key=lambda pair: str(pair[0]))
+
+
 def _lower(cost: list[int], other: list[int]) -> bool:
     """Is a clingo cost vector lower than another?  A priority level without
-    ground elements yet (a lower one, added by later horizons) counts as 0."""
+    ground elements yet counts as 0."""
     width = max(len(cost), len(other))
     return cost + [0] * (width - len(cost)) < other + [0] * (width - len(other))
 
 
-def best_reachable(model: Model, max_horizon: int = DEFAULT_MAX_HORIZON,
-                   time_limit: float | None = None, encodings: Sequence[str] = (),
-                   facts: Iterable = ()) -> BestReachable:
-    """A best state reachable from the initial state, by optimisation.
-
-    ``encodings`` and ``facts`` add constraints or lower-priority preferences
-    on the state at the horizon (e.g. ``reasons/other_state.lp``: a best
-    state other than a given one, goal states first on ties); the priority-0
-    level of the cost is the utility of ``judgement/best.lp``.
-    """
-    deadline = None if time_limit is None else time.monotonic() + time_limit
-    search = Search(model, ["judgement/best.lp", *encodings], facts, goal=False, optimize=True)
-    best: BestReachable | None = None
+def _best_by_optimisation(planner: Planner, budget: Budget, max_horizon: int, within: str,
+                          other_than) -> BestReachable:
+    bound = upper_bound(planner)
+    other = planner.avoid(other_than) if other_than is not None else None
+    setting = Setting(goal=within == "goal", other_state=other, optimize=True)
+    best: ReachableState | None = None
     best_cost: list[int] | None = None
-    bound: int | None = None
     horizon = 0
-
-    def finish(status: str, proof: str) -> BestReachable:
-        result = best or BestReachable(status, proof)
-        result.status, result.proof, result.searched = status, proof, horizon
-        return result
-
     for horizon in _horizons(max_horizon):
-        satisfiable, symbols, cost = search.solve_at(horizon, deadline)
-        if symbols and cost:
-            facts_found = unify([AtHorizon, UpperBound], symbols)
-            bound = next(iter(facts_found.query(UpperBound).all())).bound
-            # The search may idle, so an optimum at a larger horizon is at least
-            # as good, in every priority level, as one at a smaller horizon.
-            if best_cost is None or _lower(cost, best_cost):
-                pairs = sorted(((atom.variable.symbol, atom.value)
-                                for atom in facts_found.query(AtHorizon).all()
-                                if atom.time == horizon), key=str)
-                best = BestReachable(BOUNDED, "", sorted(literal(v, b) for v, b in pairs),
-                                     -cost[0], horizon, horizon, pairs)
-                best_cost = cost
-        if satisfiable is None:
-            return finish(BOUNDED, f"time limit reached at horizon {horizon}")
-        if best is not None and best.utility == bound:
-            return finish(PROVEN, f"its utility {bound} is the upper bound (per variable, the "
-                                  "best utility of a value reachable ignoring delete effects)")
-        exists = search.simple_path_exists(horizon + 1, deadline)
+        budget.report("best reachable state (optimisation)", horizon=horizon,
+                      best=best.utility if best else None, bound=bound)
+        outcome = planner.solve(horizon, setting, budget)
+        if outcome.symbols and outcome.cost and (best_cost is None
+                                                 or _lower(outcome.cost, best_cost)):
+            best = ReachableState(_read_state(outcome.symbols, horizon), -outcome.cost[0],
+                                  horizon)
+            best_cost = outcome.cost
+        if outcome.satisfiable is None:
+            return BestReachable(BOUNDED, f"{budget.why_stopped()} at horizon {horizon}",
+                                 best, horizon)
+        if best is not None and best.utility >= bound:
+            return BestReachable(PROVEN, UB_PROOF.format(u=bound), best, horizon)
+        exists = planner.simple_path_exists(horizon + 1, Setting(), budget)
         if exists is None:
-            return finish(BOUNDED, f"time limit reached at horizon {horizon}")
+            return BestReachable(BOUNDED, f"{budget.why_stopped()} at horizon {horizon}",
+                                 best, horizon)
         if not exists:
-            return finish(PROVEN, f"every reachable state was searched (no path of "
-                                  f"{horizon + 1} steps without a repeated state)")
-    return finish(BOUNDED, f"searched up to horizon {horizon} (the maximal horizon)")
+            return BestReachable(PROVEN, f"every reachable state was searched (no path of "
+                                         f"{horizon + 1} steps without a repeated state)",
+                                 best, horizon)
+    return BestReachable(BOUNDED, f"searched up to horizon {horizon} (the maximal horizon)",
+                         best, horizon)
+
+
+def _better_by_search(planner: Planner, utility: int, budget: Budget,
+                      max_horizon: int) -> Comparison:
+    setting = Setting(goal=False, at_least=utility + 1)
+    horizon = 0
+    for horizon in _horizons(max_horizon):
+        budget.report("a better reachable state (search)", horizon=horizon)
+        outcome = planner.solve(horizon, setting, budget)
+        if outcome.satisfiable is None:
+            return Comparison(BOUNDED, f"{budget.why_stopped()} at horizon {horizon}")
+        if outcome.satisfiable:
+            facts = _read_state(outcome.symbols, horizon)
+            worth = planner.ground_model().utility(v for v, b in facts if b)
+            return Comparison(PROVEN, f"a state of utility {worth} is reachable within "
+                                      f"{horizon} steps",
+                              better=ReachableState(facts, worth, horizon))
+        exists = planner.simple_path_exists(horizon + 1, Setting(), budget)
+        if exists is None:
+            return Comparison(BOUNDED, f"{budget.why_stopped()} at horizon {horizon}")
+        if not exists:
+            return Comparison(PROVEN, f"no reachable state is better: every reachable state "
+                                      f"was searched (no path of {horizon + 1} steps without "
+                                      "a repeated state)")
+    return Comparison(BOUNDED, f"no better state within {horizon} steps (the maximal horizon)")
+
+
+def goal_distance(planner: Planner, utility: int, budget: Budget,
+                  max_horizon: int = DEFAULT_MAX_HORIZON) -> tuple[int | None, str, str]:
+    """The length of a shortest path to a goal state of utility at least
+    ``utility``: (length, status, proof); length None with status proven when
+    no such state is reachable, with status bounded when the exact engine
+    stopped first."""
+    def decided(r: Reachability, k: int) -> bool:
+        best = r.best_in_layer(k, r.goal())
+        return best is not None and best.utility >= utility
+
+    r, stopped = _expand(planner, budget, max_horizon, decided, "a good goal state")
+    for k in range(len(r.layers)):
+        best = r.best_in_layer(k, r.goal())
+        if best is not None and best.utility >= utility:
+            return k, PROVEN, (f"exact reachability: no goal state of utility {utility} or more "
+                               f"is reachable in fewer than {k} steps")
+    if not stopped:
+        return None, PROVEN, (f"no goal state of utility {utility} or more is reachable "
+                              "(exact reachability: every reachable state is known)")
+    return None, BOUNDED, stopped

@@ -20,44 +20,25 @@ from dataclasses import dataclass, field
 from typing import Sequence
 
 import clingo
-from clorm import Raw, unify
+from clorm import unify
 
 from ethasp.errors import InputError
-from ethasp.principles.judgement import Judgement
-from ethasp.reasons.reasons import judge
+from ethasp.planning.budget import Budget
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan, parse_action
-from ethasp.principles.principle import select_principles
-from ethasp.questions.question import Question
-from ethasp.reasons.reasons import DEFAULT_LIMIT
-from ethasp.principles.restriction import HPlanResult, plan_with_principles
+from ethasp.planning.planner import Constraint
 from ethasp.planning.search import BOUNDED, DEFAULT_MAX_HORIZON, FOUND, NONE
 from ethasp.planning.validation import validate
+from ethasp.principles.judgement import Judgement
+from ethasp.principles.principle import select_principles
+from ethasp.principles.restriction import HPlanResult, plan_with_principles
+from ethasp.questions.question import Question
 from ethasp.reasons import words
-from ethasp.vocabulary import Answered, Contrast, UnknownAction
+from ethasp.reasons.reasons import DEFAULT_LIMIT, judge
+from ethasp.vocabulary import Answered, UnknownAction
 
 QUESTIONS = "questions/questions.lp"
 DEFAULT_PRINCIPLE = "deontology"
-
-
-
-
-def _active(question: clingo.Symbol, constraint: clingo.Symbol) -> clingo.Symbol:
-    return clingo.Function("active", [question, constraint])
-
-
-@dataclass(frozen=True)
-class Constraint:
-    """One constraint of a question: ``contrast(Q,C)``."""
-
-    question: clingo.Symbol
-    term: clingo.Symbol
-
-    def fact(self) -> Contrast:
-        return Contrast(question=Raw(self.question), constraint=Raw(self.term))
-
-    def __str__(self) -> str:
-        return str(self.term)
 
 
 def constraints_of(model: Model, questions: Sequence[Question], first: int = 1) -> list[Constraint]:
@@ -80,9 +61,17 @@ def check_question(model: Model, question: Question, plan: Plan) -> list[Constra
     """
     constraints = constraints_of(model, [question])
     horizon = len(plan)
-    time = [f"time(0..{horizon})", f"horizon({horizon})"] + ([f"step(1..{horizon})"] if horizon else [])
-    symbols = model.solve_once(["planning/model.lp", QUESTIONS],
-                               [c.fact() for c in constraints] + list(plan.facts()) + time)
+    facts = [f"time(0..{horizon}).", f"horizon({horizon})."]
+    if horizon:
+        facts.append(f"step(1..{horizon}).")
+    facts += [f"contrast({c.question},{c.term})." for c in constraints]
+    facts += [f"occurs({action},{step})." for step, action in enumerate(plan, start=1)]
+    ctl = model.planner.program([QUESTIONS], "\n".join(facts) + "\n")
+    symbols: list[clingo.Symbol] = []
+    with ctl.solve(yield_=True) as handle:
+        for answer in handle:
+            symbols = list(answer.symbols(shown=True))
+            break
     answer = unify([Answered, UnknownAction], symbols)
     unknown = sorted(str(atom.action) for atom in answer.query(UnknownAction).all())
     if unknown:
@@ -105,39 +94,36 @@ class ContrastSearch:
     dropped_because: str = ""
 
 
-def _hplan(model: Model, principles: list[str], constraints: Sequence[Constraint],
-           active: Sequence[Constraint], max_horizon: int, time_limit: float | None) -> HPlanResult:
-    on = set(active)
-    assumptions = [(_active(c.question, c.term), c in on) for c in constraints]
-    return plan_with_principles(model, principles, max_horizon, time_limit,
-                                encodings=[QUESTIONS], facts=[c.fact() for c in constraints],
-                                assumptions=assumptions)
-
-
 def minimal_conflict(model: Model, constraints: Sequence[Constraint], max_horizon: int,
-                     time_limit: float | None) -> list[Constraint]:
+                     budget: Budget) -> list[Constraint]:
     """A subset-minimal set of constraints under which the model has no plan (proven).
 
     Deletion-based: a constraint is left out whenever the others still have no
-    plan, proven; a search cut by the horizon keeps the constraint.
+    plan, proven; a search cut by the horizon or the budget keeps the constraint.
+    Every search runs on the model's one grounding, the constraints switched
+    by assumptions.
     """
     core = list(constraints)
     for constraint in list(core):
         trial = [c for c in core if c != constraint]
-        if _hplan(model, [], constraints, trial, max_horizon, time_limit).status == NONE:
+        if plan_with_principles(model, [], max_horizon, constraints=trial,
+                                budget=budget).status == NONE:
             core = trial
     return core
 
 
 def contrast_plan(model: Model, constraints: Sequence[Constraint], under: str,
-                  max_horizon: int = DEFAULT_MAX_HORIZON,
-                  time_limit: float | None = None) -> ContrastSearch:
+                  max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
+                  budget: Budget | None = None) -> ContrastSearch:
     """The HPlan of the constraints and the principle ``under`` (steps 2 and 3)."""
-    result = _hplan(model, [under], constraints, constraints, max_horizon, time_limit)
+    budget = budget or Budget(time_limit)
+    result = plan_with_principles(model, [under], max_horizon, constraints=constraints,
+                                  budget=budget)
     if result.status == FOUND:
         return ContrastSearch(result, False)
-    dropped = _hplan(model, [], constraints, constraints, max_horizon, time_limit)
-    conflict = (minimal_conflict(model, constraints, max_horizon, time_limit)
+    dropped = plan_with_principles(model, [], max_horizon, constraints=constraints,
+                                   budget=budget)
+    conflict = (minimal_conflict(model, constraints, max_horizon, budget)
                 if dropped.status == NONE else [])
     return ContrastSearch(dropped, True, conflict, result.proof)
 
@@ -242,15 +228,16 @@ def contrastive_text(original: Side, contrast: Side | None, conflict: Sequence[C
 
 
 def _judge_side(model: Model, plan: Plan, principle: str, max_horizon: int,
-                time_limit: float | None, reasons_limit: int) -> Side:
-    report = judge(model, plan, [principle], max_horizon, time_limit, reasons_limit)
+                budget: Budget, reasons_limit: int) -> Side:
+    report = judge(model, plan, [principle], max_horizon, reasons_limit=reasons_limit,
+                   budget=budget)
     return Side(plan, principle, report.judgements[0])
 
 
 def original_plan(model: Model, principle: str, max_horizon: int = DEFAULT_MAX_HORIZON,
-                  time_limit: float | None = None) -> Plan:
+                  time_limit: float | None = None, budget: Budget | None = None) -> Plan:
     """The plan that plan search under the principle makes (the plan asked about)."""
-    result = plan_with_principles(model, [principle], max_horizon, time_limit)
+    result = plan_with_principles(model, [principle], max_horizon, time_limit, budget=budget)
     if result.plan is None:
         raise InputError(f"no plan to ask about: {result.proof}")
     return result.plan
@@ -259,26 +246,25 @@ def original_plan(model: Model, principle: str, max_horizon: int = DEFAULT_MAX_H
 def answer_questions(model: Model, questions: Sequence[Question], plan: Plan,
                      principle: str, under: str, previous: Sequence[Constraint] = (),
                      max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
-                     reasons_limit: int = DEFAULT_LIMIT) -> Answer:
+                     reasons_limit: int = DEFAULT_LIMIT, budget: Budget | None = None) -> Answer:
     """Answer the questions about ``plan`` (judged under ``principle``) with a
     contrast plan under ``under``; ``previous`` constraints stay imposed."""
+    budget = budget or Budget(time_limit)
     principle = select_principles([principle])[0].name
     under = select_principles([under])[0].name
     validation = validate(model, plan)
     if not validation.valid:
         raise InputError(f"not a plan: {validation.message(model.naming)}")
     new: list[Constraint] = []
-    asked = max((c.question.arguments[0].number for c in previous), default=0)
-    for index, question in enumerate(questions):
-        for constraint in check_question(model, question, plan):
-            number = asked + index + 1
-            new.append(Constraint(clingo.Function("q", [clingo.Number(number)]), constraint.term))
-    constraints = list(previous) + new
-    original = _judge_side(model, plan, principle, max_horizon, time_limit, reasons_limit)
-    search = contrast_plan(model, constraints, under, max_horizon, time_limit)
+    for question in questions:
+        terms = [constraint.term for constraint in check_question(model, question, plan)]
+        new += model.planner.question(terms)
+    constraints = list(dict.fromkeys(list(previous) + new))
+    original = _judge_side(model, plan, principle, max_horizon, budget, reasons_limit)
+    search = contrast_plan(model, constraints, under, max_horizon, budget=budget)
     contrast = None
     if search.result.plan is not None:
-        contrast = _judge_side(model, search.result.plan, under, max_horizon, time_limit,
+        contrast = _judge_side(model, search.result.plan, under, max_horizon, budget,
                                reasons_limit)
     return Answer(list(questions), principle, under, original, contrast, search.result.status,
                   search.result.proof, search.principle_dropped, constraints, search.conflict,
@@ -290,7 +276,7 @@ def answer_questions(model: Model, questions: Sequence[Question], plan: Plan,
 def ask(model: Model, question: str | Question | Sequence[str | Question],
         plan: Plan | None = None, principle: str = DEFAULT_PRINCIPLE, under: str | None = None,
         max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
-        reasons_limit: int = DEFAULT_LIMIT) -> Answer:
+        reasons_limit: int = DEFAULT_LIMIT, budget: Budget | None = None) -> Answer:
     """Ask "why A rather than B?" about a plan.
 
     The plan asked about is ``plan``, or else the plan that plan search under
@@ -302,8 +288,8 @@ def ask(model: Model, question: str | Question | Sequence[str | Question],
     questions = [q if isinstance(q, Question) else Question.parse(q) for q in items]
     if not questions:
         raise InputError("no question given")
+    budget = budget or Budget(time_limit)
     if plan is None:
-        plan = original_plan(model, principle, max_horizon, time_limit)
+        plan = original_plan(model, principle, max_horizon, budget=budget)
     return answer_questions(model, questions, plan, principle, under or principle,
-                            max_horizon=max_horizon, time_limit=time_limit,
-                            reasons_limit=reasons_limit)
+                            max_horizon=max_horizon, reasons_limit=reasons_limit, budget=budget)

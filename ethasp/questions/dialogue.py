@@ -13,12 +13,13 @@ from __future__ import annotations
 import json
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Sequence
+from typing import Callable, Sequence
 
 from ethasp.questions.contrast import Answer, Constraint, answer_questions, original_plan
 from ethasp.errors import InputError
 from ethasp.principles.judgement import JudgementReport
 from ethasp.reasons.reasons import judge
+from ethasp.planning.budget import Budget, Progress
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
 from ethasp.principles.principle import select_principles
@@ -58,15 +59,21 @@ class Dialogue:
     max_horizon: int = DEFAULT_MAX_HORIZON
     time_limit: float | None = None
     reasons_limit: int = DEFAULT_LIMIT
+    on_progress: Callable[[Progress], None] | None = None
+
+    def budget(self) -> Budget:
+        """A budget for one move: the dialogue's time limit, its progress callback."""
+        return Budget(self.time_limit, self.on_progress)
 
     @classmethod
     def start(cls, model: Model, principle: str, plan: Plan | None = None,
               model_files: Sequence[str] = (), max_horizon: int = DEFAULT_MAX_HORIZON,
-              time_limit: float | None = None, reasons_limit: int = DEFAULT_LIMIT) -> "Dialogue":
+              time_limit: float | None = None, reasons_limit: int = DEFAULT_LIMIT,
+              budget: Budget | None = None) -> "Dialogue":
         """A dialogue about ``plan``, or about the plan made under ``principle``."""
         principle = select_principles([principle])[0].name
         if plan is None:
-            plan = original_plan(model, principle, max_horizon, time_limit)
+            plan = original_plan(model, principle, max_horizon, time_limit, budget=budget)
         return cls(model, principle, plan, principle, [], list(model_files), max_horizon,
                    time_limit, reasons_limit)
 
@@ -93,20 +100,25 @@ class Dialogue:
         """The constraints of every question asked so far."""
         return self.steps[-1].answer.constraints if self.steps else []
 
-    def current(self) -> JudgementReport:
+    def current(self, budget: Budget | None = None) -> JudgementReport:
         """The current plan, judged and explained under its principle."""
         return judge(self.model, self.current_plan, [self.current_principle], self.max_horizon,
-                     self.time_limit, self.reasons_limit)
+                     reasons_limit=self.reasons_limit, budget=budget or self.budget())
 
     # -- moves --------------------------------------------------------------------
 
-    def ask(self, question: str | Question) -> Answer:
-        """Ask about the current plan; the question's constraints are kept."""
+    def ask(self, question: str | Question, budget: Budget | None = None) -> Answer:
+        """Ask about the current plan; the question's constraints are kept.
+
+        ``budget`` bounds the searches (by default the dialogue's time limit,
+        for this question); cancel it to stop them.
+        """
         if not isinstance(question, Question):
             question = Question.parse(question)
         answer = answer_questions(self.model, [question], self.current_plan,
                                   self.current_principle, self.under, self.constraints,
-                                  self.max_horizon, self.time_limit, self.reasons_limit)
+                                  self.max_horizon, reasons_limit=self.reasons_limit,
+                                  budget=budget or self.budget())
         self.steps.append(Step(question, self.under, answer))
         return answer
 

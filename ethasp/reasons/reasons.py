@@ -5,73 +5,69 @@ Explanations" of the paper: the formula of a principle is taken
 propositionally over its atomic subformulas (``encodings/reasons/literals.lp``)
 under a background theory (``theory.lp``).  The **sufficient reasons** are
 the subset-minimal sets of actual literals that entail the formula's actual
-truth value (``sufficient.lp``, a saturation check); the **necessary reasons**
-are the minimal hitting sets of the sufficient reasons (``necessary.lp``, the
-minimal sets of actual literals a countermodel must flip).  Both are
-enumerated lazily, at most ``limit`` of each, by clingo's domain-heuristic
-enumeration of subset-minimal answer sets.  The reason an explanation uses is
-the most relevant necessary reason, chosen by optimisation
-(``relevance.lp``); its words are chosen in ``comparison.lp`` and rendered by
-:mod:`ethasp.reasons.words`.
+truth value (``sufficient.lp``); the **necessary reasons** are the minimal
+hitting sets of the sufficient reasons (``necessary.lp``, the minimal sets of
+actual literals a countermodel must flip).  Both are enumerated lazily, at
+most ``limit`` of each, by clingo's domain-heuristic enumeration of
+subset-minimal answer sets.  The reason an explanation uses is the most
+relevant necessary reason, chosen by optimisation (``relevance.lp``); its
+words are chosen in ``comparison.lp`` and rendered by :mod:`ethasp.reasons.words`.
+
+Data flow: the formula is evaluated once over the plan's trace
+(:func:`ethasp.principles.judgement.evaluate`); the reasons' programs read
+only that evaluation's atoms (the formula, its members and the actual truth
+values: :data:`ethasp.principles.judgement.EVIDENCE`), never the model or the
+plan again, so their size is that of the formula.  Two programs per
+principle and plan: necessary reasons (optimised for the relevant one, then
+enumerated, in one control) and sufficient reasons with the words' choices.
 
 For utilitarianism, whose formula ranges over all reachable states, the
-formula is explained against one alternative: a best reachable state other
-than the final state (``other_state.lp``, by optimisation; states are never
-listed).  The conjunction over all reachable states has the same truth value
-as GEq(s_n, s) for that state s; its reasons are those of this one comparison.
+formula is explained against one alternative: the better state that decided
+an impermissible verdict, or a best reachable state other than the final
+state (:func:`ethasp.principles.utilitarianism.best_reachable`, searched once
+per model and state).  The conjunction over all reachable states has the
+same truth value as GEq(s_n, s) for that state s; its reasons are those of
+this one comparison.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from typing import Iterable, Sequence
 
 import clingo
-from clorm import Raw, unify
+from clorm import unify
 
 from ethasp.errors import InputError
-from ethasp.principles.formula import format_literal
+from ethasp.planning.budget import Budget
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
-from ethasp.principles.principle import Principle, select_principles
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
-from ethasp.principles.utilitarianism import best_reachable
-from ethasp.planning.validation import read_validation, validate
-from ethasp.principles.judgement import JudgementReport
+from ethasp.planning.validation import validate
+from ethasp.principles.formula import format_literal
+from ethasp.principles.judgement import (Judgement, JudgementReport, evaluate, evidence,
+                                         trace_facts)
 from ethasp.principles.judgement import judge as judge_verdicts
+from ethasp.principles.principle import Principle, select_principles
+from ethasp.principles.utilitarianism import ReachableState, best_reachable
 from ethasp.reasons.explanation import Comparison, Explanation, Labels, Literal
 from ethasp.reasons.words import non_contrastive
-from ethasp.vocabulary import (ActionLabel, AgentLabel, Alternative, ComparisonAtom, Conj,
-                               Conjunct, Explain, FactLabel, Mention, OtherThan,
-                               ReasonAtom, Verdict)
+from ethasp.vocabulary import (ActionLabel, AgentLabel, ComparisonAtom, Conjunct, FactLabel,
+                               Mention, ReasonAtom, Verdict)
 
 DEFAULT_LIMIT = 10
 
-BASE = ("planning/model.lp", "planning/trace.lp", "judgement/language.lp")
 REASONS = ("reasons/literals.lp", "reasons/theory.lp", "reasons/evaluate.lp")
-ENUMERATION = ("--heuristic=Domain", "--enum-mode=domRec")
-# Core-guided optimisation: the relevance criteria count literals, and each
-# violated conjunct is a core; model-guided optimisation stalls on large ones.
-RELEVANCE = ("--opt-mode=opt", "--opt-strategy=usc")
+NECESSARY = REASONS + ("reasons/necessary.lp", "reasons/relevance.lp")
+SUFFICIENT = REASONS + ("reasons/shape.lp", "reasons/sufficient.lp", "reasons/comparison.lp")
+# Core-guided optimisation for the relevant reason: the relevance criteria count
+# literals, and each violated conjunct is a core; model-guided optimisation
+# stalls on large ones.  Domain heuristics make enumerations subset-minimal.
+OPTIONS = ("--heuristic=Domain", "--opt-strategy=usc")
 
 # The name of the alternative state compared with for utilitarianism (conj/3).
 OTHER = clingo.Function("other")
 
-
-# -- clingo calls ---------------------------------------------------------------
-
-def _solve(model: Model, files: Sequence[str], facts: Iterable, arguments: Sequence[str],
-           models: int) -> tuple[list[list[clingo.Symbol]], bool]:
-    """Models (shown atoms) of model + encodings + facts, and whether the
-    search was exhausted.  ``models`` is clingo's model limit (0: all; with
-    optimisation only the last, optimal, model is kept)."""
-    ctl = model.ground(files, facts, [*arguments, str(models)])
-    found: list[list[clingo.Symbol]] = []
-    with ctl.solve(yield_=True) as handle:
-        for answer in handle:
-            found.append(list(answer.symbols(shown=True)))
-        exhausted = handle.get().exhausted
-    return found, exhausted
+LABELS = (("agent_label", 2), ("action_label", 3), ("fact_label", 3))
 
 
 def _literals(symbols: Iterable[clingo.Symbol]) -> list[Literal]:
@@ -80,18 +76,29 @@ def _literals(symbols: Iterable[clingo.Symbol]) -> list[Literal]:
                   key=lambda lit: (str(lit.atom), lit.value))
 
 
-def best_other_state(model: Model, final: Sequence[tuple[clingo.Symbol, str]],
-                     max_horizon: int = DEFAULT_MAX_HORIZON,
-                     time_limit: float | None = None) -> list[tuple[clingo.Symbol, str]] | None:
-    """A best reachable state other than ``final`` (variable, value pairs),
-    goal states first among equally good ones; None if there is none.
+def _enumerate(ctl: clingo.Control, limit: int) -> tuple[list[list[clingo.Symbol]], bool]:
+    """Up to ``limit`` subset-minimal answer sets (shown atoms) and whether
+    the enumeration was exhausted."""
+    config = ctl.configuration.solve
+    config.opt_mode = "ignore"
+    config.enum_mode = "domRec"
+    config.models = str(limit)
+    found: list[list[clingo.Symbol]] = []
+    with ctl.solve(yield_=True) as handle:
+        for answer in handle:
+            found.append(list(answer.symbols(shown=True)))
+        exhausted = handle.get().exhausted
+    return found, exhausted
 
-    :func:`ethasp.utilitarianism.best_reachable` with ``reasons/other_state.lp``;
-    when the search is cut (``max_horizon``, ``time_limit``), the best found.
-    """
-    facts = [OtherThan(variable=Raw(v), value=b) for v, b in final]
-    best = best_reachable(model, max_horizon, time_limit, ["reasons/other_state.lp"], facts)
-    return best.facts if best.state is not None else None
+
+def _optimum(ctl: clingo.Control) -> list[clingo.Symbol] | None:
+    """The shown atoms of an optimal answer set, None if there is none."""
+    config = ctl.configuration.solve
+    config.opt_mode = "opt"
+    config.models = "0"
+    found: list[list[clingo.Symbol]] = []
+    ctl.solve(on_model=lambda answer: found.append(list(answer.symbols(shown=True))))
+    return found[-1] if found else None
 
 
 def _labels(symbols: Iterable[clingo.Symbol]) -> Labels:
@@ -120,52 +127,69 @@ def _comparisons(symbols: Iterable[clingo.Symbol]) -> dict[clingo.Symbol, Compar
 
 # -- the API --------------------------------------------------------------------
 
+def _labels_of(model: Model) -> Labels:
+    planner = model.planner
+    return _labels([symbol for signature in LABELS for symbol in planner.get(*signature)])
+
+
+def other_state(model: Model, plan: Plan, budget: Budget,
+                max_horizon: int = DEFAULT_MAX_HORIZON) -> ReachableState | None:
+    """A best reachable state other than the plan's final state (goal states
+    first among equally good ones); None if there is none or none was found."""
+    final = [symbol for symbol in model.planner.trace(plan) if symbol.name == "final"]
+    other_than = [(s.arguments[0], s.arguments[1].name == "true") for s in final]
+    best = best_reachable(model.planner, budget, max_horizon, other_than=other_than)
+    return best.found
+
+
 def explain(model: Model, plan: Plan, principle: str | Principle, limit: int = DEFAULT_LIMIT,
-            alternative: Sequence[tuple[clingo.Symbol, str]] | None = None,
-            max_horizon: int = DEFAULT_MAX_HORIZON,
-            time_limit: float | None = None) -> Explanation:
+            alternative: ReachableState | None = None,
+            max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
+            budget: Budget | None = None) -> Explanation:
     """Sufficient and necessary reasons for the verdict of one principle on a
     plan, at most ``limit`` of each, and the explanation text.
 
-    ``alternative`` (variable, value pairs) is the state utilitarianism
+    ``alternative`` is the state a comparing principle (utilitarianism)
     compares with; by default a best reachable state other than the final
-    state is searched (``max_horizon``, ``time_limit``).  Raises InputError if
-    the plan is not a plan or the principle unknown.
+    state (searched once per model).  Raises InputError if the plan is not a
+    plan or the principle unknown.
     """
     if limit < 1:
         raise InputError("the reasons limit must be at least 1")
+    budget = budget or Budget(time_limit)
     chosen = principle if isinstance(principle, Principle) else select_principles([principle])[0]
-    facts: list = list(plan.facts()) + [Explain(name=Raw(clingo.Function(chosen.asp_name)))]
+    validation = validate(model, plan)
+    if not validation.valid:
+        raise InputError(f"not a plan: {validation.message(model.naming)}")
+    key = ("explain", plan, chosen.asp_name, limit,
+           None if alternative is None else tuple(alternative.facts))
+    memo = model.planner.memo
+    if key in memo:
+        return memo[key]
+    facts = ""
     compared: list[str] | None = None
     if chosen.reads_alternatives:
         if alternative is None:
-            validation = validate(model, plan)  # before a search that may be long
-            if not validation.valid:
-                raise InputError(f"not a plan: {validation.message(model.naming)}")
-            final = [(clingo.parse_term(lit.lstrip("-")), "false" if lit.startswith("-") else "true")
-                     for lit in validation.final_state]
-            alternative = best_other_state(model, final, max_horizon, time_limit)
+            alternative = other_state(model, plan, budget, max_horizon)
         if alternative is not None:
-            facts.append(Alternative(name=Raw(OTHER)))
-            facts += [Conj(name=Raw(OTHER), variable=Raw(v), value=b) for v, b in alternative]
-            compared = sorted(str(v) if b == "true" else f"-{v}" for v, b in alternative)
-    base = list(BASE) + [chosen.encoding] + list(REASONS)
-
-    words = ["reasons/comparison.lp", "reasons/labels.lp"]
-    best, _ = _solve(model, base + ["reasons/necessary.lp", "reasons/relevance.lp"] + words,
-                     facts, RELEVANCE, 0)
-    literals: list[Literal] = _literals(best[-1]) if best else []
-    if not best:
-        # No countermodel: the verdict holds whatever the atoms' values.
-        best, _ = _solve(model, base + words, facts, [], 1)
-    symbols = best[-1]
-    validation = read_validation(plan, symbols)
-    if not validation.valid:
-        raise InputError(f"not a plan: {validation.message(model.naming)}")
-    verdict = unify([Verdict], symbols).query(Verdict).all()
-    permissible = any(v.value == "true" for v in verdict)
+            facts = "".join(f"{fact}.\n" for fact in alternative.asp_facts(OTHER))
+            compared = alternative.literals
+    symbols = evaluate(model, plan, [chosen.encoding], facts)
+    labels_text = "".join(f"{s}.\n" for signature in LABELS for s in model.planner.get(*signature))
+    program = ("".join(f"{s}.\n" for s in evidence(symbols)) + labels_text
+               + f"explain({chosen.asp_name}).\n")
+    necessary_ctl = model.planner.program(NECESSARY, program, OPTIONS, model=False)
+    best = _optimum(necessary_ctl)
+    literals = _literals(best) if best is not None else []
+    necessary, necessary_done = (_enumerate(necessary_ctl, limit) if best is not None
+                                 else ([], True))
+    sufficient_ctl = model.planner.program(SUFFICIENT, program, OPTIONS, model=False)
+    sufficient, sufficient_done = _enumerate(sufficient_ctl, limit)
+    words = sufficient[0] if sufficient else []
+    permissible = any(v.value == "true" and str(v.name.symbol) == chosen.asp_name
+                      for v in unify([Verdict], symbols).query(Verdict).all())
     conj: dict[clingo.Symbol, list[tuple[clingo.Symbol, str]]] = {}
-    for member in unify([Conjunct], symbols).query(Conjunct).all():
+    for member in unify([Conjunct], words).query(Conjunct).all():
         conj.setdefault(member.name.symbol, []).append((member.variable.symbol, member.value))
     for members in conj.values():
         members.sort(key=lambda pair: str(pair[0]))
@@ -173,40 +197,37 @@ def explain(model: Model, plan: Plan, principle: str | Principle, limit: int = D
     def texts(reason: list[Literal]) -> list[str]:
         return [format_literal(lit.term(), conj) for lit in reason]
 
-    necessary, necessary_done = _solve(model, base + ["reasons/necessary.lp"], facts,
-                                       ENUMERATION, limit)
-    sufficient, sufficient_done = _solve(model, base + ["reasons/shape.lp",
-                                                        "reasons/sufficient.lp"], facts,
-                                         ENUMERATION, limit)
     explanation = Explanation(
         principle=chosen.name, plan=plan, permissible=permissible,
         sufficient_reasons=[texts(_literals(s)) for s in sufficient],
         necessary_reasons=[texts(_literals(s)) for s in necessary],
         chosen_reason=texts(literals), text="",
         truncated=not (necessary_done and sufficient_done),
-        alternative=compared, literals=literals, comparisons=_comparisons(symbols),
-        labels=_labels(symbols))
+        alternative=compared, literals=literals, comparisons=_comparisons(words),
+        labels=_labels_of(model))
     explanation.text = non_contrastive(explanation)
+    memo[key] = explanation
     return explanation
 
 
 def judge(model: Model, plan: Plan, principles: Iterable[str] | None = None,
           max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
-          reasons_limit: int | None = DEFAULT_LIMIT) -> JudgementReport:
+          reasons_limit: int | None = DEFAULT_LIMIT, budget: Budget | None = None,
+          best: bool = False) -> JudgementReport:
     """Judge a plan under the principles (all when None) and explain each verdict.
 
     Each judgement gets an explanation with at most ``reasons_limit``
     sufficient and necessary reasons (none when 0 or None).  Raises InputError
     if the plan is not a plan.
     """
-    report = judge_verdicts(model, plan, principles, max_horizon, time_limit)
+    budget = budget or Budget(time_limit)
+    report = judge_verdicts(model, plan, principles, max_horizon, budget=budget, best=best)
     chosen = select_principles(principles)
     for principle, judgement in zip(chosen, report.judgements):
         if reasons_limit:
             # An impermissible utilitarian plan is explained against the better
-            # state found; otherwise explain() searches a best other state.
-            best = judgement.best_reachable
-            other = best.facts if best is not None and not judgement.permissible else None
+            # state that decided it; a permissible one against a best other state.
+            other = judgement.compared if not judgement.permissible else None
             judgement.explanation = explain(model, plan, principle, reasons_limit, other,
-                                            max_horizon, time_limit)
+                                            max_horizon, budget=budget)
     return report

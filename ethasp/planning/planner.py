@@ -1,0 +1,485 @@
+"""The planner: a planning model grounded once, and every search over it.
+
+One :class:`Planner` belongs to one loaded model (:attr:`Model.planner`).  It
+owns one clingo control that holds the model and every search encoding,
+grounded once, horizon by horizon (multi-shot solving, see
+:mod:`ethasp.planning.incremental`), and answers every search a command or
+a dialogue needs from it: plans, HPlans under any set of principles, best
+reachable states, states of a given utility, contrast plans under any set of
+question constraints, and the loop-free completeness checks.  What a search
+asks for is a :class:`Setting`: the switches (external atoms and
+assumptions) that a solve sets, never a new grounding.
+
+Program parts of the control (``t`` a time, ``x`` an input value):
+
+* ``base``: the model's files, ``planning/model.lp`` and ``planning/check.lp``;
+  the model's defects (``error/1``) and its ground vocabulary are read from
+  it;
+* ``search``: what the searches need once (``planning/relaxed.lp``, the
+  mutexes of ``planning/mutex.lp``, the bound of ``judgement/best.lp``);
+* ``step(t)`` and ``check(t)``: the time-indexed rules of
+  ``planning/transition.lp``, ``planning/goal.lp`` (switched by
+  ``require(goal)``), ``planning/mutex.lp``, ``judgement/best.lp``,
+  ``reasons/other_state.lp`` and ``restrictions/P.lp`` (switched by
+  ``restriction(P)``);
+* ``question(x)``, ``question_step(x,t)``, ``question_check(x,t)``: one
+  question of ``questions/questions.lp``, grounded when it is asked;
+* ``best_utility(x)``, ``at_least(x)``, ``other_state(x)`` and their ``_check``
+  parts: a utility threshold or a state to avoid, grounded when needed;
+* ``loopfree(t)`` and ``simple_path_step(x,t)``: the completeness threshold
+  (``planning/loopfree.lp``), grounded when a proof needs it, for each set of
+  questions asked.
+
+A given plan is evaluated once (:meth:`Planner.trace`) by its own small
+program over the ground model's facts (``planning/trace.lp``): a plan's
+trace is not a search, and a long plan would not fit the search's grounding.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Iterable, Sequence
+
+import clingo
+
+from ethasp.errors import InputError
+from ethasp.planning import incremental
+from ethasp.planning.budget import Budget
+from ethasp.planning.messages import Messages
+from ethasp.planning.incremental import CHECK, STEP, TIME_MARKER
+from ethasp.planning.reachability import GroundModel, Reachability, from_atoms
+from ethasp.resources import ENCODINGS, encoding
+
+# What a model defines (encodings/planning/model.lp and reasons/labels.lp):
+# programs about a plan or a formula read these atoms of the ground model.
+MODEL_VOCABULARY = (("variable", 1), ("action", 1), ("pre", 3), ("eff", 3), ("ceff", 4),
+                    ("cpre", 4), ("init", 1), ("goal", 2), ("utility", 2), ("utility", 3),
+                    ("agent_label", 2), ("action_label", 3), ("fact_label", 3))
+
+TRACE_ENCODINGS = ("planning/model.lp", "planning/trace.lp", "judgement/judge.lp")
+
+LOOPFREE = "loopfree"
+SEARCH = "search"
+
+# Parts of the model's own base part and of the searches (relative to encodings/).
+MODEL_ENCODINGS = ("planning/model.lp", "planning/check.lp")
+SEARCH_ENCODINGS = ("planning/relaxed.lp", "planning/transition.lp", "planning/mutex.lp",
+                    "judgement/best.lp", "reasons/other_state.lp",
+                    "questions/questions.lp")
+GOAL_ENCODING = "planning/goal.lp"
+LOOPFREE_ENCODING = "planning/loopfree.lp"
+RESTRICTIONS = "restrictions"
+
+# The solver configuration of every search (it did best on the planning benchmarks).
+OPTIONS = ("--configuration=trendy",)
+
+GOAL_SWITCH = clingo.Function("require", [clingo.Function("goal")])
+
+# past(t): step t comes after the end of the plan or path searched (it idles).
+PAST = "past"
+
+
+def restriction_switch(principle: str) -> clingo.Symbol:
+    """The external atom that switches the restriction of a principle (ASP name)."""
+    return clingo.Function("restriction", [clingo.Function(principle)])
+
+
+def available_restrictions() -> list[str]:
+    """The principles (ASP names) with a restriction encoding."""
+    return sorted(path.stem for path in (ENCODINGS / RESTRICTIONS).glob("*.lp"))
+
+
+@dataclass(frozen=True)
+class Constraint:
+    """One constraint of a question: ``contrast(Q,C)``."""
+
+    question: clingo.Symbol
+    term: clingo.Symbol
+
+    def __str__(self) -> str:
+        return str(self.term)
+
+
+@dataclass(frozen=True)
+class Setting:
+    """What one solve asks of the model.
+
+    ``goal``: the goal must hold at the horizon; ``restrictions``: the
+    principles (ASP names) whose HModel restricts the plans; ``constraints``:
+    the question constraints imposed (of questions made by
+    :meth:`Planner.question`); ``best_utility``: the utilitarian restriction's
+    threshold; ``at_least``: the state at the horizon must be worth at least
+    this much; ``other_state``: a state (:meth:`Planner.avoid`) the state at
+    the horizon must differ from; ``optimize``: find an optimal model of the
+    objective (the utility of the state at the horizon, then goal states).
+    """
+
+    goal: bool = True
+    restrictions: frozenset[str] = frozenset()
+    constraints: frozenset[Constraint] = frozenset()
+    best_utility: int | None = None
+    at_least: int | None = None
+    other_state: int | None = None
+    optimize: bool = False
+
+
+@dataclass
+class Outcome:
+    """The result of one solve: ``satisfiable`` (None when the budget stopped
+    it), the shown atoms of the last model found (an optimal one when
+    optimising and not stopped) and that model's cost."""
+
+    satisfiable: bool | None
+    symbols: list[clingo.Symbol] = field(default_factory=list)
+    cost: list[int] = field(default_factory=list)
+    models: list[list[clingo.Symbol]] = field(default_factory=list)
+
+
+class Planner:
+    """A model's one grounding and every search over it (see the module docstring).
+
+    Created by :attr:`ethasp.planning.model.Model.planner`; the model's base
+    part is grounded at once (its defects raise InputError), the searches'
+    parts when a search first needs them.
+    """
+
+    def __init__(self, model):
+        self.model = model
+        self.messages = Messages()
+        self.ctl = model.control(OPTIONS, self.messages)
+        self._parts: dict[str, tuple[str, ...]] = {}
+        self._searching = False
+        self.grounded = -1            # step and check parts grounded up to this time
+        self._loopfree = 0            # loopfree parts grounded up to this time
+        self._inputs: dict[str, list[clingo.Symbol]] = {name: [] for name in incremental.INPUTS}
+        self._questions: dict[clingo.Symbol, list[Constraint]] = {}
+        self._question_ids: dict[tuple[clingo.Symbol, ...], clingo.Symbol] = {}
+        self._configurations: dict[tuple[clingo.Symbol, ...], tuple[clingo.Symbol, int]] = {}
+        self._avoided: dict[frozenset, int] = {}
+        self._reachability: Reachability | None = None
+        self._ground_model: GroundModel | None = None
+        self._traces: dict = {}
+        self._model_text: str | None = None
+        self.memo: dict = {}          # results of the layers above, by question asked
+        try:
+            with clingo.ast.ProgramBuilder(self.ctl) as builder:
+                for name in MODEL_ENCODINGS:
+                    incremental.add_encoding(builder, encoding(name), on_message=self.messages)
+            self.ctl.ground([("base", [])])
+        except RuntimeError:
+            self.messages.raise_first("grounding failed")
+        self.atoms = self._facts()
+
+    # -- the ground model -----------------------------------------------------------
+
+    def _facts(self) -> dict[tuple[str, int], list[clingo.Symbol]]:
+        """The atoms of the base grounding, by signature (facts and others)."""
+        result: dict[tuple[str, int], list[clingo.Symbol]] = {}
+        for atom in self.ctl.symbolic_atoms:
+            symbol = atom.symbol
+            if symbol.type == clingo.SymbolType.Function:
+                result.setdefault((symbol.name, len(symbol.arguments)), []).append(symbol)
+        for symbols in result.values():
+            symbols.sort()
+        return result
+
+    def get(self, name: str, arity: int) -> list[clingo.Symbol]:
+        """The ground atoms of a predicate of the model's base part (model.lp's too)."""
+        return self.atoms.get((name, arity), [])
+
+    def vocabulary_text(self, signatures: Iterable[tuple[str, int]]) -> str:
+        """The ground atoms of these predicates as facts (for programs over a plan)."""
+        return "".join(f"{symbol}.\n" for signature in signatures
+                       for symbol in self.get(*signature))
+
+    def ground_model(self) -> GroundModel:
+        """The model for the reachability engine, from the ground vocabulary."""
+        if self._ground_model is None:
+            def value(symbol: clingo.Symbol) -> bool:
+                return symbol.name == "true"
+
+            weights = {}
+            for atom in self.get("weight", 2):
+                element, utility = atom.arguments
+                if element.name == "fact":
+                    weights[(element.arguments[0], value(element.arguments[1]))] = utility.number
+            self._ground_model = from_atoms(
+                [a.arguments[0] for a in self.get("variable", 1)],
+                [a.arguments[0] for a in self.get("action", 1)],
+                [(a.arguments[0], a.arguments[1], value(a.arguments[2]))
+                 for a in self.get("pre", 3)],
+                [(a.arguments[0], a.arguments[1], value(a.arguments[2]))
+                 for a in self.get("eff", 3)],
+                [(a.arguments[0], a.arguments[1], a.arguments[2], value(a.arguments[3]))
+                 for a in self.get("ceff", 4)],
+                [(a.arguments[0], a.arguments[1], a.arguments[2], value(a.arguments[3]))
+                 for a in self.get("cpre", 4)],
+                [a.arguments[0] for a in self.get("init", 1)],
+                [(a.arguments[0], value(a.arguments[1])) for a in self.get("goal", 2)],
+                weights)
+        return self._ground_model
+
+    def reachability(self) -> Reachability:
+        """The exact reachability engine over this model (created once, expanded
+        by whoever needs more layers)."""
+        if self._reachability is None:
+            self._reachability = Reachability(self.ground_model())
+        return self._reachability
+
+    # -- grounding ------------------------------------------------------------------
+
+    def _start_search(self) -> None:
+        """Add and ground the searches' encodings (once, on the first search)."""
+        if self._searching:
+            return
+        switches = [GOAL_SWITCH] + [restriction_switch(p) for p in available_restrictions()]
+        try:
+            with clingo.ast.ProgramBuilder(self.ctl) as builder:
+                files = [(name, STEP, None) for name in SEARCH_ENCODINGS]
+                files.append((GOAL_ENCODING, STEP, GOAL_SWITCH))
+                files += [(f"{RESTRICTIONS}/{principle}.lp", STEP, restriction_switch(principle))
+                          for principle in available_restrictions()]
+                files.append((LOOPFREE_ENCODING, LOOPFREE, None))
+                for name, step_part, switch in files:
+                    self._parts.update(incremental.add_encoding(
+                        builder, encoding(name), step_part=step_part, switch=switch,
+                        on_message=self.messages, base_part=SEARCH))
+            for part, (parameters, text) in incremental.time_parts().items():
+                self.ctl.add(part, parameters, text)
+            self.ctl.add(SEARCH, [], "time(0).\n" + "".join(f"#external {s}.\n" for s in switches))
+            self.ctl.ground([(SEARCH, []), (CHECK, [clingo.Number(0)])])
+        except RuntimeError:
+            self.messages.raise_first("grounding failed")
+        self._searching = True
+        self.grounded = 0
+        self._loopfree = 0
+
+    def _ground(self, parts) -> None:
+        try:
+            self.ctl.ground(parts)
+        except RuntimeError:
+            self.messages.raise_first("grounding failed")
+
+    def _input_parts(self, name: str, value: clingo.Symbol, times: Iterable[int]) -> list:
+        parts = []
+        for t in times:
+            for kind in (STEP, CHECK):
+                part = incremental.part_name(kind, name)
+                if part in self._parts:
+                    parts.append((part, [value, clingo.Number(t)]))
+        return parts
+
+    def ground_to(self, horizon: int) -> None:
+        """Ground the step and check parts (and those of every input) up to ``horizon``."""
+        self._start_search()
+        parts = []
+        for t in range(self.grounded + 1, horizon + 1):
+            parts += [(STEP, [clingo.Number(t)]), (CHECK, [clingo.Number(t)])]
+            for name, values in self._inputs.items():
+                if name == "simple_path":
+                    continue
+                for value in values:
+                    parts += self._input_parts(name, value, [t])
+        if parts:
+            self._ground(parts)
+        self.grounded = max(self.grounded, horizon)
+
+    def _register(self, name: str, value: clingo.Symbol, facts: str = "") -> None:
+        """Ground the parts of one input value up to the horizon grounded so far."""
+        self._start_search()
+        if value in self._inputs[name]:
+            return
+        parts = [(name, [value])]
+        if facts:
+            fact_part = f"{name}_facts_{len(self._inputs[name])}"
+            self.ctl.add(fact_part, [], facts)
+            parts.insert(0, (fact_part, []))
+        times = range(1, self._loopfree + 1) if name == "simple_path" else \
+            range(0, self.grounded + 1)
+        parts += self._input_parts(name, value, times)
+        self._ground(parts)
+        self._inputs[name].append(value)
+
+    # -- inputs ----------------------------------------------------------------------
+
+    def question(self, terms: Sequence[clingo.Symbol]) -> list[Constraint]:
+        """The constraints of a question (its ``contrast`` terms), grounded on first
+        use; the same terms give the same question (named ``q(N)``)."""
+        key = tuple(sorted(set(terms), key=str))
+        if key not in self._question_ids:
+            name = clingo.Function("q", [clingo.Number(len(self._question_ids) + 1)])
+            own = [Constraint(name, term) for term in key]
+            facts = "".join(f"contrast({name},{term}).\n" for term in key)
+            self._register("question", name, facts)
+            self._questions[name] = own
+            self._question_ids[key] = name
+        return list(self._questions[self._question_ids[key]])
+
+    def avoid(self, state: Iterable[tuple[clingo.Symbol, bool]]) -> int:
+        """An id for a state that searches may be asked to avoid (``other_state``)."""
+        key = frozenset(state)
+        if key not in self._avoided:
+            number = len(self._avoided) + 1
+            facts = "".join(f"other_than({number},{variable},{'true' if value else 'false'}).\n"
+                            for variable, value in sorted(key, key=str))
+            self._register("other_state", clingo.Number(number), facts)
+            self._avoided[key] = number
+        return self._avoided[key]
+
+    def _threshold(self, name: str, value: int) -> None:
+        self._register(name, clingo.Number(value))
+
+    # -- solving ---------------------------------------------------------------------
+
+    def _set(self, setting: Setting, horizon: int | None, end: int,
+             simple_path: clingo.Symbol | None = None) -> list[tuple[clingo.Symbol, bool]]:
+        """Assign the externals of a setting (``horizon``: the time whose check
+        part applies, None for none; ``end``: the steps after it idle); return
+        the assumptions on the question constraints."""
+        ctl = self.ctl
+        for t in range(0, self.grounded + 1):
+            ctl.assign_external(clingo.Function(TIME_MARKER, [clingo.Number(t)]), t == horizon)
+            if t > 0:
+                ctl.assign_external(clingo.Function(PAST, [clingo.Number(t)]), t > end)
+        ctl.assign_external(GOAL_SWITCH, setting.goal and horizon is not None)
+        for principle in available_restrictions():
+            ctl.assign_external(restriction_switch(principle), principle in setting.restrictions)
+        wanted = {
+            "question": {c.question for c in setting.constraints},
+            "best_utility": ({clingo.Number(setting.best_utility)}
+                             if setting.best_utility is not None else set()),
+            "at_least": ({clingo.Number(setting.at_least)}
+                         if setting.at_least is not None else set()),
+            "other_state": ({clingo.Number(setting.other_state)}
+                            if setting.other_state is not None else set()),
+            "simple_path": {simple_path} if simple_path is not None else set(),
+        }
+        for name, values in wanted.items():
+            for value in self._inputs[name]:
+                ctl.assign_external(clingo.Function(name, [value]), value in values)
+        assumptions = []
+        for question in sorted(wanted["question"], key=str):
+            for constraint in self._questions[question]:
+                atom = clingo.Function("active", [question, constraint.term])
+                assumptions.append((atom, constraint in setting.constraints))
+        return assumptions
+
+    def _prepare(self, setting: Setting) -> None:
+        for constraint in setting.constraints:
+            if constraint not in self._questions.get(constraint.question, ()):
+                raise ValueError(f"constraint {constraint} of an unknown question "
+                                 f"{constraint.question} (see Planner.question)")
+        if setting.best_utility is not None:
+            self._threshold("best_utility", setting.best_utility)
+        if setting.at_least is not None:
+            self._threshold("at_least", setting.at_least)
+
+    def solve(self, horizon: int, setting: Setting, budget: Budget,
+              models: int = 1) -> Outcome:
+        """Solve at one horizon under a setting (grounding what it needs first)."""
+        self._prepare(setting)
+        self.ground_to(horizon)
+        assumptions = self._set(setting, horizon, horizon)
+        return self._solve(assumptions, budget, setting.optimize, models)
+
+    def _solve(self, assumptions, budget: Budget, optimize: bool, models: int) -> Outcome:
+        config = self.ctl.configuration.solve
+        config.opt_mode = "opt" if optimize else "ignore"
+        config.models = "0" if optimize else str(models)
+        found: list[list[clingo.Symbol]] = []
+        costs: list[list[int]] = []
+
+        def on_model(model: clingo.Model) -> None:
+            symbols = list(model.symbols(shown=True))
+            if optimize or models == 1:
+                found[:] = [symbols]
+                costs[:] = [list(model.cost)]
+            else:
+                found.append(symbols)
+
+        handle = self.ctl.solve(assumptions=assumptions, on_model=on_model, async_=True)
+        with handle:
+            if not budget.wait(handle):
+                return Outcome(None, found[-1] if found else [], costs[0] if costs else [])
+            result = handle.get()
+        if result.interrupted:
+            return Outcome(None, found[-1] if found else [], costs[0] if costs else [])
+        return Outcome(result.satisfiable, found[-1] if found else [],
+                       costs[0] if costs else [], found)
+
+    def simple_path_exists(self, length: int, setting: Setting, budget: Budget) -> bool | None:
+        """Is there a path of ``length`` actions without a repeated state, under
+        the setting's restrictions (their step constraints; what holds only at a
+        horizon does not apply to a path), the state extended by what its
+        restrictions and questions track?  None if the budget stopped the check.
+        """
+        self._prepare(setting)
+        self.ground_to(length)
+        if self._loopfree < length:
+            times = range(self._loopfree + 1, length + 1)
+            parts = [(LOOPFREE, [clingo.Number(t)]) for t in times]
+            for value in self._inputs["simple_path"]:
+                parts += self._input_parts("simple_path", value, times)
+            self._ground(parts)
+            self._loopfree = length
+        # One set of tracked facts per set of questions asked so far (a question
+        # asked later adds tracked facts, so it needs comparisons of its own).
+        key = tuple(sorted(self._questions, key=str))
+        if key not in self._configurations:
+            self._configurations[key] = clingo.Number(len(self._configurations) + 1)
+            self._register("simple_path", self._configurations[key])
+        assumptions = self._set(setting, None, length, self._configurations[key])
+        return self._solve(assumptions, budget, False, 1).satisfiable
+
+    # -- programs over the ground model (given plans, formulas, reasons) --------------
+
+    def model_text(self) -> str:
+        """The ground model's vocabulary as facts (made once)."""
+        if self._model_text is None:
+            self._model_text = self.vocabulary_text(MODEL_VOCABULARY)
+        return self._model_text
+
+    def program(self, encodings: Sequence[str], facts: str = "", arguments: Sequence[str] = (),
+                model: bool = True) -> clingo.Control:
+        """A grounded control with the ground model's facts (unless ``model`` is
+        False), the encodings and further facts: programs about one plan or one
+        formula, which read the model but do not search it."""
+        messages = Messages()
+        ctl = clingo.Control(list(arguments), logger=messages, message_limit=20)
+        try:
+            for name in encodings:
+                ctl.load(str(encoding(name)))
+            ctl.add("base", [], (self.model_text() if model else "") + facts)
+            ctl.ground([("base", [])])
+        except RuntimeError:
+            messages.raise_first("grounding failed")
+        return ctl
+
+    def trace(self, plan) -> list[clingo.Symbol]:
+        """The shown atoms of a plan's trace (``planning/trace.lp``: validity,
+        final state, Caused; ``judgement/judge.lp``: the final state's
+        utility), computed once per plan."""
+        if plan not in self._traces:
+            facts = "".join(f"occurs({action},{step}).\n"
+                            for step, action in enumerate(plan, start=1))
+            ctl = self.program(TRACE_ENCODINGS, facts)
+            symbols: list[clingo.Symbol] = []
+            with ctl.solve(yield_=True) as handle:
+                for answer in handle:
+                    symbols = list(answer.symbols(shown=True))
+                    break
+            self._traces[plan] = symbols
+        return self._traces[plan]
+
+
+    def search_atoms(self, name: str, arity: int) -> list[clingo.Symbol]:
+        """The ground atoms of a predicate of the searches' static part (e.g.
+        ``upper_bound/1`` of judgement/best.lp)."""
+        self._start_search()
+        return sorted(atom.symbol for atom in self.ctl.symbolic_atoms.by_signature(name, arity))
+
+    def is_fact(self, name: str) -> bool:
+        """Whether a nullary atom is a fact of the grounded searches (e.g. unreachable_goal)."""
+        self._start_search()
+        atom = self.ctl.symbolic_atoms[clingo.Function(name)]
+        return atom is not None and atom.is_fact

@@ -1,0 +1,377 @@
+"""Exact reachability of a planning model, with binary decision diagrams.
+
+A proof engine beside the encodings: it reads the *ground* model (the atoms
+of the vocabulary of ``encodings/planning/model.lp`` after clingo grounded
+the model, :class:`GroundModel`) and computes, symbolically, breadth-first
+layers of states: layer k holds the states whose shortest path from the
+initial state has k actions.  When no new state appears, every reachable
+state is known.  It answers what the searches of the encodings can only
+bound:
+
+* the best utility of a reachable state (and one such state), or of a
+  reachable state within a set (goal states, states other than a given one);
+* the first layer that meets a set of states: the length of a shortest path
+  to it, so a plan search can start at that horizon;
+* that no reachable state is in a set (``none``, proven).
+
+Semantics (the paper's planning formalism, as ``encodings/planning/
+transition.lp`` has it): an action is applicable when its preconditions
+hold; its effects set their variables, every other variable keeps its
+value.  A conditional effect (``ceff/4`` with conditions ``cpre/4``) fires
+when its conditions hold in the state before the action; when effects that
+fire set a variable both true and false, true wins (PDDL's delete-then-add).
+
+States are sets of variables (true) over the model's variables.  The
+diagrams come from the ``dd`` package: CUDD (``dd.cudd``) when its compiled
+module is installed, else ``dd``'s own Python implementation.  The engine is
+cross-checked against explicit breadth-first search by the tests
+(``tests/test_reachability.py``).  A search stops, without a claim, when it
+exceeds its node limit or the budget.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Iterable, Sequence
+
+import clingo
+
+from ethasp.planning.budget import Budget
+
+Literal = tuple[clingo.Symbol, bool]
+
+# Live diagram nodes beyond which a search gives up (a proof engine of last
+# resort must not eat the machine's memory).
+DEFAULT_NODE_LIMIT = 4_000_000
+
+# Images between two checks of the budget and the node count (counting the
+# nodes takes time of its own).
+CHECK_EVERY = 64
+
+
+@dataclass(frozen=True)
+class Effect:
+    """An effect: ``variable`` becomes ``value`` if every literal of
+    ``condition`` holds before the action (an empty condition always holds)."""
+
+    variable: clingo.Symbol
+    value: bool
+    condition: tuple[Literal, ...] = ()
+
+
+@dataclass(frozen=True)
+class GroundAction:
+    """An action with its preconditions and effects."""
+
+    name: clingo.Symbol
+    pre: tuple[Literal, ...]
+    effects: tuple[Effect, ...]
+
+
+@dataclass
+class GroundModel:
+    """A planning model after grounding: variables, actions, initial state,
+    goal and the utilities of facts (``weight(fact(V,B),U)``)."""
+
+    variables: list[clingo.Symbol]
+    actions: list[GroundAction]
+    init: frozenset[clingo.Symbol]
+    goal: list[Literal]
+    weights: dict[Literal, int] = field(default_factory=dict)
+
+    def utility(self, state: Iterable[clingo.Symbol]) -> int:
+        """u(s): the sum of the utilities of the facts of a state (true variables given)."""
+        true = set(state)
+        return sum(self.weights.get((v, v in true), 0) for v in self.variables)
+
+
+@dataclass
+class Best:
+    """A best state of a set: its utility, its true variables, and the layer
+    (shortest distance from the initial state) where it was found."""
+
+    utility: int
+    state: frozenset[clingo.Symbol]
+    layer: int
+
+
+def _backend():
+    try:
+        from dd import cudd
+
+        return cudd, True
+    except ImportError:  # the compiled module is optional
+        from dd import autoref
+
+        return autoref, False
+
+
+class Reachability:
+    """Breadth-first layers of reachable states, computed symbolically.
+
+    Call :meth:`expand` until it returns False (stopped: node limit or
+    budget) or :attr:`complete` is True (every reachable state is in
+    :attr:`layers`).  Queries read the layers computed so far and say how far
+    they looked.
+    """
+
+    def __init__(self, model: GroundModel, node_limit: int = DEFAULT_NODE_LIMIT):
+        self.model = model
+        self.node_limit = node_limit
+        module, compiled = _backend()
+        self._compiled = compiled
+        self._module = module
+        self.bdd = module.BDD(memory_estimate=256 * 2**20) if compiled else module.BDD()
+        self.index = {variable: i for i, variable in enumerate(model.variables)}
+        conditional = any(e.condition for a in model.actions for e in a.effects)
+        names = []
+        for i in range(len(model.variables)):
+            names.append(f"x{i}")
+            if conditional:
+                names.append(f"y{i}")  # the value after an action (conditional effects)
+        self.bdd.declare(*names)
+        self.bdd.configure(reordering=True)
+        self._rename = {f"y{i}": f"x{i}" for i in range(len(model.variables))}
+        self._images = [self._image_parts(action) for action in model.actions]
+        init = self._cube([(v, v in model.init) for v in model.variables])
+        self.layers = [init]
+        self.reached = init
+        self.complete = False
+        self.stopped = ""
+
+    # -- diagrams of literals -----------------------------------------------------
+
+    def _var(self, variable: clingo.Symbol, after: bool = False):
+        return self.bdd.var(f"{'y' if after else 'x'}{self.index[variable]}")
+
+    def _literal(self, literal: Literal, after: bool = False):
+        node = self._var(literal[0], after)
+        return node if literal[1] else ~node
+
+    def _cube(self, literals: Iterable[Literal], after: bool = False):
+        node = self.bdd.true
+        for literal in literals:
+            node &= self._literal(literal, after)
+        return node
+
+    def condition(self, literals: Iterable[Literal]):
+        """The set of states where every literal holds."""
+        return self._cube(literals)
+
+    def goal(self):
+        """The goal states."""
+        return self._cube(self.model.goal)
+
+    def state(self, true: Iterable[clingo.Symbol]):
+        """The set holding one state (its true variables given)."""
+        true = set(true)
+        return self._cube([(v, v in true) for v in self.model.variables])
+
+    # -- images -------------------------------------------------------------------
+
+    def _image_parts(self, action: GroundAction):
+        """What the image of a set under the action needs: its relation over the
+        variables it writes, those variables, and whether a rename follows."""
+        pre = self._cube(action.pre)
+        written = sorted({e.variable for e in action.effects}, key=self.index.__getitem__)
+        qvars = [f"x{self.index[v]}" for v in written]
+        if all(not e.condition for e in action.effects):
+            values = {}
+            for effect in action.effects:
+                values[effect.variable] = values.get(effect.variable, False) or effect.value
+            return pre, qvars, self._cube(values.items()), False
+        relation = pre
+        for variable in written:
+            adds, deletes = self.bdd.false, self.bdd.false
+            for effect in action.effects:
+                if effect.variable == variable:
+                    fires = self._cube(effect.condition)
+                    if effect.value:
+                        adds |= fires
+                    else:
+                        deletes |= fires
+            after = adds | (self._var(variable) & ~deletes)
+            relation &= self._var(variable, after=True).equiv(after)
+        return relation, qvars, None, True
+
+    def _image(self, states, parts):
+        relation, qvars, effects, rename = parts
+        if self._compiled:
+            moved = self._module.and_exists(states, relation, qvars)
+        else:
+            moved = self.bdd.exist(qvars, states & relation)
+        if rename:
+            return self.bdd.let(self._rename, moved)
+        return moved & effects
+
+    def nodes(self) -> int:
+        return len(self.bdd)
+
+    def expand(self, budget: Budget | None = None) -> bool:
+        """Compute the next layer; False (and :attr:`stopped` says why) if the
+        budget or the node limit stopped it, True otherwise."""
+        if self.complete:
+            return True
+        frontier = self.layers[-1]
+        new = self.bdd.false
+        for count, parts in enumerate(self._images, start=1):
+            new |= self._image(frontier, parts)
+            if count % CHECK_EVERY == 0 or count == len(self._images):
+                if budget is not None and budget.expired():
+                    self.stopped = budget.why_stopped()
+                    return False
+                if self.nodes() > self.node_limit:
+                    self.stopped = f"more than {self.node_limit} diagram nodes"
+                    return False
+        new &= ~self.reached
+        if new == self.bdd.false:
+            self.complete = True
+            return True
+        self.reached |= new
+        self.layers.append(new)
+        return True
+
+    def run(self, budget: Budget | None = None) -> bool:
+        """Expand until every reachable state is known (True) or stopped (False)."""
+        while not self.complete:
+            if not self.expand(budget):
+                return False
+        return True
+
+    # -- queries --------------------------------------------------------------------
+
+    def first_layer(self, states, start: int = 0) -> int | None:
+        """The first computed layer (from ``start``) that meets the set, or None."""
+        for k in range(start, len(self.layers)):
+            if self.layers[k] & states != self.bdd.false:
+                return k
+        return None
+
+    def best(self, within=None, start: int = 0) -> Best | None:
+        """A state of maximal utility among the computed layers from ``start``
+        (restricted to the set ``within``), from the earliest layer that has
+        one; None if they have no such state."""
+        found: Best | None = None
+        for k in range(start, len(self.layers)):
+            states = self.layers[k] if within is None else self.layers[k] & within
+            if states == self.bdd.false:
+                continue
+            utility, true = self._max_utility(states)
+            if found is None or utility > found.utility:
+                found = Best(utility, true, k)
+        return found
+
+    def best_in_layer(self, k: int, within=None) -> Best | None:
+        states = self.layers[k] if within is None else self.layers[k] & within
+        if states == self.bdd.false:
+            return None
+        utility, true = self._max_utility(states)
+        return Best(utility, true, k)
+
+    def _max_utility(self, states) -> tuple[int, frozenset[clingo.Symbol]]:
+        """A state of the (non-empty) set with maximal utility, by dynamic
+        programming over the diagram (iterative: diagrams may be deep)."""
+        bdd = self.bdd
+        variables = self.model.variables
+        weights = self.model.weights
+        by_level: list[tuple[int, int, int] | None] = []  # (index, w(false), w(true))
+        for level in range(len(bdd.vars)):
+            name = bdd.var_at_level(level)
+            if name.startswith("x"):
+                i = int(name[1:])
+                v = variables[i]
+                by_level.append((i, weights.get((v, False), 0), weights.get((v, True), 0)))
+            else:
+                by_level.append(None)
+        levels = len(by_level)
+        # free[l]: the best utility of the state variables at levels >= l, unconstrained.
+        free = [0] * (levels + 1)
+        for level in range(levels - 1, -1, -1):
+            entry = by_level[level]
+            free[level] = free[level + 1] + (max(entry[1], entry[2]) if entry else 0)
+
+        def level_of(node) -> int:
+            return levels if node in (bdd.true, bdd.false) else node.level
+
+        memo: dict[int, tuple[float, object, object]] = {}
+        stack = [states]
+        while stack:
+            node = stack[-1]
+            key = int(node)
+            if key in memo:
+                stack.pop()
+                continue
+            if node == bdd.false:
+                memo[key] = (float("-inf"), None, None)
+                stack.pop()
+                continue
+            if node == bdd.true:
+                memo[key] = (0.0, None, None)
+                stack.pop()
+                continue
+            low, high = node.low, node.high
+            if node.negated:
+                low, high = ~low, ~high
+            pending = [child for child in (low, high) if int(child) not in memo]
+            if pending:
+                stack.extend(pending)
+                continue
+            stack.pop()
+            level = node.level
+            entry = by_level[level]
+            options = []
+            for value, child in ((False, low), (True, high)):
+                below = memo[int(child)][0]
+                gap = free[level + 1] - free[level_of(child)]
+                weight = 0 if entry is None else (entry[2] if value else entry[1])
+                options.append((below + gap + weight, value, child))
+            best = max(options, key=lambda option: option[0])
+            memo[key] = best
+        total = memo[int(states)][0] + free[0] - free[level_of(states)]
+        # Read the state back: chosen values on the path, the better value elsewhere.
+        chosen: dict[int, bool] = {}
+        node = states
+        while node not in (bdd.true, bdd.false):
+            _, value, child = memo[int(node)]
+            entry = by_level[node.level]
+            if entry is not None:
+                chosen[entry[0]] = value
+            node = child
+        true = set()
+        for entry in by_level:
+            if entry is None:
+                continue
+            i, w_false, w_true = entry
+            value = chosen.get(i, w_true > w_false)
+            if value:
+                true.add(variables[i])
+        return int(total), frozenset(true)
+
+
+def from_atoms(variables: Sequence[clingo.Symbol], actions: Sequence[clingo.Symbol],
+               pre: Iterable[tuple[clingo.Symbol, clingo.Symbol, bool]],
+               eff: Iterable[tuple[clingo.Symbol, clingo.Symbol, bool]],
+               ceff: Iterable[tuple[clingo.Symbol, clingo.Symbol, clingo.Symbol, bool]],
+               cpre: Iterable[tuple[clingo.Symbol, clingo.Symbol, clingo.Symbol, bool]],
+               init: Iterable[clingo.Symbol], goal: Iterable[Literal],
+               weights: dict[Literal, int]) -> GroundModel:
+    """A ground model from the atoms of the model vocabulary (actions, then
+    ``pre(A,V,B)``, ``eff(A,V,B)``, ``ceff(A,K,V,B)``, ``cpre(A,K,V,B)``)."""
+    pres: dict[clingo.Symbol, list[Literal]] = {a: [] for a in actions}
+    effects: dict[clingo.Symbol, list[Effect]] = {a: [] for a in actions}
+    for action, variable, value in pre:
+        if action in pres:
+            pres[action].append((variable, value))
+    for action, variable, value in eff:
+        if action in effects:
+            effects[action].append(Effect(variable, value))
+    conditions: dict[tuple[clingo.Symbol, clingo.Symbol], list[Literal]] = {}
+    for action, key, variable, value in cpre:
+        conditions.setdefault((action, key), []).append((variable, value))
+    for action, key, variable, value in ceff:
+        if action in effects:
+            condition = tuple(sorted(conditions.get((action, key), []), key=str))
+            effects[action].append(Effect(variable, value, condition))
+    ground = [GroundAction(a, tuple(sorted(pres[a], key=str)),
+                           tuple(sorted(effects[a], key=str))) for a in actions]
+    return GroundModel(list(variables), ground, frozenset(init), list(goal), dict(weights))
