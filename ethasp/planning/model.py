@@ -9,7 +9,6 @@ from typing import TYPE_CHECKING, Iterable, Sequence
 import clingo
 import clingo.script
 from clingo import ast
-from clorm import FactBase, unify
 
 from ethasp.errors import InputError
 from ethasp.planning.messages import Messages
@@ -18,7 +17,6 @@ from ethasp.planning.naming import Naming, PddlNaming
 if TYPE_CHECKING:
     from ethasp.planning.planner import Planner
 from ethasp.resources import encoding
-from ethasp.vocabulary import Error
 
 
 @dataclass(frozen=True)
@@ -147,38 +145,6 @@ class Model:
                 ctl.add("base", [], source.text)
         return ctl
 
-    def ground(self, encodings: Sequence[str], facts: Iterable = (),
-               arguments: Sequence[str] = ()) -> clingo.Control:
-        """A control object with model + encodings + facts, grounded (base part).
-
-        Raises InputError on grounding errors.
-        """
-        messages = Messages()
-        ctl = self.control(arguments, messages)
-        try:
-            for name in encodings:
-                ctl.load(str(encoding(name)))
-            fact_text = "".join(f"{fact}.\n" for fact in facts)
-            if fact_text:
-                ctl.add("base", [], fact_text)
-            ctl.ground([("base", [])])
-        except RuntimeError:
-            messages.raise_first("grounding failed")
-        return ctl
-
-    def solve_once(self, encodings: Sequence[str], facts: Iterable = (),
-                   arguments: Sequence[str] = ()) -> list[clingo.Symbol]:
-        """Ground and solve model + encodings + facts; the shown atoms of the first model.
-
-        For deterministic programs (checks, traces); raises InputError on
-        grounding errors and returns [] if there is no model.
-        """
-        ctl = self.ground(encodings, facts, arguments)  # kept alive while solving
-        with ctl.solve(yield_=True) as handle:
-            for answer in handle:
-                return list(answer.symbols(shown=True))
-        return []
-
     @property
     def planner(self) -> "Planner":
         """The model's one grounding (:class:`ethasp.planning.planner.Planner`),
@@ -195,8 +161,3 @@ class Model:
         if errors:
             names = ", ".join(source.name for source in self.sources)
             raise InputError(f"{names}: {_describe(errors[0].arguments[0])}")
-
-    def facts(self, predicates) -> FactBase:
-        """The model's facts of the given clorm predicates (its rules grounded)."""
-        ctl = self.ground(["planning/model.lp"])
-        return unify(list(predicates), [atom.symbol for atom in ctl.symbolic_atoms if atom.is_fact])

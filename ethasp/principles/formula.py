@@ -36,7 +36,7 @@ import clingo
 from clorm import Raw
 
 from ethasp.errors import InputError
-from ethasp.vocabulary import Action, Conj, FormulaOf, Variable
+from ethasp.vocabulary import Conj, FormulaOf
 
 Function = clingo.Function
 TRUE, FALSE = Function("true"), Function("false")
@@ -62,9 +62,9 @@ class Elements:
     @classmethod
     def of_model(cls, model) -> "Elements":
         """The actions and variables of a :class:`ethasp.model.Model`."""
-        facts = model.facts([Action, Variable])
-        return cls(frozenset(a.name.symbol for a in facts.query(Action).all()),
-                   frozenset(v.name.symbol for v in facts.query(Variable).all()))
+        planner = model.planner
+        return cls(frozenset(a.arguments[0] for a in planner.get("action", 1)),
+                   frozenset(v.arguments[0] for v in planner.get("variable", 1)))
 
 
 # -- parsed formulas ------------------------------------------------------------
