@@ -74,6 +74,24 @@ def emit(args: argparse.Namespace, data: dict, text: str) -> None:
     print(json.dumps(data, indent=2) if args.json else text)
 
 
+def _add_svg_argument(parser: argparse.ArgumentParser, what: str) -> None:
+    parser.add_argument("--svg", metavar="FILE",
+                        help=f"also draw {what} as an SVG picture in FILE")
+
+
+def _draw(args: argparse.Namespace, model: Model, draw) -> None:
+    """--svg FILE: write the picture that ``draw(Pictures)`` makes (ethasp/interfaces/pictures.py)."""
+    if args.svg is not None:
+        from ethasp.interfaces.pictures import Pictures, write
+
+        write(args.svg, draw(Pictures(model)))
+
+
+def _no_picture(args: argparse.Namespace) -> None:
+    if args.svg is not None:
+        print(f"ethasp: no plan found, so no picture was written to {args.svg}", file=sys.stderr)
+
+
 # -- commands -----------------------------------------------------------------
 
 def command_plan(args: argparse.Namespace) -> int:
@@ -95,6 +113,12 @@ def command_plan(args: argparse.Namespace) -> int:
         text = f"no plan exists: {result.proof}"
     else:
         text = f"bounded: {result.proof}; a plan may still exist"
+    if result.status == FOUND:
+        _draw(args, model, lambda pictures: pictures.plan(
+            result.plan, f"plan of {_steps(result.horizon)}: "
+                         f"{model.naming.actions(result.plan) or '(empty plan)'}"))
+    else:
+        _no_picture(args)
     emit(args, result.to_json(), text)
     return 0
 
@@ -119,6 +143,7 @@ def command_plan_permissible(args: argparse.Namespace, model: Model) -> int:
         report = judge(model, result.plan, result.principles, args.max_horizon, args.time_limit)
         data["judgements"] = report.to_json()["judgements"]
         lines += _explanation_text(report) + _judgement_text(report, model).split("\n")[1:]
+        _draw(args, model, lambda pictures: pictures.report(report, f"{head}: {shown[0]}"))
     elif result.status == "none":
         lines = [f"no permissible plan exists: {result.proof}"]
     else:
@@ -126,6 +151,8 @@ def command_plan_permissible(args: argparse.Namespace, model: Model) -> int:
     if result.status != FOUND and result.best is not None and result.best.utility is not None:
         lines.append(f"best reachable utility: {result.best.utility} ({result.best.status}: "
                      f"{result.best.proof})")
+    if result.status != FOUND:
+        _no_picture(args)
     emit(args, data, "\n".join(lines))
     return 0
 
@@ -220,6 +247,7 @@ def command_judge(args: argparse.Namespace) -> int:
     report = judge(model, _given_plan(args), args.principle, args.max_horizon,
                    args.time_limit, args.reasons_limit)
     lines = _explanation_text(report) + [_judgement_text(report, model)]
+    _draw(args, model, lambda pictures: pictures.report(report))
     emit(args, report.to_json(), "\n".join(lines))
     return 0
 
@@ -233,6 +261,7 @@ def command_ask(args: argparse.Namespace) -> int:
     plan = _given_plan(args) if (args.plan or args.plan_file) else None
     answer = ask(model, args.question, plan, args.principle, args.under, args.max_horizon,
                  args.time_limit, args.reasons_limit)
+    _draw(args, model, lambda pictures: pictures.answer(answer))
     emit(args, answer.to_json(), answer_text(answer, model.naming))
     return 0
 
@@ -310,6 +339,7 @@ def build_parser() -> argparse.ArgumentParser:
     plan.add_argument("--principle", action="append", metavar="NAME",
                       help="find a plan permissible under the principle NAME (deontology, "
                            "utilitarianism or do-no-harm; repeat it to require several)")
+    _add_svg_argument(plan, "the plan found (with --principle: and its judgement)")
     plan.set_defaults(run=command_plan)
 
     check = commands.add_parser(
@@ -340,6 +370,7 @@ def build_parser() -> argparse.ArgumentParser:
                          help="compute at most N sufficient and N necessary reasons per "
                               "judgement (default: ethasp.reasons.DEFAULT_LIMIT; "
                               "0: no explanations)")
+    _add_svg_argument(judging, "the plan and its judgements")
     judging.set_defaults(run=command_judge)
 
     asking = commands.add_parser(
@@ -370,6 +401,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_search_arguments(contrast)
     contrast.add_argument("--reasons-limit", type=int, default=None,
                           metavar="N", help="at most N reasons of each kind per judgement")
+    _add_svg_argument(contrast, "the contrast plan aligned with the plan asked about")
     contrast.set_defaults(run=command_ask)
 
     talk = commands.add_parser(
