@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING
 from ethasp.errors import InputError
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
+from ethasp.interfaces.version import package_version
 from ethasp.resources import MODELS
 from ethasp.planning.search import DEFAULT_MAX_HORIZON, FOUND, find_plan
 
@@ -63,6 +64,17 @@ def _seconds(text: str) -> float:
         raise argparse.ArgumentTypeError(f"not a number of seconds: {text!r}") from None
     if not value > 0:
         raise argparse.ArgumentTypeError(f"must be more than 0 seconds: {text!r}")
+    return value
+
+
+def _port(text: str) -> int:
+    """A --port: 0 (any free port) to 65535."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a port number: {text!r}") from None
+    if not 0 <= value <= 65535:
+        raise argparse.ArgumentTypeError(f"must be 0 to 65535: {text!r}")
     return value
 
 
@@ -297,6 +309,23 @@ def command_dialogue(args: argparse.Namespace) -> int:
     return Prompt(dialogue, save, sys.stdout, load).run(read)
 
 
+def command_serve(args: argparse.Namespace) -> int:
+    """ethasp serve: the dialogue as a local web page (ethasp/interfaces/web/)."""
+    try:
+        from ethasp.interfaces.web.server import serve
+        from ethasp.interfaces.web.workspace import Options, Workspace
+    except ImportError as error:  # a broken installation without Flask
+        raise InputError(f"ethasp serve needs the package {error.name} (pip install flask)") \
+            from None
+
+    _reasons_limit(args)
+    model = load_model(args)
+    files = [str(path) for path in model_paths(args.model)]
+    workspace = Workspace(model, files, args.principle,
+                          Options(args.max_horizon, args.time_limit, args.reasons_limit))
+    return serve(workspace, args.host, args.port, args.open)
+
+
 def command_query(args: argparse.Namespace) -> int:
     from ethasp.principles.judgement import query
 
@@ -327,6 +356,7 @@ def _add_search_arguments(parser: argparse.ArgumentParser) -> None:
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="ethasp", description=DESCRIPTION,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--version", action="version", version=f"ethasp {package_version()}")
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
     plan = commands.add_parser(
@@ -423,6 +453,33 @@ def build_parser() -> argparse.ArgumentParser:
     talk.add_argument("--reasons-limit", type=int, default=None, metavar="N",
                       help="at most N reasons of each kind per judgement")
     talk.set_defaults(run=command_dialogue)
+
+    web = commands.add_parser(
+        "serve", help="explore the dialogue on a local web page",
+        description="Serve the dialogue as a web page on this machine: the model at a glance, "
+                    "the current plan judged under every principle with its reasons, "
+                    "questions typed or clicked, contrast plans side by side with pictures, "
+                    "history, undo, save and load. Only the model given here is served. "
+                    "The server binds 127.0.0.1 unless --host is given, and prints the "
+                    "page's URL.")
+    web.add_argument("model", nargs="+", metavar="MODEL",
+                     help="model files (ASP), or a PDDL domain and problem (.pddl) with ASP "
+                          "annotation files")
+    web.add_argument("--allow-scripts", action="store_true",
+                     help="run #script blocks in model files (refused by default)")
+    web.add_argument("--principle", default="deontology", metavar="P",
+                     help="the principle the first plan is made and judged under "
+                          "(default deontology)")
+    web.add_argument("--port", type=_port, default=8765, metavar="N",
+                     help="the port (default 8765; 0: any free port)")
+    web.add_argument("--host", default=None, metavar="H",
+                     help="the address to bind (default 127.0.0.1; an address beyond "
+                          "loopback serves the page to other machines)")
+    web.add_argument("--open", action="store_true", help="open the page in a web browser")
+    _add_search_arguments(web)
+    web.add_argument("--reasons-limit", type=int, default=None, metavar="N",
+                     help="at most N reasons of each kind per judgement")
+    web.set_defaults(run=command_serve)
     return parser
 
 

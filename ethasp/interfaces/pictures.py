@@ -75,10 +75,10 @@ class Pictures:
         return plan_svg(self.timeline(plan), self.model.naming,
                         title or f"plan: {self._actions(plan)}", notes)
 
-    def report(self, report: "JudgementReport", title: str = "") -> str:
-        """A judged plan: its timeline under its verdicts and explanations."""
+    def report(self, report: "JudgementReport", title: str = "", words: bool = True) -> str:
+        """A judged plan: its timeline under its verdicts and (``words``) explanations."""
         notes = []
-        for judgement in report.judgements:
+        for judgement in report.judgements if words else []:
             notes.append((f"{judgement.principle}: {verdict(judgement)}", True))
             if judgement.explanation is not None and judgement.explanation.text:
                 notes.append(judgement.explanation.text)
@@ -88,14 +88,15 @@ class Pictures:
         return f"{role}: {self._actions(side.plan)} \u2014 {side.principle}: " \
                f"{verdict(side.judgement)}"
 
-    def answer(self, answer: "Answer") -> str:
-        """An answer: the contrast plan drawn aligned with the plan asked about."""
+    def answer(self, answer: "Answer", words: bool = True) -> str:
+        """An answer: the contrast plan drawn aligned with the plan asked about,
+        under the contrastive explanation (``words``)."""
         questions = "; ".join(str(question) for question in answer.questions)
-        notes = [answer.explanation]
-        if answer.principle_dropped:
+        notes = [answer.explanation] if words else []
+        if answer.principle_dropped and words:
             notes.append(f"The principle {answer.under} was dropped for the contrast: "
                          f"{answer.dropped_because}")
-        if answer.conflict:
+        if answer.conflict and words:
             notes.append("Conflicting constraints: " + ", ".join(map(str, answer.conflict)))
         contrast = answer.contrast
         return contrast_svg(
