@@ -412,3 +412,19 @@ def test_cli_serve_errors_are_one_line(tmp_path):
     run = subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", "serve", "trolley",
                           "--port", "70000"], capture_output=True, text=True, cwd=ROOT)
     assert run.returncode == 2 and "must be 0 to 65535" in run.stderr
+
+
+def test_a_pddl_model_is_shown_and_asked_in_pddl_form():
+    files = [str(MODELS / "pddl" / name) for name in
+             ("trolley-domain.pddl", "trolley-problem.pddl", "trolley-utility.lp")]
+    client = create_app(Workspace(Model.load(files), files, "do-no-harm")).test_client()
+    glance = client.get("/api/model").json["model"]
+    assert [(a["term"], a["shown"]) for a in glance["actions"]] == [("pull", "(pull)"),
+                                                                   ("refrain", "(refrain)")]
+    key = start(client)
+    assert state(client, key)["current"]["shown"] == [{"term": "refrain", "shown": "(refrain)"}]
+    # The page builds clicked questions from the shown names.
+    assert ask(client, key, "why (refrain) rather than (pull)")["state"] == "done"
+    answer = state(client, key)["steps"][0]["answer"]
+    assert answer["contrast"]["shown"] == [{"term": "pull", "shown": "(pull)"}]
+    assert b"(pull)" in client.get(f"/api/sessions/{key}/steps/1.svg").data

@@ -207,3 +207,53 @@ def test_conductor_example_in_the_browser(server, browser):
     screenshot(driver, "page-error.png")
     severe = [entry["message"] for entry in driver.get_log("browser") if entry["level"] == "SEVERE"]
     assert severe == [], severe
+
+
+@pytest.fixture
+def slow_server(monkeypatch):
+    """A server whose questions search until they are cancelled (reporting
+    progress as the searches do), to see a long request on the page."""
+    from ethasp.interfaces.web import workspace as workspace_module
+
+    original = workspace_module.searching
+
+    def slow(call, budget, *args, **kwargs):
+        if getattr(call, "__name__", "") == "ask":
+            budget.report("contrast plan search", horizon=2)
+            for _ in range(2400):                # until cancelled (at most a minute)
+                if budget.cancelled:
+                    break
+                threading.Event().wait(0.025)
+        return original(call, budget, *args, **kwargs)
+
+    monkeypatch.setattr(workspace_module, "searching", slow)
+    workspace = Workspace(Model.load([MODELS / "trolley.lp"]), [str(MODELS / "trolley.lp")],
+                          "do-no-harm")
+    running = Server(workspace, None, 0)
+    thread = threading.Thread(target=running.serve_forever, daemon=True)
+    thread.start()
+    yield running
+    running.shutdown()
+    thread.join(30)
+
+
+def test_a_long_search_shows_progress_and_can_be_cancelled(slow_server, browser):
+    driver = browser
+    driver.get(slow_server.url)
+    wait_for(driver, lambda d: "do-no-harm" in text(d, "current-summary") and idle(d),
+             "the first plan")
+    box = driver.find_element(By.ID, "question")
+    box.clear()
+    box.send_keys("why refrain rather than pull\n")
+    wait_for(driver, lambda d: d.find_element(By.ID, "status").is_displayed()
+             and "contrast plan search: horizon 2" in text(d, "status-progress"), "the progress")
+    assert text(driver, "status-text") == "answering 'why refrain rather than pull'\u2026"
+    assert text(driver, "status-time").endswith(" s")
+    assert not driver.find_element(By.ID, "ask").is_enabled()
+    screenshot(driver, "page-running.png")
+    click(driver, driver.find_element(By.ID, "cancel"))
+    wait_for(driver, lambda d: idle(d) and "cancelled" in text(d, "note"), "the cancellation")
+    assert text(driver, "note") == "cancelled: the dialogue is unchanged"
+    assert driver.find_elements(By.CSS_SELECTOR, "#history li") == []
+    assert not driver.find_element(By.ID, "answer-panel").is_displayed()
+    assert driver.find_element(By.ID, "ask").is_enabled()

@@ -47,7 +47,6 @@ def create_app(workspace: Workspace, loopback: bool = True) -> Flask:
     """
     app = Flask(__name__, static_folder="static", static_url_path="/static")
     app.config["MAX_CONTENT_LENGTH"] = MAX_BODY
-    app.config["JSON_SORT_KEYS"] = False
     app.json.sort_keys = False
     app.extensions["ethasp"] = workspace
 

@@ -13,9 +13,8 @@ from __future__ import annotations
 import json
 import secrets
 import threading
-import time
 from collections import OrderedDict
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Callable
 
@@ -81,7 +80,6 @@ class Session:
     id: str
     dialogue: Dialogue | None = None
     job: Job | None = None
-    used: float = field(default_factory=time.monotonic)
 
     @property
     def busy(self) -> bool:
@@ -157,8 +155,7 @@ class Workspace:
             if session is None:
                 raise Refused(404, "unknown session (the server was restarted, or the "
                                    "dialogue was closed)")
-            self._sessions.move_to_end(key)
-            session.used = time.monotonic()
+            self._sessions.move_to_end(key)   # the least recently used idle one goes first
             return session
 
     # -- jobs ---------------------------------------------------------------------------
