@@ -188,3 +188,38 @@ class Answered(Predicate, name="answered"):
 class UnknownAction(Predicate, name="unknown_action"):
     question: Raw
     action: Raw
+
+
+# -- pictures of plans (model.lp's weights, steps.lp) ------------------------------
+
+class Weight(Predicate, name="weight"):
+    element: Raw
+    utility: int
+
+
+class Initially(Predicate, name="initially"):
+    variable: Raw
+    value: ConstantStr
+
+
+class SetAt(Predicate, name="set"):
+    step: int
+    variable: Raw
+    value: ConstantStr
+
+
+class Changed(Predicate, name="changed"):
+    step: int
+    variable: Raw
+    value: ConstantStr
+
+
+class Causing(Predicate, name="causing"):
+    step: int
+    variable: Raw
+    value: ConstantStr
+
+
+class Caused(Predicate, name="caused"):
+    variable: Raw
+    value: ConstantStr

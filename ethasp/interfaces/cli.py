@@ -15,6 +15,7 @@ from ethasp.interfaces.progress import ProgressLine
 from ethasp.planning.budget import DEFAULT_TIME_LIMIT, Budget
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
+from ethasp.interfaces.version import package_version
 from ethasp.resources import MODELS
 from ethasp.planning.search import DEFAULT_MAX_HORIZON, FOUND, find_plan
 
@@ -74,6 +75,17 @@ def budget(args: argparse.Namespace) -> Budget:
     return Budget(getattr(args, "time_limit", None), args.progress)
 
 
+def _port(text: str) -> int:
+    """A --port: 0 (any free port) to 65535."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a port number: {text!r}") from None
+    if not 0 <= value <= 65535:
+        raise argparse.ArgumentTypeError(f"must be 0 to 65535: {text!r}")
+    return value
+
+
 def _steps(count: int) -> str:
     return f"{count} step" if count == 1 else f"{count} steps"
 
@@ -83,6 +95,24 @@ def emit(args: argparse.Namespace, data: dict, text: str) -> None:
     if progress is not None:
         progress.clear()
     print(json.dumps(data, indent=2) if args.json else text)
+
+
+def _add_svg_argument(parser: argparse.ArgumentParser, what: str) -> None:
+    parser.add_argument("--svg", metavar="FILE",
+                        help=f"also draw {what} as an SVG picture in FILE")
+
+
+def _draw(args: argparse.Namespace, model: Model, draw) -> None:
+    """--svg FILE: write the picture that ``draw(Pictures)`` makes (ethasp/interfaces/pictures.py)."""
+    if args.svg is not None:
+        from ethasp.interfaces.pictures import Pictures, write
+
+        write(args.svg, draw(Pictures(model)))
+
+
+def _no_picture(args: argparse.Namespace) -> None:
+    if args.svg is not None:
+        print(f"ethasp: no plan found, so no picture was written to {args.svg}", file=sys.stderr)
 
 
 # -- commands -----------------------------------------------------------------
@@ -106,6 +136,12 @@ def command_plan(args: argparse.Namespace) -> int:
         text = f"no plan exists: {result.proof}"
     else:
         text = f"bounded: {result.proof}; a plan may still exist"
+    if result.status == FOUND:
+        _draw(args, model, lambda pictures: pictures.plan(
+            result.plan, f"plan of {_steps(result.horizon)}: "
+                         f"{model.naming.actions(result.plan) or '(empty plan)'}"))
+    else:
+        _no_picture(args)
     emit(args, result.to_json(), text)
     return 0
 
@@ -131,6 +167,7 @@ def command_plan_permissible(args: argparse.Namespace, model: Model) -> int:
         report = judge(model, result.plan, result.principles, args.max_horizon, budget=limits)
         data["judgements"] = report.to_json()["judgements"]
         lines += _explanation_text(report) + _judgement_text(report, model).split("\n")[1:]
+        _draw(args, model, lambda pictures: pictures.report(report, f"{head}: {shown[0]}"))
     elif result.status == "none":
         lines = [f"no permissible plan exists: {result.proof}"]
     else:
@@ -138,6 +175,8 @@ def command_plan_permissible(args: argparse.Namespace, model: Model) -> int:
     if result.status != FOUND and result.best is not None and result.best.utility is not None:
         lines.append(f"best reachable utility: {result.best.utility} ({result.best.status}: "
                      f"{result.best.proof})")
+    if result.status != FOUND:
+        _no_picture(args)
     emit(args, data, "\n".join(lines))
     return 0
 
@@ -235,6 +274,7 @@ def command_judge(args: argparse.Namespace) -> int:
     report = judge(model, _given_plan(args), args.principle, args.max_horizon,
                    reasons_limit=args.reasons_limit, budget=budget(args), best=args.best)
     lines = _explanation_text(report) + [_judgement_text(report, model)]
+    _draw(args, model, lambda pictures: pictures.report(report))
     emit(args, report.to_json(), "\n".join(lines))
     return 0
 
@@ -248,6 +288,7 @@ def command_ask(args: argparse.Namespace) -> int:
     plan = _given_plan(args) if (args.plan or args.plan_file) else None
     answer = ask(model, args.question, plan, args.principle, args.under, args.max_horizon,
                  reasons_limit=args.reasons_limit, budget=budget(args))
+    _draw(args, model, lambda pictures: pictures.answer(answer))
     emit(args, answer.to_json(), answer_text(answer, model.naming))
     return 0
 
@@ -284,6 +325,23 @@ def command_dialogue(args: argparse.Namespace) -> int:
     if interactive:
         print("ethasp dialogue: type help for the commands, quit to end.")
     return Prompt(dialogue, save, sys.stdout, load, progress).run(read)
+
+
+def command_serve(args: argparse.Namespace) -> int:
+    """ethasp serve: the dialogue as a local web page (ethasp/interfaces/web/)."""
+    try:
+        from ethasp.interfaces.web.server import serve
+        from ethasp.interfaces.web.workspace import Options, Workspace
+    except ImportError as error:  # a broken installation without Flask
+        raise InputError(f"ethasp serve needs the package {error.name} (pip install flask)") \
+            from None
+
+    _reasons_limit(args)
+    model = load_model(args)
+    files = [str(path) for path in model_paths(args.model)]
+    workspace = Workspace(model, files, args.principle,
+                          Options(args.max_horizon, args.time_limit, args.reasons_limit))
+    return serve(workspace, args.host, args.port, args.open)
 
 
 def command_query(args: argparse.Namespace) -> int:
@@ -326,6 +384,7 @@ def _add_search_arguments(parser: argparse.ArgumentParser, per: str = "") -> Non
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="ethasp", description=DESCRIPTION,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--version", action="version", version=f"ethasp {package_version()}")
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
     plan = commands.add_parser(
@@ -338,6 +397,7 @@ def build_parser() -> argparse.ArgumentParser:
     plan.add_argument("--principle", action="append", metavar="NAME",
                       help="find a plan permissible under the principle NAME (deontology, "
                            "utilitarianism or do-no-harm; repeat it to require several)")
+    _add_svg_argument(plan, "the plan found (with --principle: and its judgement)")
     plan.set_defaults(run=command_plan)
 
     check = commands.add_parser(
@@ -370,6 +430,7 @@ def build_parser() -> argparse.ArgumentParser:
                          help="compute at most N sufficient and N necessary reasons per "
                               "judgement (default: ethasp.reasons.DEFAULT_LIMIT; "
                               "0: no explanations)")
+    _add_svg_argument(judging, "the plan and its judgements")
     judging.set_defaults(run=command_judge)
 
     asking = commands.add_parser(
@@ -400,6 +461,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_search_arguments(contrast)
     contrast.add_argument("--reasons-limit", type=int, default=None,
                           metavar="N", help="at most N reasons of each kind per judgement")
+    _add_svg_argument(contrast, "the contrast plan aligned with the plan asked about")
     contrast.set_defaults(run=command_ask)
 
     talk = commands.add_parser(
@@ -421,6 +483,33 @@ def build_parser() -> argparse.ArgumentParser:
     talk.add_argument("--reasons-limit", type=int, default=None, metavar="N",
                       help="at most N reasons of each kind per judgement")
     talk.set_defaults(run=command_dialogue)
+
+    web = commands.add_parser(
+        "serve", help="explore the dialogue on a local web page",
+        description="Serve the dialogue as a web page on this machine: the model at a glance, "
+                    "the current plan judged under every principle with its reasons, "
+                    "questions typed or clicked, contrast plans side by side with pictures, "
+                    "history, undo, save and load. Only the model given here is served. "
+                    "The server binds 127.0.0.1 unless --host is given, and prints the "
+                    "page's URL.")
+    web.add_argument("model", nargs="+", metavar="MODEL",
+                     help="model files (ASP), or a PDDL domain and problem (.pddl) with ASP "
+                          "annotation files")
+    web.add_argument("--allow-scripts", action="store_true",
+                     help="run #script blocks in model files (refused by default)")
+    web.add_argument("--principle", default="deontology", metavar="P",
+                     help="the principle the first plan is made and judged under "
+                          "(default deontology)")
+    web.add_argument("--port", type=_port, default=8765, metavar="N",
+                     help="the port (default 8765; 0: any free port)")
+    web.add_argument("--host", default=None, metavar="H",
+                     help="the address to bind (default 127.0.0.1; an address beyond "
+                          "loopback serves the page to other machines)")
+    web.add_argument("--open", action="store_true", help="open the page in a web browser")
+    _add_search_arguments(web)
+    web.add_argument("--reasons-limit", type=int, default=None, metavar="N",
+                     help="at most N reasons of each kind per judgement")
+    web.set_defaults(run=command_serve)
     return parser
 
 

@@ -154,8 +154,10 @@ class Dialogue:
     @classmethod
     def from_json(cls, data: dict, model: Model | None = None,
                   max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
-                  reasons_limit: int = DEFAULT_LIMIT) -> "Dialogue":
-        """Rebuild a saved dialogue, asking its questions again in order."""
+                  reasons_limit: int = DEFAULT_LIMIT, budget: Budget | None = None
+                  ) -> "Dialogue":
+        """Rebuild a saved dialogue, asking its questions again in order (under
+        ``budget`` if given, else each under the dialogue's time limit)."""
         if not isinstance(data, dict) or data.get("format") != FORMAT:
             raise InputError("not a saved ethasp dialogue")
         if model is None:
@@ -169,7 +171,7 @@ class Dialogue:
                            time_limit, reasons_limit)
             for step in data.get("steps", []):
                 dialogue.switch_principle(step["under"])
-                dialogue.ask(Question.from_json(step["question"]))
+                dialogue.ask(Question.from_json(step["question"]), budget)
             dialogue.switch_principle(data.get("under", dialogue.principle))
         except (KeyError, TypeError) as error:
             raise InputError(f"saved dialogue is incomplete: missing {error}") from None

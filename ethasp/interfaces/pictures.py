@@ -1,0 +1,109 @@
+"""The pictures of plans, judgements and answers, for the command line's
+``--svg FILE`` and for the page: a timeline of a plan with its verdicts, and
+an answer's contrast plan aligned with the plan asked about
+(:mod:`ethasp.interfaces.svg` draws them)."""
+
+from __future__ import annotations
+
+import threading
+from collections import OrderedDict
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from ethasp.errors import InputError
+from ethasp.interfaces.svg import contrast_svg, plan_svg
+from ethasp.planning.model import Model
+from ethasp.planning.plan import Plan
+from ethasp.planning.timeline import Timeline, Valuation, timeline
+
+if TYPE_CHECKING:
+    from ethasp.principles.judgement import Judgement, JudgementReport
+    from ethasp.questions.contrast import Answer, Side
+
+# Timelines kept per plan (a server draws the same plans again and again).
+CACHED = 128
+
+
+def verdict(judgement: "Judgement") -> str:
+    """``permissible (proven)`` or ``impermissible as far as searched (bounded)``."""
+    word = "permissible" if judgement.permissible else "impermissible"
+    return f"{word} (proven)" if judgement.status == "proven" else \
+        f"{word} as far as searched (bounded)"
+
+
+def write(path: str | Path, svg: str) -> None:
+    """Write a picture; InputError if the file cannot be written."""
+    try:
+        Path(path).write_text(svg, encoding="utf-8")
+    except OSError as error:
+        raise InputError(f"{path}: cannot be written ({error.strerror or error})") from None
+
+
+class Pictures:
+    """Draws the plans of one model; keeps their timelines (thread-safe)."""
+
+    def __init__(self, model: Model):
+        self.model = model
+        self._valuation: Valuation | None = None
+        self._timelines: OrderedDict[tuple[str, ...], Timeline] = OrderedDict()
+        self._lock = threading.Lock()
+
+    @property
+    def valuation(self) -> Valuation:
+        if self._valuation is None:
+            self._valuation = Valuation.of_model(self.model)
+        return self._valuation
+
+    def timeline(self, plan: Plan) -> Timeline:
+        key = tuple(plan.to_list())
+        with self._lock:
+            if key in self._timelines:
+                self._timelines.move_to_end(key)
+                return self._timelines[key]
+        drawn = timeline(self.model, plan, self.valuation)
+        with self._lock:
+            self._timelines[key] = drawn
+            while len(self._timelines) > CACHED:
+                self._timelines.popitem(last=False)
+        return drawn
+
+    def _actions(self, plan: Plan) -> str:
+        return self.model.naming.actions(plan) or "(empty plan)"
+
+    def plan(self, plan: Plan, title: str = "", notes: list[str] | None = None) -> str:
+        """A plan as a timeline."""
+        return plan_svg(self.timeline(plan), self.model.naming,
+                        title or f"plan: {self._actions(plan)}", notes)
+
+    def report(self, report: "JudgementReport", title: str = "", words: bool = True) -> str:
+        """A judged plan: its timeline under its verdicts and (``words``) explanations."""
+        notes = []
+        for judgement in report.judgements if words else []:
+            notes.append((f"{judgement.principle}: {verdict(judgement)}", True))
+            if judgement.explanation is not None and judgement.explanation.text:
+                notes.append(judgement.explanation.text)
+        return self.plan(report.plan, title, notes)
+
+    def _side_title(self, role: str, side: "Side") -> str:
+        return f"{role}: {self._actions(side.plan)} \u2014 {side.principle}: " \
+               f"{verdict(side.judgement)}"
+
+    def answer(self, answer: "Answer", words: bool = True) -> str:
+        """An answer: the contrast plan drawn aligned with the plan asked about,
+        under the contrastive explanation (``words``)."""
+        questions = "; ".join(str(question) for question in answer.questions)
+        notes = [answer.explanation] if words else []
+        if answer.principle_dropped and words:
+            notes.append(f"The principle {answer.under} was dropped for the contrast: "
+                         f"{answer.dropped_because}")
+        if answer.conflict and words:
+            notes.append("Conflicting constraints: " + ", ".join(map(str, answer.conflict)))
+        contrast = answer.contrast
+        return contrast_svg(
+            self.timeline(answer.original.plan),
+            self.timeline(contrast.plan) if contrast is not None else None,
+            self.model.naming, title=questions, notes=notes,
+            original_title=self._side_title("plan asked about", answer.original),
+            contrast_title=(self._side_title("contrast plan", contrast) if contrast is not None
+                            else "contrast plan"),
+            missing=f"none ({answer.status}: {answer.proof})")

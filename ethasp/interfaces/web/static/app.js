@@ -1,0 +1,494 @@
+// The ethasp page: the dialogue of contrastive questions about a plan.
+// It talks to the server's JSON API (ethasp/interfaces/web/app.py); the
+// server keeps the dialogue, the page keeps the session id and a copy of the
+// dialogue in localStorage, so a reload (or a restarted server) finds it again.
+"use strict";
+
+const $ = (id) => document.getElementById(id);
+const POLL_MS = 250;
+
+let model = null;     // GET /api/model
+let sid = null;       // the session id
+let state = null;     // GET /api/sessions/<sid>
+let viewing = null;   // the number of the answer shown
+let selected = null;  // the action chosen by a click: {term, shown}
+let running = false;  // a job is running
+
+// -- HTTP ------------------------------------------------------------------------------
+
+class ApiError extends Error {
+  constructor(status, message) { super(message); this.status = status; }
+}
+
+async function call(method, path, data) {
+  const options = { method, headers: { "Accept": "application/json" } };
+  if (method === "POST") {
+    options.headers["Content-Type"] = "application/json";
+    options.body = JSON.stringify(data || {});
+  }
+  let response;
+  try {
+    response = await fetch(path, options);
+  } catch (error) {
+    throw new ApiError(0, "the server cannot be reached (was it stopped?)");
+  }
+  let body = null;
+  try { body = await response.json(); } catch (error) { body = null; }
+  if (!response.ok) {
+    throw new ApiError(response.status, (body && body.error) || `HTTP ${response.status}`);
+  }
+  return body;
+}
+const get = (path) => call("GET", path);
+const post = (path, data) => call("POST", path, data);
+
+// -- small DOM helpers ------------------------------------------------------------------------
+
+function el(tag, attributes, ...children) {
+  const node = document.createElement(tag);
+  for (const [name, value] of Object.entries(attributes || {})) {
+    if (value === null || value === undefined || value === false) continue;
+    if (name === "class") node.className = value;
+    else if (name === "text") node.textContent = value;
+    else if (name.startsWith("on")) node.addEventListener(name.slice(2), value);
+    else node.setAttribute(name, value === true ? "" : value);
+  }
+  for (const child of children.flat()) {
+    if (child === null || child === undefined || child === false) continue;
+    node.append(child instanceof Node ? child : document.createTextNode(String(child)));
+  }
+  return node;
+}
+
+function clear(node) { while (node.firstChild) node.removeChild(node.firstChild); return node; }
+
+function utilityText(utility) {
+  return utility > 0 ? `+${utility}` : utility < 0 ? `\u2212${-utility}` : "0";
+}
+
+function showError(message) {
+  const box = $("error");
+  if (!message) { box.hidden = true; box.textContent = ""; return; }
+  box.textContent = `error: ${message}`;
+  box.hidden = false;
+}
+
+function showNote(message) {
+  const box = $("note");
+  box.hidden = !message;
+  box.textContent = message || "";
+}
+
+// -- keeping the session across reloads -------------------------------------------------------------
+
+function storeKey() { return `ethasp:${model.key}`; }
+
+function remember() {
+  try {
+    localStorage.setItem(storeKey(), JSON.stringify({
+      session: sid, dialogue: state && state.dialogue ? state.dialogue : null }));
+  } catch (error) { /* storage full or disabled: the server still keeps the dialogue */ }
+}
+
+function remembered() {
+  try { return JSON.parse(localStorage.getItem(storeKey()) || "null"); }
+  catch (error) { return null; }
+}
+
+// -- jobs: long requests, with progress and cancel ----------------------------------------------------
+
+function setBusy(job) {
+  running = Boolean(job && job.state === "running");
+  $("status").hidden = !running;
+  for (const button of document.querySelectorAll("#ask-form button, #undo, #start, #action-menu button")) {
+    button.disabled = running;
+  }
+  $("under").disabled = running;
+  if (!running) return;
+  $("status-text").textContent = `${job.description}\u2026`;
+  $("status-time").textContent = `${job.elapsed.toFixed(1)} s`;
+  $("status-progress").textContent = job.progress || "";
+}
+
+async function follow(reply) {
+  // A move answered {session, job}: poll the job until it ends, then show the state.
+  sid = reply.session;
+  let job = reply.job;
+  setBusy(job);
+  while (job && job.state === "running") {
+    await new Promise((resolve) => setTimeout(resolve, POLL_MS));
+    job = (await get(`/api/sessions/${sid}/job`)).job;
+    setBusy(job);
+  }
+  setBusy(null);
+  if (job && job.state === "failed") showError(job.error);
+  if (job && job.note) showNote(job.note);
+  await refresh();
+  return job;
+}
+
+async function move(request) {
+  showError(null);
+  showNote(null);
+  try {
+    const job = await follow(await request());
+    return job;
+  } catch (error) {
+    setBusy(null);
+    showError(error.message);
+    return null;
+  }
+}
+
+async function refresh() {
+  state = await get(`/api/sessions/${sid}`);
+  remember();
+  render();
+}
+
+// -- rendering -------------------------------------------------------------------------------------------
+
+function renderModel() {
+  $("model-name").textContent = model.name;
+  $("version").textContent = `ethasp ${model.version}`;
+  document.title = `ethasp \u2013 ${model.name}`;
+  const glance = model.model;
+  const box = clear($("model"));
+  if (glance.agent) box.append(el("p", {}, "Agent: ", el("strong", { text: glance.agent.name })));
+
+  box.append(el("h3", { text: `Actions (${glance.actions.length})` }));
+  const actions = el("table", { class: "glance", id: "model-actions" },
+    el("tr", {}, el("th", { text: "action" }), el("th", { text: "label" }), el("th", { text: "utility" })));
+  for (const action of glance.actions) {
+    actions.append(el("tr", {},
+      el("td", {}, el("button", {
+        class: `chip ${action.moral}`, type: "button", "data-term": action.term,
+        title: `${action.moral}: ask about ${action.shown}`,
+        onclick: () => choose(action.term, action.shown) }, action.shown)),
+      el("td", { class: "label", text: action.label }),
+      el("td", { class: action.moral, text: utilityText(action.utility) })));
+  }
+  box.append(actions);
+
+  box.append(el("h3", { text: `Variables (${glance.variables.length})` }));
+  const variables = el("table", { class: "glance", id: "model-variables" },
+    el("tr", {}, el("th", { text: "variable" }), el("th", { text: "true" }), el("th", { text: "false" })));
+  const goal = new Set(glance.goal.map((fact) => fact.literal));
+  for (const variable of glance.variables) {
+    const cell = (fact, isTrue) => el("td", { class: fact.moral, title: `${fact.shown}: ${fact.moral}, utility ${fact.utility}` },
+      el("div", {}, fact.utility ? el("strong", { text: utilityText(fact.utility) }) : null,
+        (variable.initial === isTrue) ? el("span", { class: "muted", text: " initially" }) : null,
+        goal.has(fact.literal) ? el("span", { class: "muted", text: " goal" }) : null),
+      fact.label ? el("div", { class: "label", text: fact.label }) : null);
+    variables.append(el("tr", {}, el("td", {}, el("code", { text: variable.shown })),
+      cell(variable.true, true), cell(variable.false, false)));
+  }
+  box.append(variables);
+  box.append(el("p", { class: "muted" },
+    "Goal: ", glance.goal.map((fact) => fact.shown).join(", ") || "none"));
+
+  for (const select of [$("under"), $("start-principle")]) {
+    clear(select);
+    for (const name of model.principles) select.append(el("option", { value: name, text: name }));
+  }
+  $("start-principle").value = model.principle;
+  $("question").maxLength = model.limits.question;
+  $("start-plan").maxLength = model.limits.plan;
+}
+
+function verdictNode(side) {
+  const word = side.permissible ? "permissible" : "impermissible";
+  return el("span", {}, el("span", { class: `verdict ${word}`, text: word }),
+    el("span", { class: "status", text: side.status === "proven" ? "proven" : "bounded: as far as searched" }));
+}
+
+function literals(list, highlight) {
+  if (!list || list.length === 0) return el("span", { class: "muted", text: "(none: the verdict holds whatever the atoms)" });
+  return el("span", {}, list.map((literal) => el("span", {
+    class: highlight && highlight.has(literal) ? "literal diff" : "literal",
+    title: highlight && highlight.has(literal) ? "only this plan's reason has it" : null,
+    text: literal })));
+}
+
+function reasonsBlock(kind, reasons, chosen) {
+  const key = JSON.stringify(chosen || []);
+  const list = el("ul", { class: "reason-list" }, reasons.map((reason) =>
+    el("li", { class: JSON.stringify(reason) === key ? "chosen" : null },
+      literals(reason), JSON.stringify(reason) === key ? " \u2190 chosen" : null)));
+  return el("details", {}, el("summary", { text: `${kind} reasons (${reasons.length})` }),
+    reasons.length ? list : el("p", { class: "muted", text: "none" }));
+}
+
+function reasonsOf(side, highlight) {
+  return [
+    el("p", { class: "explanation", text: side.explanation || "" }),
+    el("p", {}, el("span", { class: "muted", text: "Chosen reason: " }), literals(side.chosen_reason, highlight)),
+    reasonsBlock("Necessary", side.necessary_reasons || [], side.chosen_reason),
+    reasonsBlock("Sufficient", side.sufficient_reasons || [], null),
+    side.reasons_truncated ? el("p", { class: "proof", text: "Reason limit reached; more reasons may exist." }) : null,
+  ];
+}
+
+function planNode(actions, clickable) {
+  const list = el("ol", { class: "plan" });
+  if (!actions.length) list.append(el("li", { class: "muted", text: "(empty plan)" }));
+  actions.forEach((action, index) => {
+    const glance = model.model.actions.find((a) => a.term === action.term);
+    const moral = glance ? glance.moral : "neutral";
+    list.append(el("li", {}, el("span", { class: "step", text: `${index + 1}.` }),
+      clickable
+        ? el("button", { class: `chip ${moral}`, type: "button", "data-term": action.term,
+            title: "ask about this action", onclick: () => choose(action.term, action.shown) }, action.shown)
+        : el("span", { class: `chip ${moral}`, text: action.shown })));
+  });
+  return list;
+}
+
+async function showPicture(box, path) {
+  clear(box);
+  try {
+    const response = await fetch(path);
+    const type = response.headers.get("Content-Type") || "";
+    if (!response.ok || !type.startsWith("image/svg+xml")) {
+      box.append(el("p", { class: "muted", text: "(no picture)" }));
+      return;
+    }
+    box.innerHTML = await response.text();  // SVG drawn by the server, text escaped there
+    for (const action of box.querySelectorAll("g.action")) {
+      action.addEventListener("click", () => choose(action.dataset.action, action.dataset.shown));
+    }
+  } catch (error) {
+    box.append(el("p", { class: "muted", text: "(no picture)" }));
+  }
+}
+
+function renderCurrent() {
+  const current = state.current;
+  const steps = current.plan.length;
+  $("current-summary").textContent =
+    `${steps} ${steps === 1 ? "step" : "steps"}, made and judged under ${current.principle}` +
+    `; final state utility ${current.utility}` +
+    (state.steps.length ? ` (the contrast plan of question ${state.steps.length})` : " (the first plan)");
+  const plan = planNode(current.shown, true);
+  plan.id = "current-actions";
+  $("current-actions").replaceWith(plan);
+  showPicture($("current-picture"), `/api/sessions/${sid}/current.svg?words=0`);
+  $("current-svg").href = `/api/sessions/${sid}/current.svg`;
+  const cards = clear($("judgements"));
+  for (const judgement of current.judgements) {
+    cards.append(el("div", { class: "card", "data-principle": judgement.principle },
+      el("h4", {}, judgement.principle, " ", verdictNode(judgement)),
+      el("p", { class: "proof", text: judgement.proof }),
+      judgement.best_reachable && judgement.best_reachable.state
+        ? el("p", { class: "proof", text: `Best reachable state found: utility ${judgement.best_reachable.utility}` })
+        : null,
+      reasonsOf(judgement)));
+  }
+}
+
+function choose(term, shown) {
+  if (!state || !state.current) return;
+  selected = { term, shown };
+  const inPlan = state.current.plan.includes(term);
+  const others = model.model.actions.filter((action) => action.term !== term);
+  const menu = clear($("action-menu"));
+  const glance = model.model.actions.find((a) => a.term === term);
+  menu.append(el("div", {}, el("strong", { text: shown }),
+    glance && glance.label ? el("span", { class: "label", text: ` \u2013 ${glance.label}` }) : null,
+    el("span", { class: "muted", text: inPlan ? " (in the current plan)" : " (not in the current plan)" })));
+  const select = (id) => el("select", { id }, others.map((a) => el("option", { value: a.shown, text: a.shown })));
+  if (inPlan) {
+    menu.append(el("div", { class: "row" },
+      el("button", { type: "button", id: "why-this", onclick: () => askText(`why ${shown}`) }, "Why this?")));
+    if (others.length) {
+      menu.append(el("div", { class: "row" },
+        el("button", { type: "button", id: "why-rather", onclick: () => askText(`why ${shown} rather than ${$("rather-other").value}`) },
+          "Why this rather than"), select("rather-other"), "?"));
+      menu.append(el("div", { class: "row" },
+        el("button", { type: "button", id: "why-before", onclick: () => askText(`why ${shown} before ${$("before-other").value}`) },
+          "Why this before"), select("before-other"), "?"));
+    }
+  } else {
+    menu.append(el("div", { class: "row" },
+      el("button", { type: "button", id: "why-not", onclick: () => askText(`why not ${shown}`) }, "Why not this?")));
+  }
+  menu.append(el("div", { class: "row" }, el("button", { type: "button", onclick: () => { menu.hidden = true; selected = null; } }, "Close")));
+  menu.hidden = false;
+  for (const button of menu.querySelectorAll("button")) button.disabled = running;
+  $("ask-panel").scrollIntoView({ block: "nearest", behavior: "smooth" });
+}
+
+function sideNode(title, side, shown, highlight) {
+  if (!side) return el("div", {}, el("h3", { text: title }), el("p", { class: "muted", text: "No plan." }));
+  return el("div", {}, el("h3", {}, title, " ", verdictNode(side)),
+    el("p", { class: "muted", text: `under ${side.principle}` }),
+    planNode(shown || side.plan.map((term) => ({ term, shown: term })), false),
+    reasonsOf(side, highlight));
+}
+
+function renderAnswer() {
+  const panel = $("answer-panel");
+  if (!state.steps.length) { panel.hidden = true; viewing = null; return; }
+  if (viewing === null || viewing > state.steps.length) viewing = state.steps.length;
+  const step = state.steps[viewing - 1];
+  const answer = step.answer;
+  panel.hidden = false;
+  $("answer-heading").textContent = `Answer to question ${step.number}` +
+    (step.number < state.steps.length ? ` (of ${state.steps.length})` : "");
+  $("answer-question").textContent = `${step.question}  \u2014 contrast under ${step.under}`;
+  $("answer-text").textContent = answer.explanation;
+  const notes = clear($("answer-notes"));
+  if (!answer.contrast) {
+    notes.append(el("p", { class: "notice warning", text: `No contrast plan (${answer.status}): ${answer.proof}` }));
+  }
+  if (answer.principle_dropped) {
+    notes.append(el("p", { class: "notice warning", id: "principle-dropped" },
+      el("strong", { text: "Principle dropped: " }),
+      `no plan meets the question and ${step.under} together, so the contrast plan was searched without ${step.under}` +
+      (answer.principle_dropped_because ? ` (${answer.principle_dropped_because})` : "") + "."));
+  }
+  if (answer.conflict && answer.conflict.length) {
+    notes.append(el("p", { class: "notice warning", id: "conflict" },
+      el("strong", { text: "Minimal conflict: " }), "no plan meets all of ",
+      answer.conflict.map((c) => el("span", { class: "literal", text: c })), "."));
+  }
+  notes.append(el("p", { class: "proof" }, "Constraints imposed: ",
+    answer.constraints.map((c) => el("span", { class: "literal", text: c }))));
+  const difference = answer.reason_difference || { original_only: [], contrast_only: [] };
+  $("side-original").replaceChildren(sideNode("Plan asked about", answer.original, answer.original.shown,
+    new Set(difference.original_only)));
+  $("side-contrast").replaceChildren(sideNode("Contrast plan", answer.contrast,
+    answer.contrast && answer.contrast.shown, new Set(difference.contrast_only)));
+  const picture = `/api/sessions/${sid}/steps/${step.number}.svg`;
+  showPicture($("answer-picture"), `${picture}?words=0`);
+  $("answer-svg").href = picture;
+}
+
+function renderHistory() {
+  const list = clear($("history"));
+  $("history-empty").hidden = state.steps.length > 0;
+  for (const step of state.steps) {
+    const answer = step.answer;
+    const outcome = answer.contrast
+      ? `contrast: ${answer.contrast.shown.map((a) => a.shown).join(" ") || "(empty plan)"}`
+      : `no contrast plan (${answer.status})`;
+    list.append(el("li", { class: step.number === viewing ? "viewing" : null },
+      el("button", { class: "entry", type: "button", onclick: () => { viewing = step.number; renderAnswer(); renderHistory(); } },
+        el("code", { text: step.question }), el("span", { class: "muted", text: ` \u2014 under ${step.under}; ${outcome}` }))));
+  }
+  $("undo").disabled = running || !state.steps.length;
+  $("save").href = `/api/sessions/${sid}/dialogue.json`;
+}
+
+function render() {
+  if (!state || !state.dialogue) {
+    $("new-dialogue").open = true;
+    $("current-summary").textContent = "No dialogue yet: start one below.";
+    return;
+  }
+  $("under").value = state.under;
+  renderCurrent();
+  renderAnswer();
+  renderHistory();
+  if (selected) choose(selected.term, selected.shown);
+}
+
+// -- moves ---------------------------------------------------------------------------------------------------
+
+function askText(text) {
+  $("question").value = text;
+  return ask();
+}
+
+async function ask() {
+  const text = $("question").value.trim();
+  if (!text) { showError("question: expected 'why ...' (forms: why A | why not A | why A rather than B | why A before B)"); return; }
+  const job = await move(() => post(`/api/sessions/${sid}/ask`, { question: text }));
+  if (job && job.state === "done") {
+    viewing = state.steps.length;
+    $("action-menu").hidden = true;
+    selected = null;
+    render();
+    $("answer-panel").scrollIntoView({ block: "start", behavior: "smooth" });
+  }
+}
+
+async function startDialogue(principle, plan, quiet) {
+  const request = sid
+    ? () => post(`/api/sessions/${sid}/start`, { principle, plan })
+    : () => post("/api/sessions", { principle, plan });
+  const job = await move(request);
+  if (job && job.state === "done") {
+    viewing = null;
+    $("new-dialogue").open = false;
+    if (quiet) showNote(null);
+  }
+}
+
+async function restore(saved) {
+  // The server lost the session (it was restarted): replay the page's copy.
+  showNote("restoring the dialogue kept by this page\u2026");
+  const job = await move(() => post("/api/sessions", { dialogue: JSON.stringify(saved.dialogue), name: "the page's saved dialogue" }));
+  if (!job || job.state !== "done") {
+    const why = $("error").hidden ? "" : $("error").textContent;
+    await startDialogue(model.principle, "");
+    showNote(`the dialogue kept by this page could not be restored (${why || "unknown reason"}); a new one was started`);
+  }
+}
+
+function bind() {
+  $("ask-form").addEventListener("submit", (event) => { event.preventDefault(); ask(); });
+  $("start-form").addEventListener("submit", (event) => {
+    event.preventDefault();
+    startDialogue($("start-principle").value, $("start-plan").value.trim());
+  });
+  $("undo").addEventListener("click", () => move(() => post(`/api/sessions/${sid}/undo`, {})));
+  $("cancel").addEventListener("click", async () => {
+    try { await post(`/api/sessions/${sid}/cancel`, {}); } catch (error) { showError(error.message); }
+  });
+  $("under").addEventListener("change", async () => {
+    showError(null);
+    try {
+      state = await post(`/api/sessions/${sid}/principle`, { principle: $("under").value });
+      remember();
+      render();
+      showNote(`contrast plans must now satisfy ${state.under}`);
+    } catch (error) { showError(error.message); if (state) $("under").value = state.under; }
+  });
+  $("load").addEventListener("change", async () => {
+    const file = $("load").files[0];
+    if (!file) return;
+    const text = await file.text();
+    $("load").value = "";
+    const job = await move(() => post(`/api/sessions/${sid}/load`, { dialogue: text, name: file.name }));
+    if (job && job.state === "done") viewing = null, render();
+  });
+}
+
+async function main() {
+  bind();
+  try {
+    model = await get("/api/model");
+  } catch (error) {
+    showError(error.message);
+    return;
+  }
+  renderModel();
+  const saved = remembered();
+  if (saved && saved.session) {
+    try {
+      sid = saved.session;
+      state = await get(`/api/sessions/${sid}`);
+      render();
+      if (state.job && state.job.state === "running") await follow({ session: sid, job: state.job });
+      return;
+    } catch (error) {
+      if (!(error instanceof ApiError) || error.status !== 404) { showError(error.message); return; }
+      sid = null;
+      if (saved.dialogue) { await restore(saved); return; }
+    }
+  }
+  await startDialogue(model.principle, "", true);
+}
+
+document.addEventListener("DOMContentLoaded", main);

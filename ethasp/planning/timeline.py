@@ -1,0 +1,200 @@
+"""A plan step by step, for pictures: what each action changes, what the plan
+causes, and the moral values and words of the model's actions and facts.
+
+The semantics come from answer sets: ``encodings/planning/steps.lp`` (with
+``trace.lp``) gives the effects of each step, which of them change the state
+and which produce a fact that the plan causes; ``judgement/judge.lp`` the
+utility of the final state; the model's ``weight/2`` atoms (``model.lp``) the
+moral values and its label facts (``encodings/reasons/labels.lp``) the words.
+Python only reads the atoms back; :mod:`ethasp.interfaces.svg` draws them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import clingo
+from clorm import unify
+
+from ethasp.errors import InputError
+from ethasp.planning.model import Model
+from ethasp.planning.naming import Naming
+from ethasp.planning.plan import Plan
+from ethasp.planning.validation import read_validation
+from ethasp.vocabulary import (Action, ActionLabel, AgentLabel, Caused, Causing, Changed,
+                               FactLabel, Final, Goal, Init, Initially, SetAt, UtilityOfFinal,
+                               Variable, Weight)
+
+STEPS = ("planning/model.lp", "planning/trace.lp", "planning/steps.lp", "judgement/judge.lp")
+
+# Every state of a plan is computed for its picture: longer plans are refused.
+MAX_STEPS = 200
+
+
+@dataclass(frozen=True)
+class Fact:
+    """A fact: a variable with a value (``v`` or ``-v`` as a literal)."""
+
+    variable: clingo.Symbol
+    value: bool
+
+    def literal(self) -> str:
+        return str(self.variable) if self.value else f"-{self.variable}"
+
+    def shown(self, naming: Naming) -> str:
+        return naming.fact(self.literal())
+
+    @classmethod
+    def of(cls, variable: clingo.Symbol, value: str) -> "Fact":
+        return cls(variable, value == "true")
+
+
+def moral(utility: int) -> str:
+    """The moral value of a utility: good, bad or neutral (Good/Bad/Neutral of L)."""
+    return "good" if utility > 0 else "bad" if utility < 0 else "neutral"
+
+
+def _element(kind: str, *arguments: clingo.Symbol) -> clingo.Symbol:
+    return clingo.Function(kind, list(arguments))
+
+
+@dataclass
+class Valuation:
+    """A model at a glance: its actions and variables, initial state and goal,
+    the utility of every action and fact (``weight/2``) and their labels."""
+
+    actions: list[clingo.Symbol]
+    variables: list[clingo.Symbol]
+    initial: set[clingo.Symbol]
+    goal: list[Fact]
+    weights: dict[clingo.Symbol, int]
+    agent: tuple[str, str] | None = None
+    action_labels: dict[clingo.Symbol, tuple[str, str]] = field(default_factory=dict)
+    fact_labels: dict[Fact, str] = field(default_factory=dict)
+
+    @classmethod
+    def of_model(cls, model: Model) -> "Valuation":
+        """Read from the model's facts (its rules grounded)."""
+        facts = model.facts([Action, Variable, Init, Goal, Weight, AgentLabel, ActionLabel,
+                             FactLabel])
+        agents = sorted((a.name, a.possessive) for a in facts.query(AgentLabel).all())
+        return cls(
+            actions=sorted((a.name.symbol for a in facts.query(Action).all()), key=str),
+            variables=sorted((v.name.symbol for v in facts.query(Variable).all()), key=str),
+            initial={i.variable.symbol for i in facts.query(Init).all()},
+            goal=sorted((Fact.of(g.variable.symbol, g.value) for g in facts.query(Goal).all()),
+                        key=_order),
+            weights={w.element.symbol: w.utility for w in facts.query(Weight).all()},
+            agent=agents[0] if agents else None,
+            action_labels={a.action.symbol: (a.phrase, a.gerund)
+                           for a in facts.query(ActionLabel).all()},
+            fact_labels={Fact.of(f.variable.symbol, f.value): f.phrase
+                         for f in facts.query(FactLabel).all()},
+        )
+
+    def action_utility(self, action: clingo.Symbol) -> int:
+        return self.weights.get(_element("action", action), 0)
+
+    def fact_utility(self, fact: Fact) -> int:
+        value = clingo.Function("true" if fact.value else "false")
+        return self.weights.get(_element("fact", fact.variable, value), 0)
+
+    def action_label(self, action: clingo.Symbol) -> str:
+        return self.action_labels.get(action, ("", ""))[0]
+
+    def fact_label(self, fact: Fact) -> str:
+        return self.fact_labels.get(fact, "")
+
+    def to_json(self, naming: Naming = Naming()) -> dict:
+        """The model at a glance, named by ``naming``, each element with its
+        utility, moral value and label."""
+
+        def fact(variable: clingo.Symbol, value: bool) -> dict:
+            item = Fact(variable, value)
+            utility = self.fact_utility(item)
+            return {"literal": item.literal(), "shown": item.shown(naming), "utility": utility,
+                    "moral": moral(utility), "label": self.fact_label(item)}
+
+        return {
+            "agent": None if self.agent is None else {"name": self.agent[0],
+                                                      "possessive": self.agent[1]},
+            "actions": [{"term": str(action), "shown": naming.action(action),
+                         "utility": self.action_utility(action),
+                         "moral": moral(self.action_utility(action)),
+                         "label": self.action_label(action)} for action in self.actions],
+            "variables": [{"term": str(variable), "shown": naming.fact(str(variable)),
+                           "initial": variable in self.initial,
+                           "true": fact(variable, True), "false": fact(variable, False)}
+                          for variable in self.variables],
+            "goal": [fact(item.variable, item.value) for item in self.goal],
+        }
+
+
+@dataclass
+class Column:
+    """One step of a plan: its action, the effects that change the state
+    (``changes``), those that set a value it already had (``kept``), and the
+    effects that produce a fact the plan causes (``causing``)."""
+
+    step: int
+    action: clingo.Symbol
+    changes: list[Fact]
+    kept: list[Fact]
+    causing: set[Fact]
+
+
+@dataclass
+class Timeline:
+    """A plan step by step: the initial values of the variables it changes,
+    one column per step, its final state, the facts it causes (``Caused`` of
+    L) and the utility of the final state."""
+
+    plan: Plan
+    initial: list[Fact]
+    columns: list[Column]
+    final: list[Fact]
+    caused: set[Fact]
+    utility: int
+    valuation: Valuation
+
+    def changed_variables(self) -> list[clingo.Symbol]:
+        return sorted({fact.variable for column in self.columns for fact in column.changes},
+                      key=str)
+
+
+def _order(fact: Fact) -> tuple[str, bool]:
+    return str(fact.variable), fact.value
+
+
+def _facts(atoms, step: int | None = None) -> list[Fact]:
+    chosen = [a for a in atoms if step is None or a.step == step]
+    return sorted((Fact.of(a.variable.symbol, a.value) for a in chosen), key=_order)
+
+
+def timeline(model: Model, plan: Plan, valuation: Valuation | None = None) -> Timeline:
+    """The timeline of a plan (one clingo call); InputError if it is not a plan
+    or has more than :data:`MAX_STEPS` steps."""
+    if len(plan) > MAX_STEPS:
+        raise InputError(f"the plan has {len(plan)} steps; pictures are drawn for plans of "
+                         f"at most {MAX_STEPS} steps")
+    valuation = valuation or Valuation.of_model(model)
+    symbols = model.solve_once(STEPS, plan.facts())
+    validation = read_validation(plan, symbols)
+    if not validation.valid:
+        raise InputError(f"not a plan: {validation.message(model.naming)}")
+    atoms = unify([Initially, SetAt, Changed, Causing, Caused, Final, UtilityOfFinal], symbols)
+    sets = list(atoms.query(SetAt).all())
+    changes = list(atoms.query(Changed).all())
+    causing = list(atoms.query(Causing).all())
+    columns = []
+    for step, action in enumerate(plan, start=1):
+        changed = _facts(changes, step)
+        columns.append(Column(step, action, changed,
+                              [fact for fact in _facts(sets, step) if fact not in changed],
+                              set(_facts(causing, step))))
+    moved = {fact.variable for column in columns for fact in column.changes}
+    initial = [fact for fact in _facts(atoms.query(Initially).all()) if fact.variable in moved]
+    final = _facts(atoms.query(Final).all())
+    utility = next(iter(atoms.query(UtilityOfFinal).all())).utility
+    return Timeline(plan, initial, columns, final, set(_facts(atoms.query(Caused).all())),
+                    utility, valuation)

@@ -1,0 +1,430 @@
+"""The page's HTTP API (ethasp serve), through Flask's test client: the
+conductor example, every question form, undo, switching principle, save and
+load, a state that survives a reload or a restart, cancelling, errors with
+the command line's messages, length limits and the guards."""
+
+import json
+import re
+import subprocess
+import sys
+import threading
+import time
+import urllib.request
+
+import pytest
+
+from conftest import MODELS, ROOT
+from ethasp import InputError, Model, Plan
+from ethasp.interfaces.web import workspace as workspace_module
+from ethasp.interfaces.web.app import MAX_BODY, create_app
+from ethasp.interfaces.web.server import Server, is_loopback
+from ethasp.interfaces.web.workspace import Limits, Options, Workspace
+from ethasp.questions.dialogue import Dialogue
+from ethasp.questions.question import Question
+
+TROLLEY = str(MODELS / "trolley.lp")
+CONDUCTOR = (
+    "The man could refrain from action. This would be permissible under the do-no-harm "
+    "principle because this way the death of the five persons is not caused by his action. "
+    "Alternatively, the man could pull the lever. Doing so is impermissible under the "
+    "do-no-harm principle because this way the death of the one person is caused by his "
+    "action.")
+UTILITARIAN_CONTRAST = ("Alternatively, the man could pull the lever. Doing so is permissible "
+                        "under the utilitarianism principle because five saved lives is "
+                        "better than one saved life.")
+
+
+@pytest.fixture(scope="module")
+def trolley():
+    return Model.load([TROLLEY])
+
+
+def make_client(model, principle="do-no-harm", limits=Limits(), loopback=True):
+    workspace = Workspace(model, [TROLLEY], principle, Options(), limits)
+    return create_app(workspace, loopback=loopback).test_client()
+
+
+@pytest.fixture
+def client(trolley):
+    return make_client(trolley)
+
+
+def finish(client, reply):
+    """Follow a move's job until it ends (bounded); return the job."""
+    assert reply.status_code == 202, reply.json
+    key = reply.json["session"]
+    for _ in range(600):
+        job = client.get(f"/api/sessions/{key}/job").json["job"]
+        if job["state"] != "running":
+            return job
+        time.sleep(0.05)
+    raise AssertionError("the job did not end")
+
+
+def start(client, principle=None, plan=None):
+    body = {} if principle is None else {"principle": principle}
+    if plan is not None:
+        body["plan"] = plan
+    reply = client.post("/api/sessions", json=body)
+    job = finish(client, reply)
+    assert job["state"] == "done", job
+    return reply.json["session"]
+
+
+def state(client, key):
+    reply = client.get(f"/api/sessions/{key}")
+    assert reply.status_code == 200, reply.json
+    return reply.json
+
+
+def ask(client, key, question):
+    return finish(client, client.post(f"/api/sessions/{key}/ask", json={"question": question}))
+
+
+# -- the page and the model -------------------------------------------------------------------
+
+def test_page_and_its_assets_are_bundled(client):
+    page = client.get("/")
+    assert page.status_code == 200 and b"<title>ethasp</title>" in page.data
+    assert "default-src 'self'" in page.headers["Content-Security-Policy"]
+    for asset in re.findall(rb'(?:src|href)="(/static/[^"]+)"', page.data):
+        reply = client.get(asset.decode())
+        assert reply.status_code == 200, asset
+        text = reply.data.decode().replace("http://www.w3.org/2000/svg", "")
+        assert "http://" not in text and "https://" not in text and "@import" not in text
+    assert b'src="http' not in page.data and b'href="http' not in page.data
+
+
+def test_model_at_a_glance(client):
+    data = client.get("/api/model").json
+    assert data["name"] == "trolley.lp" and data["principle"] == "do-no-harm"
+    assert data["principles"] == ["deontology", "do-no-harm", "utilitarianism"]
+    assert [a["term"] for a in data["model"]["actions"]] == ["pull", "refrain"]
+    one = next(v for v in data["model"]["variables"] if v["term"] == "one_will_die")
+    assert one["true"] == {"literal": "one_will_die", "shown": "one_will_die", "utility": -1,
+                           "moral": "bad", "label": "the death of the one person"}
+    assert data["limits"]["question"] == Limits().question
+    assert re.fullmatch(r"[0-9a-f]{16}", data["key"])
+
+
+# -- the conductor example -------------------------------------------------------------------------
+
+def test_conductor_example_end_to_end(client):
+    key = start(client)
+    first = state(client, key)
+    assert first["current"]["plan"] == ["refrain"] and first["steps"] == []
+    verdicts = {j["principle"]: j["permissible"] for j in first["current"]["judgements"]}
+    assert verdicts == {"deontology": True, "do-no-harm": True, "utilitarianism": False}
+    harm = next(j for j in first["current"]["judgements"] if j["principle"] == "do-no-harm")
+    assert harm["chosen_reason"] == ["not Caused(five_will_die)"]
+    assert harm["explanation"].startswith("The man can refrain from action.")
+    assert harm["necessary_reasons"] and harm["sufficient_reasons"]
+
+    job = ask(client, key, "why refrain rather than pull")
+    assert job["state"] == "done" and job["note"] == "answered: why refrain rather than pull"
+    after = state(client, key)
+    step = after["steps"][0]
+    answer = step["answer"]
+    assert answer["explanation"] == CONDUCTOR
+    assert answer["principle_dropped"] is True and answer["conflict"] == []
+    assert answer["reason_difference"] == {"original_only": ["not Caused(five_will_die)"],
+                                           "contrast_only": ["Caused(one_will_die)"]}
+    assert answer["contrast"]["shown"] == [{"term": "pull", "shown": "pull"}]
+    assert step["own_constraints"] == ["unused(refrain)", "used(pull)"]
+    assert after["current"]["plan"] == ["pull"]
+
+    picture = client.get(f"/api/sessions/{key}/steps/1.svg")
+    assert picture.mimetype == "image/svg+xml"
+    assert b"the plans part at step 1" in picture.data and CONDUCTOR[:30].encode() in picture.data
+    bare = client.get(f"/api/sessions/{key}/steps/1.svg?words=0")
+    assert CONDUCTOR[:30].encode() not in bare.data
+    assert client.get(f"/api/sessions/{key}/steps/2.svg").status_code == 404
+    current = client.get(f"/api/sessions/{key}/current.svg")
+    assert b"current plan: pull" in current.data
+
+    switched = client.post(f"/api/sessions/{key}/principle", json={"principle": "utilitarianism"})
+    assert switched.status_code == 200 and switched.json["under"] == "utilitarianism"
+    job = finish(client, client.post(f"/api/sessions/{key}/undo", json={}))
+    assert job["note"] == "took back: why refrain rather than pull"
+    assert state(client, key)["current"]["plan"] == ["refrain"]
+    job = ask(client, key, "why refrain rather than pull")
+    answer = state(client, key)["steps"][0]["answer"]
+    assert answer["principle_dropped"] is False and UTILITARIAN_CONTRAST in answer["explanation"]
+
+
+@pytest.mark.parametrize("plan,question,contrast", [
+    ("pull", "why pull", ["refrain"]),                       # clicked "why this?"
+    ("pull", "why not refrain", ["refrain"]),                # "why not this?"
+    ("pull", "why pull rather than refrain", ["refrain"]),   # "why this rather than ...?"
+    ("pull", "why pull before refrain", ["refrain", "pull"]),  # "why this before ...?"
+    ("pull", "Why not refrain?", ["refrain"]),               # typed, any case, a final ?
+])
+def test_every_question_form(client, plan, question, contrast):
+    key = start(client, "deontology", plan)
+    assert state(client, key)["current"]["plan"] == [plan]
+    job = ask(client, key, question)
+    assert job["state"] == "done", job
+    answer = state(client, key)["steps"][0]["answer"]
+    assert answer["contrast"]["plan"] == contrast
+    assert answer["questions"] == [str(Question.parse(question))]
+
+
+def test_a_minimal_conflict_is_shown(client):
+    key = start(client)
+    ask(client, key, "why refrain rather than pull")
+    ask(client, key, "why pull rather than refrain")
+    answer = state(client, key)["steps"][1]["answer"]
+    assert answer["contrast"] is None and answer["status"] == "none"
+    assert set(answer["conflict"]) in ({"used(pull)", "unused(pull)"},
+                                       {"unused(refrain)", "used(refrain)"})
+    assert b"none (none:" in client.get(f"/api/sessions/{key}/steps/2.svg").data
+
+
+# -- errors: the command line's one-line messages ----------------------------------------------------
+
+def message_of(call):
+    with pytest.raises(InputError) as error:
+        call()
+    return str(error.value)
+
+
+def test_errors_have_the_command_line_messages(client, trolley):
+    key = start(client)
+    reply = client.post(f"/api/sessions/{key}/ask", json={"question": "how pull"})
+    assert reply.status_code == 400
+    assert reply.json == {"error": message_of(lambda: Question.parse("how pull"))}
+    job = ask(client, key, "why not jump")
+    assert job["state"] == "failed" and job["error"] == "question 'why not jump': unknown action jump"
+    job = ask(client, key, "why not refrain")
+    assert job["state"] == "failed" and "already meets its contrast" in job["error"]
+    reply = client.post(f"/api/sessions/{key}/principle", json={"principle": "kindness"})
+    assert reply.status_code == 400
+    assert reply.json["error"] == message_of(lambda: Dialogue.start(trolley, "kindness"))
+    reply = client.post(f"/api/sessions/{key}/undo", json={})
+    assert reply.status_code == 400 and reply.json["error"] == "nothing to undo: no question asked yet"
+    assert state(client, key)["steps"] == []   # failed moves change nothing
+
+    reply = client.post("/api/sessions", json={"plan": "jump"})
+    job = finish(client, reply)
+    assert job["state"] == "failed" and job["error"] == "plan: unknown action jump at step 1"
+    assert state(client, reply.json["session"])["dialogue"] is None
+    reply = client.post("/api/sessions", json={"principle": "kindness"})
+    assert reply.status_code == 400 and reply.json["error"].startswith("unknown principle")
+
+    assert client.get("/api/sessions/0123").status_code == 404
+    assert "unknown session" in client.get("/api/sessions/0123").json["error"]
+    reply = client.post(f"/api/sessions/{key}/ask", data="why pull")
+    assert reply.status_code == 415 and "JSON" in reply.json["error"]
+    reply = client.post(f"/api/sessions/{key}/ask", json=["why pull"])
+    assert reply.status_code == 400 and reply.json["error"] == "the request must be a JSON object"
+    reply = client.post(f"/api/sessions/{key}/ask", json={"question": 3})
+    assert reply.status_code == 400 and reply.json["error"] == "question: expected text"
+    assert client.get("/api/nothing").status_code == 404
+
+
+def test_length_limits(trolley):
+    client = make_client(trolley, limits=Limits(questions=1))
+    key = start(client)
+    long = "why " + "pull " * 200
+    reply = client.post(f"/api/sessions/{key}/ask", json={"question": long})
+    assert reply.status_code == 400 and "question: too long" in reply.json["error"]
+    reply = client.post("/api/sessions", json={"plan": "pull " * 3000})
+    assert reply.status_code == 400 and "plan: too long" in reply.json["error"]
+    reply = client.post(f"/api/sessions/{key}/principle", json={"principle": "x" * 1000})
+    assert reply.status_code == 400 and "principle: too long" in reply.json["error"]
+    reply = client.post(f"/api/sessions/{key}/load",
+                        json={"dialogue": "x" * (MAX_BODY + 10), "name": "big.json"})
+    assert reply.status_code == 413 and "too large" in reply.json["error"]
+    assert ask(client, key, "why refrain rather than pull")["state"] == "done"
+    reply = client.post(f"/api/sessions/{key}/ask", json={"question": "why pull"})
+    assert reply.status_code == 400 and "at most 1 questions" in reply.json["error"]
+
+
+# -- save, load, reload -------------------------------------------------------------------------------
+
+def test_save_and_load_the_files_of_ethasp_dialogue(client, trolley, tmp_path):
+    key = start(client)
+    ask(client, key, "why refrain rather than pull")
+    client.post(f"/api/sessions/{key}/principle", json={"principle": "utilitarianism"})
+    saved = client.get(f"/api/sessions/{key}/dialogue.json")
+    assert "attachment" in saved.headers["Content-Disposition"]
+    data = saved.json
+    assert data["format"] == "ethasp-dialogue" and data["under"] == "utilitarianism"
+    # The same file as ethasp dialogue writes: Dialogue.load reads it.
+    path = tmp_path / "saved.json"
+    path.write_text(json.dumps(data))
+    again = Dialogue.load(path, trolley)
+    assert again.steps[0].answer.explanation == CONDUCTOR and again.under == "utilitarianism"
+
+    other = start(client)
+    job = finish(client, client.post(f"/api/sessions/{other}/load",
+                                     json={"dialogue": saved.data.decode(), "name": "saved.json"}))
+    assert job["state"] == "done" and job["note"] == "loaded saved.json (1 questions)"
+    loaded = state(client, other)
+    assert loaded["under"] == "utilitarianism"
+    assert loaded["steps"][0]["answer"]["explanation"] == CONDUCTOR
+
+    # A file written by ethasp dialogue itself (Dialogue.save) loads too.
+    written = Dialogue.start(trolley, "deontology", Plan.parse("pull"), model_files=[TROLLEY])
+    written.ask("why pull")
+    written.save(path)
+    job = finish(client, client.post(f"/api/sessions/{other}/load",
+                                     json={"dialogue": path.read_text(), "name": "d.json"}))
+    assert job["state"] == "done"
+    assert [s["question"] for s in state(client, other)["steps"]] == ["why pull"]
+
+
+def test_load_errors_and_the_served_model_only(client, monkeypatch):
+    key = start(client)
+    reply = client.post(f"/api/sessions/{key}/load", json={"dialogue": "{oops", "name": "x.json"})
+    assert reply.status_code == 400
+    assert reply.json["error"].startswith("x.json: not a saved dialogue (")
+    job = finish(client, client.post(f"/api/sessions/{key}/load",
+                                     json={"dialogue": "{}", "name": "x.json"}))
+    assert job["state"] == "failed" and job["error"] == "not a saved ethasp dialogue"
+    # A saved dialogue naming other model files is replayed with the served
+    # model: no file it names is read.
+    data = {"format": "ethasp-dialogue", "version": 1, "model": ["/etc/passwd"],
+            "principle": "do-no-harm", "plan": ["refrain"], "under": "do-no-harm",
+            "steps": [{"question": {"kind": "rather-than", "action": "refrain",
+                                    "other": "pull"}, "under": "do-no-harm"}]}
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("a model was loaded from a request")
+
+    monkeypatch.setattr(Model, "load", refuse)
+    job = finish(client, client.post(f"/api/sessions/{key}/load",
+                                     json={"dialogue": json.dumps(data), "name": "x.json"}))
+    assert job["state"] == "done" and "replayed with the served model trolley.lp" in job["note"]
+    assert state(client, key)["steps"][0]["answer"]["explanation"] == CONDUCTOR
+
+
+def test_state_survives_a_reload_and_a_restart(trolley):
+    client = make_client(trolley)
+    key = start(client)
+    ask(client, key, "why refrain rather than pull")
+    before = state(client, key)
+    # A reload asks for the same session again: the server kept it.
+    assert state(client, key) == before
+    # After a restart the session is gone; the page sends its copy of the dialogue.
+    restarted = make_client(trolley)
+    assert restarted.get(f"/api/sessions/{key}").status_code == 404
+    reply = restarted.post("/api/sessions", json={"dialogue": json.dumps(before["dialogue"]),
+                                                  "name": "the page's saved dialogue"})
+    assert finish(restarted, reply)["state"] == "done"
+    after = state(restarted, reply.json["session"])
+    assert after["steps"] == before["steps"] and after["current"] == before["current"]
+
+
+# -- long requests: progress, busy, cancel -----------------------------------------------------------------
+
+def test_a_running_search_shows_progress_blocks_moves_and_can_be_cancelled(client, monkeypatch):
+    key = start(client)
+    waiting = threading.Event()
+
+    def slow(call, budget, *args, **kwargs):
+        budget.report("contrast plan search", horizon=3)
+        waiting.set()
+        for _ in range(400):           # until cancelled (bounded)
+            if budget.cancelled:
+                return call(*args, **kwargs)
+            time.sleep(0.025)
+        return call(*args, **kwargs)
+
+    monkeypatch.setattr(workspace_module, "searching", slow)
+    reply = client.post(f"/api/sessions/{key}/ask", json={"question": "why refrain rather than pull"})
+    assert reply.status_code == 202
+    assert waiting.wait(10)
+    job = client.get(f"/api/sessions/{key}/job").json["job"]
+    assert job["state"] == "running" and job["description"] == "answering 'why refrain rather than pull'"
+    assert job["progress"].startswith("contrast plan search: horizon 3 (")
+    for path, body in ((f"/api/sessions/{key}/ask", {"question": "why pull"}),
+                       (f"/api/sessions/{key}/undo", {}),
+                       (f"/api/sessions/{key}/principle", {"principle": "deontology"})):
+        reply = client.post(path, json=body)
+        assert reply.status_code == 409 and reply.json["error"].startswith("busy")
+    cancelled = client.post(f"/api/sessions/{key}/cancel", json={}).json["job"]
+    assert cancelled["state"] == "cancelled" and "unchanged" in cancelled["note"]
+    data = state(client, key)
+    assert data["steps"] == [] and data["job"]["state"] == "cancelled"
+    # The dialogue is free again at once.
+    monkeypatch.undo()
+    for _ in range(200):
+        reply = client.post(f"/api/sessions/{key}/ask", json={"question": "why refrain"})
+        if reply.status_code != 503:   # the cancelled search may still be ending
+            break
+        time.sleep(0.05)
+    assert finish(client, reply)["state"] == "done"
+    assert state(client, key)["steps"][0]["question"] == "why refrain"
+
+
+# -- guards -----------------------------------------------------------------------------------------------
+
+def test_guards_against_other_sites(trolley, client):
+    assert client.get("/", headers={"Host": "attacker.example"}).status_code == 403
+    assert client.get("/", headers={"Host": "127.0.0.1:8765"}).status_code == 200
+    assert client.get("/", headers={"Host": "[::1]:8765"}).status_code == 200
+    reply = client.post("/api/sessions", json={}, headers={"Origin": "http://attacker.example"})
+    assert reply.status_code == 403 and "forbidden origin" in reply.json["error"]
+    reply = client.post("/api/sessions", json={}, headers={"Origin": "http://localhost"})
+    assert reply.status_code == 202
+    remote = make_client(trolley, loopback=False)
+    assert remote.get("/", headers={"Host": "ethics.example:80"}).status_code == 200
+
+
+def test_loopback_names():
+    assert is_loopback("127.0.0.1") and is_loopback("localhost") and is_loopback("::1")
+    assert is_loopback("[::1]") and is_loopback("127.0.0.2")
+    assert not is_loopback("0.0.0.0") and not is_loopback("192.0.2.1")
+    assert not is_loopback("::")
+
+
+def test_server_binds_loopback_by_default(trolley):
+    server = Server(Workspace(trolley, [TROLLEY]), None, 0)
+    try:
+        assert server.loopback and server.url == f"http://127.0.0.1:{server.port}/"
+        assert server.httpd.server_address[0] == "127.0.0.1"
+    finally:
+        server.httpd.server_close()
+
+
+def test_cli_serve_prints_its_url_and_serves_the_model(tmp_path):
+    process = subprocess.Popen([sys.executable, "-m", "ethasp.interfaces.cli", "serve", "trolley",
+                                "--principle", "do-no-harm", "--port", "0"],
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                               cwd=tmp_path)
+    try:
+        line = process.stdout.readline()
+        match = re.fullmatch(r"ethasp: serving \S*trolley\.lp at (http://127\.0\.0\.1:\d+/)\n", line)
+        assert match, line + process.stderr.read()
+        with urllib.request.urlopen(match.group(1) + "api/model", timeout=30) as reply:
+            assert json.load(reply)["principle"] == "do-no-harm"
+    finally:
+        process.terminate()
+        process.wait(timeout=30)
+
+
+def test_cli_serve_errors_are_one_line(tmp_path):
+    run = subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", "serve", "trolley",
+                          "--principle", "kindness", "--port", "0"],
+                         capture_output=True, text=True, cwd=ROOT)
+    assert run.returncode == 2 and run.stderr.startswith("ethasp: error: unknown principle")
+    run = subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", "serve", "trolley",
+                          "--port", "70000"], capture_output=True, text=True, cwd=ROOT)
+    assert run.returncode == 2 and "must be 0 to 65535" in run.stderr
+
+
+def test_a_pddl_model_is_shown_and_asked_in_pddl_form():
+    files = [str(MODELS / "pddl" / name) for name in
+             ("trolley-domain.pddl", "trolley-problem.pddl", "trolley-utility.lp")]
+    client = create_app(Workspace(Model.load(files), files, "do-no-harm")).test_client()
+    glance = client.get("/api/model").json["model"]
+    assert [(a["term"], a["shown"]) for a in glance["actions"]] == [("pull", "(pull)"),
+                                                                   ("refrain", "(refrain)")]
+    key = start(client)
+    assert state(client, key)["current"]["shown"] == [{"term": "refrain", "shown": "(refrain)"}]
+    # The page builds clicked questions from the shown names.
+    assert ask(client, key, "why (refrain) rather than (pull)")["state"] == "done"
+    answer = state(client, key)["steps"][0]["answer"]
+    assert answer["contrast"]["shown"] == [{"term": "pull", "shown": "(pull)"}]
+    assert b"(pull)" in client.get(f"/api/sessions/{key}/steps/1.svg").data
