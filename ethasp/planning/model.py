@@ -155,6 +155,11 @@ class Model:
             self._planner = Planner(self)
         return self._planner
 
+    def facts(self, predicates):
+        """The model's atoms of the given clorm predicates (its rules grounded
+        once, by its planner), as a clorm FactBase."""
+        return self.planner.facts(predicates)
+
     def check(self) -> None:
         """Raise InputError naming the first defect found by check.lp."""
         errors = sorted(self.planner.get("error", 1), key=str)

@@ -37,6 +37,8 @@ trace is not a search, and a long plan would not fit the search's grounding.
 
 from __future__ import annotations
 
+import functools
+import threading
 from dataclasses import dataclass, field
 from typing import Iterable, Sequence
 
@@ -135,6 +137,17 @@ class Outcome:
     models: list[list[clingo.Symbol]] = field(default_factory=list)
 
 
+def _locked(method):
+    """Run a method under the planner's lock: clingo controls and diagram
+    managers serve one thread at a time (the web page runs searches in
+    threads)."""
+    @functools.wraps(method)
+    def run(self, *args, **kwargs):
+        with self.lock:
+            return method(self, *args, **kwargs)
+    return run
+
+
 class Planner:
     """A model's one grounding and every search over it (see the module docstring).
 
@@ -145,6 +158,7 @@ class Planner:
 
     def __init__(self, model):
         self.model = model
+        self.lock = threading.RLock()
         self.messages = Messages()
         self.ctl = model.control(OPTIONS, self.messages)
         self._parts: dict[str, tuple[str, ...]] = {}
@@ -187,11 +201,19 @@ class Planner:
         """The ground atoms of a predicate of the model's base part (model.lp's too)."""
         return self.atoms.get((name, arity), [])
 
+    def facts(self, predicates) -> "FactBase":
+        """The base part's atoms of the given clorm predicates (the model's
+        vocabulary, its rules grounded, and model.lp's)."""
+        from clorm import unify
+
+        return unify(list(predicates), [s for symbols in self.atoms.values() for s in symbols])
+
     def vocabulary_text(self, signatures: Iterable[tuple[str, int]]) -> str:
         """The ground atoms of these predicates as facts (for programs over a plan)."""
         return "".join(f"{symbol}.\n" for signature in signatures
                        for symbol in self.get(*signature))
 
+    @_locked
     def ground_model(self) -> GroundModel:
         """The model for the reachability engine, from the ground vocabulary."""
         if self._ground_model is None:
@@ -219,6 +241,7 @@ class Planner:
                 weights)
         return self._ground_model
 
+    @_locked
     def reachability(self) -> Reachability:
         """The exact reachability engine over this model (created once, expanded
         by whoever needs more layers)."""
@@ -269,6 +292,7 @@ class Planner:
                     parts.append((part, [value, clingo.Number(t)]))
         return parts
 
+    @_locked
     def ground_to(self, horizon: int) -> None:
         """Ground the step and check parts (and those of every input) up to ``horizon``."""
         self._start_search()
@@ -302,6 +326,7 @@ class Planner:
 
     # -- inputs ----------------------------------------------------------------------
 
+    @_locked
     def question(self, terms: Sequence[clingo.Symbol]) -> list[Constraint]:
         """The constraints of a question (its ``contrast`` terms), grounded on first
         use; the same terms give the same question (named ``q(N)``)."""
@@ -315,6 +340,7 @@ class Planner:
             self._question_ids[key] = name
         return list(self._questions[self._question_ids[key]])
 
+    @_locked
     def avoid(self, state: Iterable[tuple[clingo.Symbol, bool]]) -> int:
         """An id for a state that searches may be asked to avoid (``other_state``)."""
         key = frozenset(state)
@@ -374,6 +400,7 @@ class Planner:
         if setting.at_least is not None:
             self._threshold("at_least", setting.at_least)
 
+    @_locked
     def solve(self, horizon: int, setting: Setting, budget: Budget,
               models: int = 1) -> Outcome:
         """Solve at one horizon under a setting (grounding what it needs first)."""
@@ -407,6 +434,7 @@ class Planner:
         return Outcome(result.satisfiable, found[-1] if found else [],
                        costs[0] if costs else [], found)
 
+    @_locked
     def simple_path_exists(self, length: int, setting: Setting, budget: Budget) -> bool | None:
         """Is there a path of ``length`` actions without a repeated state, under
         the setting's restrictions (their step constraints; what holds only at a
@@ -455,6 +483,7 @@ class Planner:
             messages.raise_first("grounding failed")
         return ctl
 
+    @_locked
     def trace(self, plan) -> list[clingo.Symbol]:
         """The shown atoms of a plan's trace (``planning/trace.lp``: validity,
         final state, Caused; ``judgement/judge.lp``: the final state's
@@ -472,12 +501,14 @@ class Planner:
         return self._traces[plan]
 
 
+    @_locked
     def search_atoms(self, name: str, arity: int) -> list[clingo.Symbol]:
         """The ground atoms of a predicate of the searches' static part (e.g.
         ``upper_bound/1`` of judgement/best.lp)."""
         self._start_search()
         return sorted(atom.symbol for atom in self.ctl.symbolic_atoms.by_signature(name, arity))
 
+    @_locked
     def is_fact(self, name: str) -> bool:
         """Whether a nullary atom is a fact of the grounded searches (e.g. unreachable_goal)."""
         self._start_search()

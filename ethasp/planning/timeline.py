@@ -178,7 +178,13 @@ def timeline(model: Model, plan: Plan, valuation: Valuation | None = None) -> Ti
         raise InputError(f"the plan has {len(plan)} steps; pictures are drawn for plans of "
                          f"at most {MAX_STEPS} steps")
     valuation = valuation or Valuation.of_model(model)
-    symbols = model.solve_once(STEPS, plan.facts())
+    facts = "".join(f"occurs({action},{step}).\n" for step, action in enumerate(plan, start=1))
+    ctl = model.planner.program(STEPS, facts)
+    symbols: list[clingo.Symbol] = []
+    with ctl.solve(yield_=True) as handle:
+        for answer in handle:
+            symbols = list(answer.symbols(shown=True))
+            break
     validation = read_validation(plan, symbols)
     if not validation.valid:
         raise InputError(f"not a plan: {validation.message(model.naming)}")

@@ -163,7 +163,7 @@ def _expand(planner: Planner, budget: Budget, max_horizon: int,
             return r, r.stopped
 
 
-def best_reachable(planner: Planner, budget: Budget, max_horizon: int = DEFAULT_MAX_HORIZON,
+def _best_reachable_unlocked(planner: Planner, budget: Budget, max_horizon: int = DEFAULT_MAX_HORIZON,
                    within: str = "all", other_than: list[tuple[clingo.Symbol, bool]] | None = None
                    ) -> BestReachable:
     """A best state reachable from the initial state (``within="goal"``: a best
@@ -235,7 +235,7 @@ def _prefer_goal(r: Reachability, best: Best, within: str, other_than, variables
     return _state(variables, best)
 
 
-def better_state(planner: Planner, utility: int, budget: Budget,
+def _better_state_unlocked(planner: Planner, utility: int, budget: Budget,
                  max_horizon: int = DEFAULT_MAX_HORIZON) -> Comparison:
     """Is a reachable state better than ``utility``?  Stops at the first layer
     that has one (that state is then at its shortest distance)."""
@@ -357,7 +357,7 @@ def _better_by_search(planner: Planner, utility: int, budget: Budget,
     return Comparison(BOUNDED, f"no better state within {horizon} steps (the maximal horizon)")
 
 
-def goal_distance(planner: Planner, utility: int, budget: Budget,
+def _goal_distance_unlocked(planner: Planner, utility: int, budget: Budget,
                   max_horizon: int = DEFAULT_MAX_HORIZON) -> tuple[int | None, str, str]:
     """The length of a shortest path to a goal state of utility at least
     ``utility``: (length, status, proof); length None with status proven when
@@ -377,3 +377,39 @@ def goal_distance(planner: Planner, utility: int, budget: Budget,
         return None, PROVEN, (f"no goal state of utility {utility} or more is reachable "
                               "(exact reachability: every reachable state is known)")
     return None, BOUNDED, stopped
+
+
+def best_reachable(planner: Planner, budget: Budget | None = None,
+                   max_horizon: int = DEFAULT_MAX_HORIZON, within: str = "all",
+                   other_than: list[tuple[clingo.Symbol, bool]] | None = None) -> BestReachable:
+    """A best state reachable from the initial state (``within="goal"``: a best
+    goal state), other than the state ``other_than`` if given; among equally
+    good states, goal states first, then the nearest.  (``planner`` may also
+    be a :class:`~ethasp.planning.model.Model`.)
+
+    Results are kept by the planner: a question is searched once per model.
+    """
+    planner = getattr(planner, "planner", planner)
+    with planner.lock:
+        return _best_reachable_unlocked(planner, budget or Budget(), max_horizon, within,
+                                        other_than)
+
+
+def better_state(planner: Planner, utility: int, budget: Budget | None = None,
+                 max_horizon: int = DEFAULT_MAX_HORIZON) -> Comparison:
+    """Is a reachable state better than ``utility``?  Stops at the first layer
+    that has one (that state is then at its shortest distance)."""
+    planner = getattr(planner, "planner", planner)
+    with planner.lock:
+        return _better_state_unlocked(planner, utility, budget or Budget(), max_horizon)
+
+
+def goal_distance(planner: Planner, utility: int, budget: Budget | None = None,
+                  max_horizon: int = DEFAULT_MAX_HORIZON) -> tuple[int | None, str, str]:
+    """The length of a shortest path to a goal state of utility at least
+    ``utility``: (length, status, proof); length None with status proven when
+    no such state is reachable, with status bounded when the exact engine
+    stopped first."""
+    planner = getattr(planner, "planner", planner)
+    with planner.lock:
+        return _goal_distance_unlocked(planner, utility, budget or Budget(), max_horizon)
