@@ -64,6 +64,19 @@ class Budget:
         self.deadline = None if time_limit is None else self.started + time_limit
         self.on_progress = on_progress
         self._cancelled = threading.Event()
+        self._share = False
+
+    def share(self, seconds: float) -> "Budget":
+        """A part of this budget: at most ``seconds`` more, cancelled with it,
+        reporting to the same callback."""
+        part = Budget(None, self.on_progress)
+        part.started = self.started
+        part._cancelled = self._cancelled
+        end = time.monotonic() + seconds
+        part.deadline = end if self.deadline is None else min(end, self.deadline)
+        part.time_limit = self.time_limit
+        part._share = True
+        return part
 
     # -- limits -------------------------------------------------------------------
 
@@ -95,6 +108,8 @@ class Budget:
         """Words for a search cut short by this budget."""
         if self.cancelled:
             return "the search was cancelled"
+        if self._share:
+            return "its share of the time was used"
         return f"the time limit of {self.time_limit:g} s was reached"
 
     # -- progress -----------------------------------------------------------------

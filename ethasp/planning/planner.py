@@ -65,10 +65,15 @@ SEARCH = "search"
 
 # Parts of the model's own base part and of the searches (relative to encodings/).
 MODEL_ENCODINGS = ("planning/model.lp", "planning/check.lp")
-SEARCH_ENCODINGS = ("planning/relaxed.lp", "planning/transition.lp", "planning/mutex.lp",
+SEARCH_ENCODINGS = ("planning/relaxed.lp", "planning/transition.lp",
                     "judgement/best.lp", "reasons/other_state.lp",
                     "questions/questions.lp")
 GOAL_ENCODING = "planning/goal.lp"
+# The h^2 mutexes are redundant constraints: they speed up plan search, but their
+# fixpoint grows with the square of the facts, so larger models go without.
+MUTEX_ENCODING = "planning/mutex.lp"
+MUTEX = "mutex"
+MUTEX_MAX_VARIABLES = 400
 LOOPFREE_ENCODING = "planning/loopfree.lp"
 RESTRICTIONS = "restrictions"
 
@@ -89,6 +94,36 @@ def restriction_switch(principle: str) -> clingo.Symbol:
 def available_restrictions() -> list[str]:
     """The principles (ASP names) with a restriction encoding."""
     return sorted(path.stem for path in (ENCODINGS / RESTRICTIONS).glob("*.lp"))
+
+
+class Answer:
+    """The shown atoms of an answer set, indexed by predicate, with their text
+    as facts made once (programs that read an answer set are given it as facts)."""
+
+    def __init__(self, symbols: list[clingo.Symbol]):
+        self.symbols = symbols
+        self._by_name: dict[str, list[clingo.Symbol]] | None = None
+        self._texts: dict[tuple[tuple[str, int], ...] | None, str] = {}
+
+    def get(self, name: str, arity: int) -> list[clingo.Symbol]:
+        """The atoms of one predicate."""
+        if self._by_name is None:
+            self._by_name = {}
+            for symbol in self.symbols:
+                self._by_name.setdefault(symbol.name, []).append(symbol)
+        return [s for s in self._by_name.get(name, []) if len(s.arguments) == arity]
+
+    def select(self, signatures: Iterable[tuple[str, int]]) -> list[clingo.Symbol]:
+        """The atoms of several predicates."""
+        return [symbol for signature in signatures for symbol in self.get(*signature)]
+
+    def text(self, signatures: Sequence[tuple[str, int]] | None = None) -> str:
+        """The atoms (of the given predicates, else all) as facts."""
+        key = None if signatures is None else tuple(signatures)
+        if key not in self._texts:
+            chosen = self.symbols if key is None else self.select(key)
+            self._texts[key] = "".join(f"{symbol}.\n" for symbol in chosen)
+        return self._texts[key]
 
 
 @dataclass(frozen=True)
@@ -182,31 +217,27 @@ class Planner:
             self.ctl.ground([("base", [])])
         except RuntimeError:
             self.messages.raise_first("grounding failed")
-        self.atoms = self._facts()
+        self._atoms: dict[tuple[str, int], list[clingo.Symbol]] = {}
 
     # -- the ground model -----------------------------------------------------------
 
-    def _facts(self) -> dict[tuple[str, int], list[clingo.Symbol]]:
-        """The atoms of the base grounding, by signature (facts and others)."""
-        result: dict[tuple[str, int], list[clingo.Symbol]] = {}
-        for atom in self.ctl.symbolic_atoms:
-            symbol = atom.symbol
-            if symbol.type == clingo.SymbolType.Function:
-                result.setdefault((symbol.name, len(symbol.arguments)), []).append(symbol)
-        for symbols in result.values():
-            symbols.sort()
-        return result
-
     def get(self, name: str, arity: int) -> list[clingo.Symbol]:
-        """The ground atoms of a predicate of the model's base part (model.lp's too)."""
-        return self.atoms.get((name, arity), [])
+        """The ground atoms of a predicate of the model's base part (model.lp's
+        too), sorted."""
+        key = (name, arity)
+        if key not in self._atoms:
+            self._atoms[key] = sorted(atom.symbol for atom in
+                                      self.ctl.symbolic_atoms.by_signature(name, arity))
+        return self._atoms[key]
 
     def facts(self, predicates) -> "FactBase":
         """The base part's atoms of the given clorm predicates (the model's
         vocabulary, its rules grounded, and model.lp's)."""
         from clorm import unify
 
-        return unify(list(predicates), [s for symbols in self.atoms.values() for s in symbols])
+        return unify(list(predicates), [symbol for predicate in predicates
+                                        for symbol in self.get(predicate.meta.name,
+                                                               predicate.meta.arity)])
 
     def vocabulary_text(self, signatures: Iterable[tuple[str, int]]) -> str:
         """The ground atoms of these predicates as facts (for programs over a plan)."""
@@ -259,6 +290,8 @@ class Planner:
         try:
             with clingo.ast.ProgramBuilder(self.ctl) as builder:
                 files = [(name, STEP, None) for name in SEARCH_ENCODINGS]
+                if len(self.get("variable", 1)) <= MUTEX_MAX_VARIABLES:
+                    files.append((MUTEX_ENCODING, STEP, None))
                 files.append((GOAL_ENCODING, STEP, GOAL_SWITCH))
                 files += [(f"{RESTRICTIONS}/{principle}.lp", STEP, restriction_switch(principle))
                           for principle in available_restrictions()]
@@ -484,22 +517,32 @@ class Planner:
         return ctl
 
     @_locked
-    def trace(self, plan) -> list[clingo.Symbol]:
-        """The shown atoms of a plan's trace (``planning/trace.lp``: validity,
-        final state, Caused; ``judgement/judge.lp``: the final state's
-        utility), computed once per plan."""
-        if plan not in self._traces:
-            facts = "".join(f"occurs({action},{step}).\n"
-                            for step, action in enumerate(plan, start=1))
-            ctl = self.program(TRACE_ENCODINGS, facts)
-            symbols: list[clingo.Symbol] = []
-            with ctl.solve(yield_=True) as handle:
-                for answer in handle:
-                    symbols = list(answer.symbols(shown=True))
-                    break
-            self._traces[plan] = symbols
-        return self._traces[plan]
+    def trace(self, plan, encodings: Sequence[str] = ()) -> Answer:
+        """A plan's evaluation (its shown atoms): its trace (``planning/trace.lp``:
+        validity, final state, Caused; ``judgement/judge.lp``: the final state's
+        utility), plus what further ``encodings`` over it show.
 
+        Each plan is evaluated once: a request whose encodings an earlier
+        evaluation of the plan covers reuses that one.
+        """
+        wanted = set(encodings)
+        for done, answer in self._traces.get(plan, []):
+            if wanted <= done:
+                return answer
+        facts = "".join(f"occurs({action},{step}).\n"
+                        for step, action in enumerate(plan, start=1))
+        answer = self.solve_program(list(TRACE_ENCODINGS) + list(encodings), facts)
+        self._traces.setdefault(plan, []).append((wanted, answer))
+        return answer
+
+    def solve_program(self, encodings: Sequence[str], facts: str = "",
+                      model: bool = True) -> Answer:
+        """The first answer set of :meth:`program` (empty if there is none)."""
+        ctl = self.program(encodings, facts, model=model)
+        with ctl.solve(yield_=True) as handle:
+            for answer in handle:
+                return Answer(list(answer.symbols(shown=True)))
+        return Answer([])
 
     @_locked
     def search_atoms(self, name: str, arity: int) -> list[clingo.Symbol]:

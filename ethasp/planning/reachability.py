@@ -46,7 +46,11 @@ DEFAULT_NODE_LIMIT = 4_000_000
 
 # Images between two checks of the budget and the node count (counting the
 # nodes takes time of its own).
-CHECK_EVERY = 64
+CHECK_EVERY = 8
+
+# A cluster of actions shares one transition relation over the variables they
+# write: one relational product per cluster instead of one image per action.
+CLUSTER_VARIABLES = 16
 
 
 @dataclass(frozen=True)
@@ -95,6 +99,26 @@ class Best:
     layer: int
 
 
+def _clusters(model: GroundModel, index: dict[clingo.Symbol, int]) -> list[list[GroundAction]]:
+    """Actions in groups that share one transition relation: in the order of the
+    variables they write, a group takes actions while they write at most
+    :data:`CLUSTER_VARIABLES` variables together."""
+    def written(action: GroundAction) -> list[int]:
+        return sorted({index[e.variable] for e in action.effects})
+
+    groups: list[list[GroundAction]] = []
+    variables: set[int] = set()
+    for action in sorted(model.actions, key=lambda a: (written(a), str(a.name))):
+        own = set(written(action))
+        if groups and len(variables | own) <= CLUSTER_VARIABLES:
+            groups[-1].append(action)
+            variables |= own
+        else:
+            groups.append([action])
+            variables = own
+    return groups
+
+
 def _backend():
     try:
         from dd import cudd
@@ -123,16 +147,12 @@ class Reachability:
         self._module = module
         self.bdd = module.BDD(memory_estimate=256 * 2**20) if compiled else module.BDD()
         self.index = {variable: i for i, variable in enumerate(model.variables)}
-        conditional = any(e.condition for a in model.actions for e in a.effects)
         names = []
         for i in range(len(model.variables)):
-            names.append(f"x{i}")
-            if conditional:
-                names.append(f"y{i}")  # the value after an action (conditional effects)
+            names += [f"x{i}", f"y{i}"]  # a variable's value before and after an action
         self.bdd.declare(*names)
         self.bdd.configure(reordering=True)
-        self._rename = {f"y{i}": f"x{i}" for i in range(len(model.variables))}
-        self._images = [self._image_parts(action) for action in model.actions]
+        self._images = [self._cluster(group) for group in _clusters(model, self.index)]
         init = self._cube([(v, v in model.init) for v in model.variables])
         self.layers = [init]
         self.reached = init
@@ -169,40 +189,42 @@ class Reachability:
 
     # -- images -------------------------------------------------------------------
 
-    def _image_parts(self, action: GroundAction):
-        """What the image of a set under the action needs: its relation over the
-        variables it writes, those variables, and whether a rename follows."""
-        pre = self._cube(action.pre)
-        written = sorted({e.variable for e in action.effects}, key=self.index.__getitem__)
+    def _after(self, action: GroundAction, variable: clingo.Symbol):
+        """The value of a written variable after the action, over the values before."""
+        adds, deletes = self.bdd.false, self.bdd.false
+        for effect in action.effects:
+            if effect.variable == variable:
+                fires = self._cube(effect.condition)
+                if effect.value:
+                    adds |= fires
+                else:
+                    deletes |= fires
+        return adds | (self._var(variable) & ~deletes)
+
+    def _cluster(self, actions: list[GroundAction]):
+        """The transition relation of a cluster of actions over the variables they
+        write (before: x, after: y), and what an image under it quantifies and renames."""
+        written = sorted({e.variable for a in actions for e in a.effects},
+                         key=self.index.__getitem__)
+        relation = self.bdd.false
+        for action in actions:
+            own = {e.variable for e in action.effects}
+            step = self._cube(action.pre)
+            for variable in written:
+                after = self._after(action, variable) if variable in own else self._var(variable)
+                step &= self._var(variable, after=True).equiv(after)
+            relation |= step
         qvars = [f"x{self.index[v]}" for v in written]
-        if all(not e.condition for e in action.effects):
-            values = {}
-            for effect in action.effects:
-                values[effect.variable] = values.get(effect.variable, False) or effect.value
-            return pre, qvars, self._cube(values.items()), False
-        relation = pre
-        for variable in written:
-            adds, deletes = self.bdd.false, self.bdd.false
-            for effect in action.effects:
-                if effect.variable == variable:
-                    fires = self._cube(effect.condition)
-                    if effect.value:
-                        adds |= fires
-                    else:
-                        deletes |= fires
-            after = adds | (self._var(variable) & ~deletes)
-            relation &= self._var(variable, after=True).equiv(after)
-        return relation, qvars, None, True
+        rename = {f"y{self.index[v]}": f"x{self.index[v]}" for v in written}
+        return relation, qvars, rename
 
     def _image(self, states, parts):
-        relation, qvars, effects, rename = parts
+        relation, qvars, rename = parts
         if self._compiled:
             moved = self._module.and_exists(states, relation, qvars)
         else:
             moved = self.bdd.exist(qvars, states & relation)
-        if rename:
-            return self.bdd.let(self._rename, moved)
-        return moved & effects
+        return self.bdd.let(rename, moved)
 
     def nodes(self) -> int:
         return len(self.bdd)

@@ -13,6 +13,11 @@ from ethasp.planning.naming import Naming
 from ethasp.planning.plan import Plan
 from ethasp.vocabulary import Failure, Final, Invalid, IsPlan, Unmet, UnmetGoal
 
+# The atoms of a plan's trace that a validation reads (planning/trace.lp).
+TRACE_ATOMS = (("invalid", 1), ("unmet", 4), ("failure", 1), ("final", 2), ("unmet_goal", 2),
+               ("plan", 0))
+
+
 def literal(variable: clingo.Symbol, value: str) -> str:
     """A fact as text: ``v`` for true, ``-v`` for false."""
     return str(variable) if value == "true" else f"-{variable}"
@@ -75,7 +80,7 @@ def _problem(problem: clingo.Symbol) -> str:
 def validate(model: Model, plan: Plan) -> Validation:
     """Validate a plan (its trace, computed once per plan by the model's
     planner); raise InputError if it names unknown actions."""
-    return read_validation(plan, model.planner.trace(plan))
+    return read_validation(plan, model.planner.trace(plan).select(TRACE_ATOMS))
 
 
 def read_validation(plan: Plan, symbols: list[clingo.Symbol]) -> Validation:

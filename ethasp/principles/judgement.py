@@ -35,21 +35,21 @@ from ethasp.planning.budget import Budget
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
-from ethasp.planning.validation import Validation, read_validation, validate
+from ethasp.planning.planner import Answer
+from ethasp.planning.validation import TRACE_ATOMS, Validation, read_validation, validate
 from ethasp.principles.formula import Elements, parse_formula
-from ethasp.principles.principle import Principle, select_principles
+from ethasp.principles.principle import Principle, available_principles, select_principles
 from ethasp.principles.utilitarianism import (BOUNDED, PROVEN, BestReachable, ReachableState,
                                               best_reachable, better_state)
 from ethasp.vocabulary import UtilityOfFinal, Verdict
 
 # The program that evaluates formulas over a plan's trace.
-FORMULAS = ("planning/model.lp", "judgement/language.lp")
+LANGUAGE = "judgement/language.lp"
+FORMULAS = ("planning/model.lp", LANGUAGE)
 QUERY_NAME = clingo.Function("query")
 
-# The atoms of a formula's evaluation that its reasons read (reasons/literals.lp,
-# comparison.lp, relevance.lp).
-EVIDENCE = (("formula", 2), ("member", 2), ("conj", 3), ("satisfied", 1), ("verdict", 2),
-            ("worth", 2), ("weight", 2))
+# What reasons read of an evaluation of formulas (its #show statements).
+EVIDENCE = "judgement/evidence.lp"
 
 
 @dataclass
@@ -120,35 +120,35 @@ def _require_plan(model: Model, validation: Validation) -> None:
         raise InputError(f"not a plan: {validation.message(model.naming)}")
 
 
+def evaluation(model: Model, plan: Plan) -> Answer:
+    """The plan's evaluation, computed once per plan by the model's planner: its
+    trace (validity, final state, Caused, utility) and the formula of every
+    principle that depends on the plan alone, with the atoms reasons read
+    (``judgement/evidence.lp``)."""
+    plain = [p.encoding for p in available_principles() if not p.reads_alternatives]
+    return model.planner.trace(plan, [LANGUAGE, EVIDENCE, *plain])
+
+
 def trace_facts(model: Model, plan: Plan) -> str:
     """A valid plan's trace as facts: ``occurs/2``, ``final/2``, ``caused/2``."""
+    trace = model.planner.trace(plan)
     text = "".join(f"occurs({action},{step}).\n" for step, action in enumerate(plan, start=1))
-    return text + "".join(f"{symbol}.\n" for symbol in model.planner.trace(plan)
-                          if symbol.name in ("final", "caused"))
+    return text + "".join(f"{symbol}.\n" for symbol in trace.select([("final", 2),
+                                                                       ("caused", 2)]))
 
 
 def final_utility(model: Model, plan: Plan) -> int:
     """u(s_n) of a plan's final state (``utility_of_final/1`` of judge.lp)."""
-    answer = unify([UtilityOfFinal], model.planner.trace(plan))
+    answer = unify([UtilityOfFinal], model.planner.trace(plan).get("utility_of_final", 1))
     return next(iter(answer.query(UtilityOfFinal).all())).utility
 
 
-def evaluate(model: Model, plan: Plan, encodings: Sequence[str], facts: str = ""
-             ) -> list[clingo.Symbol]:
-    """Evaluate formulas of L (given by principle encodings and facts) over a
-    plan's trace; every atom of the answer set."""
-    ctl = model.planner.program(list(FORMULAS) + list(encodings),
-                                trace_facts(model, plan) + facts)
-    with ctl.solve(yield_=True) as handle:
-        for answer in handle:
-            return list(answer.symbols(atoms=True))
-    raise InputError("the formulas could not be evaluated (no answer set)")
-
-
-def evidence(symbols: Iterable[clingo.Symbol]) -> list[clingo.Symbol]:
-    """The atoms of an evaluation that reasons read (:data:`EVIDENCE`)."""
-    wanted = set(EVIDENCE)
-    return [s for s in symbols if (s.name, len(s.arguments)) in wanted]
+def evaluate(model: Model, plan: Plan, encodings: Sequence[str], facts: str = "") -> Answer:
+    """Evaluate formulas of L (given by principle encodings and facts, for
+    instance a state to compare with) over a plan's trace: the verdicts and
+    the atoms that reasons read (``judgement/evidence.lp``)."""
+    return model.planner.solve_program(list(FORMULAS) + [EVIDENCE] + list(encodings),
+                                       trace_facts(model, plan) + facts)
 
 
 def _asp(facts: Iterable) -> str:
@@ -181,7 +181,7 @@ def _compare(model: Model, plan: Plan, utility: int, budget: Budget, max_horizon
         if best is None or best.found is None:
             # No reachable state is better, and the final state is reachable: it is a best one.
             final = [(s.arguments[0], s.arguments[1].name == "true")
-                     for s in planner.trace(plan) if s.name == "final"]
+                     for s in planner.trace(plan).get("final", 2)]
             best = BestReachable(PROVEN, f"the final state is reachable and {comparison.proof}",
                                  ReachableState(final, utility, len(plan)))
         return _Compared(True, PROVEN, comparison.proof, None, best)
@@ -202,20 +202,23 @@ def judge(model: Model, plan: Plan, principles: Iterable[str] | None = None,
     """
     budget = budget or Budget(time_limit)
     chosen = select_principles(principles)
-    validation = validate(model, plan)
+    answer = evaluation(model, plan)
+    validation = read_validation(plan, answer.select(TRACE_ATOMS))
     _require_plan(model, validation)
     utility = final_utility(model, plan)
     compared = None
     facts: list = []
-    if any(principle.reads_alternatives for principle in chosen):
+    comparing = [principle for principle in chosen if principle.reads_alternatives]
+    if comparing:
         compared = _compare(model, plan, utility, budget, max_horizon, best)
         if compared.state is not None:
             facts = compared.state.asp_facts()
         elif compared.best is not None and compared.best.found is not None:
             facts = compared.best.found.asp_facts()
-    symbols = evaluate(model, plan, [principle.encoding for principle in chosen], _asp(facts))
+        comparison = evaluate(model, plan, [p.encoding for p in comparing], _asp(facts))
+        answer = Answer(answer.get("verdict", 2) + comparison.get("verdict", 2))
     verdicts = {str(atom.name.symbol): atom.value == "true"
-                for atom in unify([Verdict], symbols).query(Verdict).all()}
+                for atom in unify([Verdict], answer.get("verdict", 2)).query(Verdict).all()}
     judgements = []
     for principle in chosen:
         permissible = verdicts[principle.asp_name]
@@ -238,7 +241,7 @@ def query(model: Model, plan: Plan, formula: str) -> QueryResult:
     """Evaluate a formula of L (text, see :mod:`ethasp.principles.formula`) for a plan."""
     parsed = parse_formula(formula, Elements.of_model(model))
     _require_plan(model, validate(model, plan))
-    symbols = evaluate(model, plan, [], _asp(parsed.facts(QUERY_NAME)))
-    verdicts = unify([Verdict], symbols).query(Verdict).all()
+    answer = evaluate(model, plan, [], _asp(parsed.facts(QUERY_NAME)))
+    verdicts = unify([Verdict], answer.get("verdict", 2)).query(Verdict).all()
     value = any(str(atom.name.symbol) == "query" and atom.value == "true" for atom in verdicts)
     return QueryResult(plan, str(parsed), value)

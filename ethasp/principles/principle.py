@@ -12,6 +12,7 @@ reachable state, as utilitarianism's ``/\\_i GEq(s_n, s_i)`` is (see
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Iterable
@@ -51,13 +52,19 @@ def _reads_alternatives(path: Path) -> bool:
     return bool(found)
 
 
-def available_principles() -> list[Principle]:
-    """Every principle of ``encodings/principles/``, by name."""
+@functools.lru_cache(maxsize=1)
+def _discover() -> tuple[Principle, ...]:
+    """Every principle of ``encodings/principles/`` (read once)."""
     result = []
     for path in sorted((ENCODINGS / FOLDER).glob("*.lp")):
         result.append(Principle(path.stem.replace("_", "-"), path.stem,
                                 f"{FOLDER}/{path.name}", _reads_alternatives(path)))
-    return result
+    return tuple(result)
+
+
+def available_principles() -> list[Principle]:
+    """Every principle of ``encodings/principles/``, by name."""
+    return list(_discover())
 
 
 def select_principles(names: Iterable[str] | None = None) -> list[Principle]:

@@ -137,6 +137,17 @@ def upper_bound(planner: Planner) -> int:
     return atoms[0].arguments[0].number
 
 
+# Models with more variables than this are first probed by short searches for a
+# better state (horizons, seconds each) before exact reachability.
+PROBE_VARIABLES = 64
+PROBE_HORIZONS = (1, 2, 4, 8)
+PROBE_SECONDS = 1.0
+
+
+def _steps(count: int) -> str:
+    return f"{count} step" if count == 1 else f"{count} steps"
+
+
 UB_PROOF = ("utility {u} is the upper bound (per variable, the best utility of a value "
             "reachable ignoring delete effects)")
 
@@ -242,6 +253,20 @@ def _better_state_unlocked(planner: Planner, utility: int, budget: Budget,
     bound = upper_bound(planner)
     if bound <= utility:
         return Comparison(PROVEN, f"no reachable state is better: {UB_PROOF.format(u=bound)}")
+    if len(planner.get("variable", 1)) > PROBE_VARIABLES:
+        # Large models: a few short searches first, each with a share of the time;
+        # a better state near the initial one decides before any diagram is built.
+        for horizon in PROBE_HORIZONS:
+            part = budget.share(PROBE_SECONDS)
+            outcome = planner.solve(horizon, Setting(goal=False, at_least=utility + 1), part)
+            if outcome.satisfiable:
+                facts = _read_state(outcome.symbols, horizon)
+                worth = planner.ground_model().utility(v for v, b in facts if b)
+                return Comparison(PROVEN, f"a state of utility {worth} is reachable within "
+                                          f"{_steps(horizon)}",
+                                  better=ReachableState(facts, worth, horizon))
+            if outcome.satisfiable is None and budget.expired():
+                return Comparison(BOUNDED, f"{budget.why_stopped()} at horizon {horizon}")
     found: list[Best] = []
 
     def decided(r: Reachability, k: int) -> bool:
@@ -258,7 +283,7 @@ def _better_state_unlocked(planner: Planner, utility: int, budget: Budget,
     if found:
         state = _state(variables, found[0])
         return Comparison(PROVEN, f"a state of utility {state.utility} is reachable in "
-                                  f"{state.distance} steps", better=state)
+                                  f"{_steps(state.distance)}", better=state)
     searched = len(r.layers) - 1
     if not stopped:
         best = r.best()

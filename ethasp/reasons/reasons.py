@@ -44,8 +44,7 @@ from ethasp.planning.plan import Plan
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
 from ethasp.planning.validation import validate
 from ethasp.principles.formula import format_literal
-from ethasp.principles.judgement import (Judgement, JudgementReport, evaluate, evidence,
-                                         trace_facts)
+from ethasp.principles.judgement import Judgement, JudgementReport, evaluate, evaluation
 from ethasp.principles.judgement import judge as judge_verdicts
 from ethasp.principles.principle import Principle, select_principles
 from ethasp.principles.utilitarianism import ReachableState, best_reachable
@@ -68,6 +67,10 @@ OPTIONS = ("--heuristic=Domain", "--opt-strategy=usc")
 OTHER = clingo.Function("other")
 
 LABELS = (("agent_label", 2), ("action_label", 3), ("fact_label", 3))
+
+# The atoms of an evaluation that the reasons' programs read (judgement/evidence.lp).
+EVIDENCE = (("formula", 2), ("member", 2), ("conj", 3), ("worth", 2), ("verdict", 2),
+            ("satisfied", 1), ("weight", 2))
 
 
 def _literals(symbols: Iterable[clingo.Symbol]) -> list[Literal]:
@@ -136,7 +139,7 @@ def other_state(model: Model, plan: Plan, budget: Budget,
                 max_horizon: int = DEFAULT_MAX_HORIZON) -> ReachableState | None:
     """A best reachable state other than the plan's final state (goal states
     first among equally good ones); None if there is none or none was found."""
-    final = [symbol for symbol in model.planner.trace(plan) if symbol.name == "final"]
+    final = model.planner.trace(plan).get("final", 2)
     other_than = [(s.arguments[0], s.arguments[1].name == "true") for s in final]
     best = best_reachable(model.planner, budget, max_horizon, other_than=other_than)
     return best.found
@@ -174,9 +177,9 @@ def explain(model: Model, plan: Plan, principle: str | Principle, limit: int = D
         if alternative is not None:
             facts = "".join(f"{fact}.\n" for fact in alternative.asp_facts(OTHER))
             compared = alternative.literals
-    symbols = evaluate(model, plan, [chosen.encoding], facts)
-    labels_text = "".join(f"{s}.\n" for signature in LABELS for s in model.planner.get(*signature))
-    program = ("".join(f"{s}.\n" for s in evidence(symbols)) + labels_text
+    answer = (evaluate(model, plan, [chosen.encoding], facts) if chosen.reads_alternatives
+              else evaluation(model, plan))
+    program = (answer.text(EVIDENCE) + model.planner.vocabulary_text(LABELS)
                + f"explain({chosen.asp_name}).\n")
     necessary_ctl = model.planner.program(NECESSARY, program, OPTIONS, model=False)
     best = _optimum(necessary_ctl)
@@ -187,7 +190,7 @@ def explain(model: Model, plan: Plan, principle: str | Principle, limit: int = D
     sufficient, sufficient_done = _enumerate(sufficient_ctl, limit)
     words = sufficient[0] if sufficient else []
     permissible = any(v.value == "true" and str(v.name.symbol) == chosen.asp_name
-                      for v in unify([Verdict], symbols).query(Verdict).all())
+                      for v in unify([Verdict], answer.get("verdict", 2)).query(Verdict).all())
     conj: dict[clingo.Symbol, list[tuple[clingo.Symbol, str]]] = {}
     for member in unify([Conjunct], words).query(Conjunct).all():
         conj.setdefault(member.name.symbol, []).append((member.variable.symbol, member.value))
