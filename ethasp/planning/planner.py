@@ -198,6 +198,7 @@ class Planner:
         self.ctl = model.control(OPTIONS, self.messages)
         self._parts: dict[str, tuple[str, ...]] = {}
         self._searching = False
+        self._mutex_pending = False
         self.grounded = -1            # step and check parts grounded up to this time
         self._loopfree = 0            # loopfree parts grounded up to this time
         self._inputs: dict[str, list[clingo.Symbol]] = {name: [] for name in incremental.INPUTS}
@@ -289,17 +290,20 @@ class Planner:
         switches = [GOAL_SWITCH] + [restriction_switch(p) for p in available_restrictions()]
         try:
             with clingo.ast.ProgramBuilder(self.ctl) as builder:
-                files = [(name, STEP, None) for name in SEARCH_ENCODINGS]
+                files = [(name, STEP, None, SEARCH) for name in SEARCH_ENCODINGS]
                 if len(self.get("variable", 1)) <= MUTEX_MAX_VARIABLES:
-                    files.append((MUTEX_ENCODING, STEP, None))
-                files.append((GOAL_ENCODING, STEP, GOAL_SWITCH))
-                files += [(f"{RESTRICTIONS}/{principle}.lp", STEP, restriction_switch(principle))
-                          for principle in available_restrictions()]
-                files.append((LOOPFREE_ENCODING, LOOPFREE, None))
-                for name, step_part, switch in files:
+                    # Grounded with the first step (searches that need no step,
+                    # such as the upper bound, do without it).
+                    files.append((MUTEX_ENCODING, STEP, None, MUTEX))
+                    self._mutex_pending = True
+                files.append((GOAL_ENCODING, STEP, GOAL_SWITCH, SEARCH))
+                files += [(f"{RESTRICTIONS}/{principle}.lp", STEP, restriction_switch(principle),
+                           SEARCH) for principle in available_restrictions()]
+                files.append((LOOPFREE_ENCODING, LOOPFREE, None, SEARCH))
+                for name, step_part, switch, base_part in files:
                     self._parts.update(incremental.add_encoding(
                         builder, encoding(name), step_part=step_part, switch=switch,
-                        on_message=self.messages, base_part=SEARCH))
+                        on_message=self.messages, base_part=base_part))
             for part, (parameters, text) in incremental.time_parts().items():
                 self.ctl.add(part, parameters, text)
             self.ctl.add(SEARCH, [], "time(0).\n" + "".join(f"#external {s}.\n" for s in switches))
@@ -330,6 +334,9 @@ class Planner:
         """Ground the step and check parts (and those of every input) up to ``horizon``."""
         self._start_search()
         parts = []
+        if self._mutex_pending and horizon > self.grounded:
+            parts.append((MUTEX, []))
+            self._mutex_pending = False
         for t in range(self.grounded + 1, horizon + 1):
             parts += [(STEP, [clingo.Number(t)]), (CHECK, [clingo.Number(t)])]
             for name, values in self._inputs.items():

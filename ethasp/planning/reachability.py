@@ -44,13 +44,21 @@ Literal = tuple[clingo.Symbol, bool]
 # resort must not eat the machine's memory).
 DEFAULT_NODE_LIMIT = 4_000_000
 
-# Images between two checks of the budget and the node count (counting the
-# nodes takes time of its own).
+# Images between two checks of the budget (the node count is checked once a
+# layer: counting the nodes takes time of its own).
 CHECK_EVERY = 8
 
 # A cluster of actions shares one transition relation over the variables they
 # write: one relational product per cluster instead of one image per action.
 CLUSTER_VARIABLES = 16
+
+# Live nodes before the first reordering of the variables.
+REORDER_NODES = 200_000
+
+# Rounds of the FORCE heuristic for the initial variable order; variables that
+# more than one action in HUB_SHARE uses take no part in it.
+FORCE_ROUNDS = 20
+HUB_SHARE = 20
 
 
 @dataclass(frozen=True)
@@ -97,6 +105,42 @@ class Best:
     utility: int
     state: frozenset[clingo.Symbol]
     layer: int
+
+
+def _order(model: GroundModel, index: dict[clingo.Symbol, int],
+           rounds: int = FORCE_ROUNDS) -> list[int]:
+    """A variable order for the diagrams: variables that actions use together
+    are placed near each other (the FORCE heuristic: each action pulls its
+    variables towards their centre, for a few rounds)."""
+    position = {i: float(i) for i in index.values()}
+    uses = []
+    for action in model.actions:
+        used = {index[v] for v, _ in action.pre} | {index[e.variable] for e in action.effects}
+        used |= {index[v] for e in action.effects for v, _ in e.condition}
+        uses.append(used)
+    # Variables that most actions use (a robot's hands, a fuel level) would pull
+    # everything together: they take no part in the pulling.
+    degree: dict[int, int] = {}
+    for used in uses:
+        for i in used:
+            degree[i] = degree.get(i, 0) + 1
+    hub = max(4, len(uses) // HUB_SHARE)
+    edges = [sorted(i for i in used if degree[i] <= hub) for used in uses]
+    edges = [edge for edge in edges if len(edge) > 1]
+    if not edges:
+        return sorted(position)
+    for _ in range(rounds):
+        total = {i: 0.0 for i in position}
+        count = {i: 0 for i in position}
+        for edge in edges:
+            centre = sum(position[i] for i in edge) / len(edge)
+            for i in edge:
+                total[i] += centre
+                count[i] += 1
+        moved = {i: (total[i] / count[i] if count[i] else position[i]) for i in position}
+        ranked = sorted(position, key=lambda i: (moved[i], i))
+        position = {i: float(rank) for rank, i in enumerate(ranked)}
+    return sorted(position, key=position.__getitem__)
 
 
 def _clusters(model: GroundModel, index: dict[clingo.Symbol, int]) -> list[list[GroundAction]]:
@@ -148,13 +192,18 @@ class Reachability:
         self.bdd = module.BDD(memory_estimate=256 * 2**20) if compiled else module.BDD()
         self.index = {variable: i for i, variable in enumerate(model.variables)}
         names = []
-        for i in range(len(model.variables)):
+        for i in _order(model, self.index):
             names += [f"x{i}", f"y{i}"]  # a variable's value before and after an action
         self.bdd.declare(*names)
-        self.bdd.configure(reordering=True)
+        # Reordering is costly: the diagrams are reordered only when they have
+        # grown (see _reorder), not at CUDD's small default thresholds.
+        self.bdd.configure(reordering=False)
+        self._next_reordering = REORDER_NODES
         self._images = [self._cluster(group) for group in _clusters(model, self.index)]
         init = self._cube([(v, v in model.init) for v in model.variables])
         self.layers = [init]
+        self._prefixes: list = []
+        self._relations: dict = {}
         self.reached = init
         self.complete = False
         self.stopped = ""
@@ -229,12 +278,29 @@ class Reachability:
     def nodes(self) -> int:
         return len(self.bdd)
 
+    def _reorder(self) -> None:
+        """Reorder the variables (sifting) when the diagrams have doubled since
+        the last reordering (and have at least REORDER_NODES nodes)."""
+        if not self._compiled:
+            return
+        nodes = self.nodes()
+        if nodes >= self._next_reordering:
+            self._module.reorder(self.bdd)
+            self._next_reordering = max(REORDER_NODES, 2 * self.nodes())
+
     def expand(self, budget: Budget | None = None) -> bool:
         """Compute the next layer; False (and :attr:`stopped` says why) if the
         budget or the node limit stopped it, True otherwise."""
         if self.complete:
             return True
         frontier = self.layers[-1]
+        if self._compiled and len(self.layers) > 1:
+            # States reached before the frontier may be added or left out of it
+            # (their successors were reached already): a smaller diagram.
+            earlier = self.reached & ~frontier
+            smaller = self._module.restrict(frontier, ~earlier)
+            if len(smaller) < len(frontier):
+                frontier = smaller
         new = self.bdd.false
         for count, parts in enumerate(self._images, start=1):
             new |= self._image(frontier, parts)
@@ -242,9 +308,10 @@ class Reachability:
                 if budget is not None and budget.expired():
                     self.stopped = budget.why_stopped()
                     return False
-                if self.nodes() > self.node_limit:
-                    self.stopped = f"more than {self.node_limit} diagram nodes"
-                    return False
+                self._reorder()
+        if self.nodes() > self.node_limit:
+            self.stopped = f"more than {self.node_limit} diagram nodes"
+            return False
         new &= ~self.reached
         if new == self.bdd.false:
             self.complete = True
@@ -262,12 +329,79 @@ class Reachability:
 
     # -- queries --------------------------------------------------------------------
 
+    def path_to(self, state: frozenset[clingo.Symbol], layer: int) -> list[clingo.Symbol]:
+        """The actions of a shortest path from the initial state to a state of
+        ``layer`` (given by its true variables): backwards, layer by layer, an
+        action and a predecessor in the layer before."""
+        actions: list[clingo.Symbol] = []
+        current = state
+        for k in range(layer, 0, -1):
+            step = self._predecessor(current, self.layers[k - 1])
+            if step is None:
+                raise RuntimeError(f"no predecessor of a state of layer {k} in layer {k - 1}")
+            action, current = step
+            actions.append(action)
+        return actions[::-1]
+
+    def _predecessor(self, state: frozenset[clingo.Symbol], layer):
+        """An action and a state of ``layer`` from which the action leads to ``state``."""
+        full = self.state(state)
+        for action in self.model.actions:
+            relation, written = self._relation(action)
+            after = self._cube([(v, v in state) for v in written], after=True)
+            qvars = [f"x{self.index[v]}" for v in written]
+            rest = self.bdd.exist(qvars, full)   # the variables the action leaves alone
+            before = self.bdd.exist([f"y{self.index[v]}" for v in written], relation & after)
+            before &= rest & layer
+            if before != self.bdd.false:
+                values = self.bdd.pick(before, care_vars=[f"x{i}" for i in
+                                                          range(len(self.model.variables))])
+                true = frozenset(v for v in self.model.variables
+                                 if values[f"x{self.index[v]}"])
+                return action.name, true
+        return None
+
+    def _relation(self, action: GroundAction):
+        """The transition relation of one action over the variables it writes."""
+        if action.name not in self._relations:
+            written = sorted({e.variable for e in action.effects}, key=self.index.__getitem__)
+            relation = self._cube(action.pre)
+            for variable in written:
+                relation &= self._var(variable, after=True).equiv(self._after(action, variable))
+            self._relations[action.name] = (relation, written)
+        return self._relations[action.name]
+
     def first_layer(self, states, start: int = 0) -> int | None:
         """The first computed layer (from ``start``) that meets the set, or None."""
         for k in range(start, len(self.layers)):
             if self.layers[k] & states != self.bdd.false:
                 return k
         return None
+
+    def prefix(self, k: int):
+        """The states of layers 0..k (reached within k steps)."""
+        if k >= len(self.layers) - 1:
+            return self.reached
+        while len(self._prefixes) <= k:
+            j = len(self._prefixes)
+            previous = self._prefixes[-1] if self._prefixes else self.bdd.false
+            self._prefixes.append(previous | self.layers[j])
+        return self._prefixes[k]
+
+    def distance(self, state: frozenset[clingo.Symbol]) -> int | None:
+        """The layer of a state (its shortest distance), if computed."""
+        cube = self.state(state)
+        for k, layer in enumerate(self.layers):
+            if layer & cube != self.bdd.false:
+                return k
+        return None
+
+    def best_of(self, states) -> Best | None:
+        """A state of maximal utility in a set (of computed layers), at its distance."""
+        if states == self.bdd.false:
+            return None
+        utility, true = self._max_utility(states)
+        return Best(utility, true, self.distance(true))
 
     def best(self, within=None, start: int = 0) -> Best | None:
         """A state of maximal utility among the computed layers from ``start``

@@ -33,7 +33,8 @@ from ethasp.planning.planner import Constraint, Setting
 from ethasp.planning.search import BOUNDED, DEFAULT_MAX_HORIZON, FOUND, NONE, shortest
 from ethasp.principles.principle import Principle, select_principles
 from ethasp.resources import ENCODINGS
-from ethasp.principles.utilitarianism import PROVEN, BestReachable, best_reachable, goal_distance
+from ethasp.principles.utilitarianism import (PROVEN, BestReachable, best_reachable,
+                                              goal_distance, goal_plan)
 
 RESTRICTIONS = "restrictions"
 
@@ -101,6 +102,16 @@ class HPlanResult:
         return data
 
 
+def _check_plan(model: Model, plan: Plan, utility: int) -> None:
+    """A plan found by exact reachability must be a plan whose final state is
+    worth ``utility`` or more (its trace, by the encodings)."""
+    from ethasp.planning.validation import validate
+    from ethasp.principles.judgement import final_utility
+
+    if not validate(model, plan).valid or final_utility(model, plan) < utility:
+        raise RuntimeError(f"exact reachability proposed {plan}, which the encodings refute")
+
+
 def plan_with_principles(model: Model, principles: Sequence[str],
                          max_horizon: int = DEFAULT_MAX_HORIZON,
                          time_limit: float | None = None,
@@ -129,6 +140,18 @@ def plan_with_principles(model: Model, principles: Sequence[str],
                                proof=f"no reachable state valued yet: {best.proof}")
         setting = Setting(restrictions=setting.restrictions, constraints=setting.constraints,
                           best_utility=best.utility)
+        pure = (not constraints and not all_plans
+                and all(principle.reads_alternatives for principle in chosen))
+        if pure and best.status == PROVEN:
+            # Exact reachability knows a shortest path to a best goal state: its
+            # plan is checked by the plan's trace, and no search is needed.
+            actions, status, why = goal_plan(planner, best.utility, budget, max_horizon)
+            if actions is not None:
+                plan = Plan(tuple(actions))
+                _check_plan(model, plan, best.utility)
+                return HPlanResult(FOUND, names, plan, len(plan),
+                                   f"a shortest {plans} permissible under {under}: no plan has "
+                                   f"fewer than {len(plan)} steps: {why}", [], best)
         distance, status, why = goal_distance(planner, best.utility, budget, max_horizon)
         if distance is None and status == PROVEN:
             return HPlanResult(NONE, names, None, best.searched,

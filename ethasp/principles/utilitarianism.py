@@ -202,48 +202,69 @@ def _restriction(r: Reachability, within: str, other_than):
     return states
 
 
+def _bound_states(planner: Planner, r: Reachability):
+    """The reachable states that attain the upper bound are those with every
+    ``best_fact/2`` of best.lp: a cube, cheap to test a layer against."""
+    facts = [(a.arguments[0], a.arguments[1].name == "true")
+             for a in planner.search_atoms("best_fact", 2)]
+    return r.condition(facts)
+
+
 def _best_exact(planner: Planner, budget: Budget, max_horizon: int, within: str,
                 other_than) -> BestReachable | None:
     bound = upper_bound(planner)
-    found: list[Best] = []
+    r = planner.reachability()
+    restriction = _restriction(r, within, other_than)
+    attaining = _bound_states(planner, r)
+    if restriction is not None:
+        attaining &= restriction
+    hit: list[int] = []
 
     def decided(r: Reachability, k: int) -> bool:
-        best = r.best_in_layer(k, _restriction(r, within, other_than))
-        if best is not None and (not found or best.utility > found[0].utility):
-            found[:] = [best]
-        budget.report("best reachable state", horizon=k,
-                      best=found[0].utility if found else None, bound=bound)
-        return bool(found) and found[0].utility >= bound
+        budget.report("best reachable state", horizon=k, bound=bound)
+        if r.layers[k] & attaining != r.bdd.false:
+            hit.append(k)
+            return True
+        return False
 
     r, stopped = _expand(planner, budget, max_horizon, decided, "best reachable state")
     variables = planner.ground_model().variables
     searched = len(r.layers) - 1
-    if found and found[0].utility >= bound:
-        return BestReachable(PROVEN, UB_PROOF.format(u=bound),
-                             _prefer_goal(r, found[0], within, other_than, variables), searched)
+    if hit:
+        states = r.prefix(hit[0]) & attaining
+        best = r.best_of(_goal_first(r, states))
+        return BestReachable(PROVEN, UB_PROOF.format(u=bound), _state(variables, best), searched)
+    reached = r.prefix(searched)
+    within_reached = reached if restriction is None else reached & restriction
+    best = r.best_of(within_reached)
+    if best is not None:
+        best = r.best_of(_goal_first(r, within_reached, best.utility)) or best
     if not stopped:
         proof = (f"every reachable state is known (exact reachability: no new state after "
-                 f"{searched} steps)")
-        if not found:
+                 f"{_steps(searched)})")
+        if best is None:
             return BestReachable(PROVEN, proof + "; none is in the set asked for", None, searched)
-        return BestReachable(PROVEN, proof, _prefer_goal(r, found[0], within, other_than,
-                                                         variables), searched)
+        return BestReachable(PROVEN, proof, _state(variables, best), searched)
     if "diagram nodes" in stopped and not budget.expired():
         return None  # the exact engine gave up: optimisation takes over
-    return BestReachable(BOUNDED, f"searched the states reached within {searched} steps; "
+    return BestReachable(BOUNDED, f"searched the states reached within {_steps(searched)}; "
                                   f"stopped: {stopped}",
-                         _state(variables, found[0]) if found else None, searched)
+                         _state(variables, best) if best else None, searched)
 
 
-def _prefer_goal(r: Reachability, best: Best, within: str, other_than, variables) -> ReachableState:
-    """Among the states as good as ``best`` in the layers computed, a goal state
-    if there is one (the paper's max returns goal states first), else ``best``."""
-    if within != "goal" and r.model.goal:
-        goal_states = _restriction(r, "goal", other_than)
-        candidate = r.best(goal_states)
-        if candidate is not None and candidate.utility == best.utility:
-            return _state(variables, candidate)
-    return _state(variables, best)
+def _goal_first(r: Reachability, states, utility: int | None = None):
+    """Goal states among ``states`` (of utility ``utility`` if given), if there
+    are such goal states as good as the best of ``states``; else ``states``.
+    The paper's max returns goal states first among equally good ones."""
+    if not r.model.goal:
+        return states
+    goal_states = states & r.goal()
+    if goal_states == r.bdd.false:
+        return states
+    if utility is None:
+        return goal_states  # every state of ``states`` attains the bound
+    best_goal = r.best_of(goal_states)
+    return goal_states if best_goal is not None and best_goal.utility == utility else states
 
 
 def _better_state_unlocked(planner: Planner, utility: int, budget: Budget,
@@ -286,10 +307,12 @@ def _better_state_unlocked(planner: Planner, utility: int, budget: Budget,
                                   f"{_steps(state.distance)}", better=state)
     searched = len(r.layers) - 1
     if not stopped:
-        best = r.best()
+        reached = r.prefix(searched)
+        best = r.best_of(reached)
+        best = r.best_of(_goal_first(r, reached, best.utility)) or best
         result = BestReachable(PROVEN, f"every reachable state is known (exact reachability: "
-                                       f"no new state after {searched} steps)",
-                               _prefer_goal(r, best, "all", None, variables), searched)
+                                       f"no new state after {_steps(searched)})",
+                               _state(variables, best), searched)
         return Comparison(PROVEN, f"no reachable state is better: {result.proof}", best=result)
     if "diagram nodes" in stopped and not budget.expired():
         return _better_by_search(planner, utility, budget, max_horizon)
@@ -383,21 +406,31 @@ def _better_by_search(planner: Planner, utility: int, budget: Budget,
 
 
 def _goal_distance_unlocked(planner: Planner, utility: int, budget: Budget,
-                  max_horizon: int = DEFAULT_MAX_HORIZON) -> tuple[int | None, str, str]:
-    """The length of a shortest path to a goal state of utility at least
-    ``utility``: (length, status, proof); length None with status proven when
-    no such state is reachable, with status bounded when the exact engine
-    stopped first."""
-    def decided(r: Reachability, k: int) -> bool:
-        best = r.best_in_layer(k, r.goal())
-        return best is not None and best.utility >= utility
+                            max_horizon: int = DEFAULT_MAX_HORIZON) -> tuple[int | None, str, str]:
+    r = planner.reachability()
+    goal = r.goal()
+    if utility >= upper_bound(planner):
+        wanted = goal & _bound_states(planner, r)   # a cube test per layer
 
-    r, stopped = _expand(planner, budget, max_horizon, decided, "a good goal state")
-    for k in range(len(r.layers)):
-        best = r.best_in_layer(k, r.goal())
-        if best is not None and best.utility >= utility:
-            return k, PROVEN, (f"exact reachability: no goal state of utility {utility} or more "
-                               f"is reachable in fewer than {k} steps")
+        def decided(r: Reachability, k: int) -> bool:
+            return r.layers[k] & wanted != r.bdd.false
+    else:
+        def decided(r: Reachability, k: int) -> bool:
+            found = r.best_in_layer(k, goal)
+            return found is not None and found.utility >= utility
+
+    hit: list[int] = []
+
+    def first(r: Reachability, k: int) -> bool:
+        if decided(r, k):
+            hit.append(k)
+            return True
+        return False
+
+    r, stopped = _expand(planner, budget, max_horizon, first, "a good goal state")
+    if hit:
+        return hit[0], PROVEN, (f"exact reachability: no goal state of utility {utility} or "
+                                f"more is reachable in fewer than {_steps(hit[0])}")
     if not stopped:
         return None, PROVEN, (f"no goal state of utility {utility} or more is reachable "
                               "(exact reachability: every reachable state is known)")
@@ -427,6 +460,22 @@ def better_state(planner: Planner, utility: int, budget: Budget | None = None,
     planner = getattr(planner, "planner", planner)
     with planner.lock:
         return _better_state_unlocked(planner, utility, budget or Budget(), max_horizon)
+
+
+def goal_plan(planner: Planner, utility: int, budget: Budget | None = None,
+              max_horizon: int = DEFAULT_MAX_HORIZON):
+    """A shortest plan to a goal state of utility at least ``utility``, from
+    exact reachability: (actions, status, proof); actions None when there is
+    no such plan (status proven) or the engine stopped first (bounded)."""
+    planner = getattr(planner, "planner", planner)
+    with planner.lock:
+        distance, status, proof = _goal_distance_unlocked(planner, utility, budget or Budget(),
+                                                          max_horizon)
+        if distance is None:
+            return None, status, proof
+        r = planner.reachability()
+        state = r.best_in_layer(distance, r.goal())
+        return r.path_to(state.state, distance), status, proof
 
 
 def goal_distance(planner: Planner, utility: int, budget: Budget | None = None,
