@@ -26,6 +26,7 @@ from __future__ import annotations
 import bisect
 import re
 from dataclasses import dataclass, field
+from functools import cached_property
 from pathlib import Path
 from typing import Union
 
@@ -35,6 +36,7 @@ FRAGMENT = ("ethasp reads STRIPS and ADL (typing, equality, negation, disjunctio
             "conditional effects), derived predicates and action costs")
 
 _TOKEN = re.compile(r";[^\n]*|[()]|[^\s();]+")
+_NAME = re.compile(r"[a-z][-_a-z0-9]*")
 _DEFINE = re.compile(r"\(\s*define\s*\(\s*(domain|problem)\b")
 _COMMENT = re.compile(r";[^\n]*")
 
@@ -84,14 +86,14 @@ class PddlFile:
         match = _DEFINE.search(_COMMENT.sub("", self.text))
         return match.group(1) if match else None
 
+    @cached_property
+    def _line_starts(self) -> list[int]:
+        return [0] + [match.end() for match in re.finditer("\n", self.text)]
+
     def position(self, pos: int) -> tuple[int, int]:
         """Line and column (both from 1) of an offset."""
-        starts = self.__dict__.get("_starts")
-        if starts is None:
-            starts = [0] + [match.end() for match in re.finditer("\n", self.text)]
-            object.__setattr__(self, "_starts", starts)
-        line = bisect.bisect_right(starts, pos)
-        return line, pos - starts[line - 1] + 1
+        line = bisect.bisect_right(self._line_starts, pos)
+        return line, pos - self._line_starts[line - 1] + 1
 
     def at(self, expr: Expr | int) -> str:
         """``file:line`` of an expression, for messages."""
@@ -348,7 +350,7 @@ class _Reader:
 
     def name(self, expr: Expr, what: str = "a name") -> str:
         word = self.word(expr, what)
-        if word.startswith("?") or word.startswith(":") or not word[0].isalpha():
+        if not _NAME.fullmatch(word):
             raise self.file.syntax_error(word, f"expected {what}, found {word!r}")
         return str(word)
 
@@ -389,7 +391,7 @@ class _Reader:
                 continue
             if variables:
                 word = self.word(item, "a variable ?x")
-                if not word.startswith("?") or len(word) < 2:
+                if not word.startswith("?") or not _NAME.fullmatch(word[1:]):
                     raise self.file.syntax_error(word, f"expected a variable ?x, found {word!r}")
                 pending.append(str(word[1:]))
             else:
@@ -404,8 +406,8 @@ class _Reader:
         if isinstance(expr, Group):
             raise self.file.unsupported(expr, "numeric fluents (a function as a term)")
         if expr.startswith("?"):
-            if len(expr) < 2:
-                raise self.file.syntax_error(expr, "a variable needs a name")
+            if not _NAME.fullmatch(expr[1:]):
+                raise self.file.syntax_error(expr, f"expected a variable ?x, found {expr!r}")
             return str(expr)
         return self.name(expr, "a term")
 
