@@ -26,7 +26,7 @@ def spec_of(seed: int):
                         derived=seed % 2 == 0, far_goal=seed % 4 < 2)
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=150, deadline=None)
 @given(SEEDS)
 def test_shortest_plans_agree_with_the_oracle(seed):
     spec = spec_of(seed)
@@ -80,7 +80,7 @@ PRINCIPLES = [["deontology"], ["do-no-harm"], ["utilitarianism"],
               ["deontology", "do-no-harm", "utilitarianism"]]
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=150, deadline=None)
 @given(SEEDS, st.sampled_from(PRINCIPLES))
 def test_hplans_agree_with_the_oracle(seed, principles):
     spec = spec_of(seed)
