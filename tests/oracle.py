@@ -2,6 +2,14 @@
 
 Explicit states (frozensets of true variables), breadth-first search, and a
 generator of small random models.  Used only by tests, as an oracle.
+
+Models may also have conditional effects and derived variables (the model
+vocabulary of encodings/planning/model.lp): an effect fires when its
+conditions hold in the state before the action, and when firing effects set a
+variable both ways, true wins; a derived variable holds in a state when all
+conditions of one of its axioms hold there (axioms of a derived variable read
+only state variables and derived variables defined before it).  An effect
+counts for Caused(p) and for do-no-harm only when it fires.
 """
 
 from __future__ import annotations
@@ -21,23 +29,47 @@ class RandomModel:
     goal: dict[str, bool]
     action_utility: dict[str, int] = field(default_factory=dict)
     fact_utility: dict[tuple[str, bool], int] = field(default_factory=dict)
+    # conditional effects: per action, (name, conditions, effects)
+    ceff: dict[str, list[tuple[str, dict[str, bool], dict[str, bool]]]] = \
+        field(default_factory=dict)
+    # derived variables, in order: each with its axioms (conditions)
+    derived: dict[str, list[dict[str, bool]]] = field(default_factory=dict)
 
     # -- semantics ------------------------------------------------------------
 
-    def applicable(self, state: frozenset, action: str) -> bool:
-        return all((var in state) == value for var, value in self.pre[action].items())
-
-    def apply(self, state: frozenset, action: str) -> frozenset:
+    def extended(self, state: frozenset) -> frozenset:
+        """The state with the derived variables that hold in it."""
         result = set(state)
-        for var, value in self.eff[action].items():
-            if value:
-                result.add(var)
-            else:
-                result.discard(var)
+        for name, axioms in self.derived.items():
+            if any(all((var in result) == value for var, value in axiom.items())
+                   for axiom in axioms):
+                result.add(name)
         return frozenset(result)
 
+    def satisfies(self, state: frozenset, conditions: dict[str, bool]) -> bool:
+        full = self.extended(state) if self.derived else state
+        return all((var in full) == value for var, value in conditions.items())
+
+    def applicable(self, state: frozenset, action: str) -> bool:
+        return self.satisfies(state, self.pre[action])
+
+    def firing(self, state: frozenset, action: str) -> list[tuple[str, bool]]:
+        """The effects of an action that fire in a state: unconditional ones
+        and conditional ones whose conditions hold."""
+        effects = list(self.eff[action].items())
+        for _, conditions, sets in self.ceff.get(action, []):
+            if self.satisfies(state, conditions):
+                effects += list(sets.items())
+        return effects
+
+    def apply(self, state: frozenset, action: str) -> frozenset:
+        effects = self.firing(state, action)
+        adds = {var for var, value in effects if value}
+        dels = {var for var, value in effects if not value}
+        return frozenset((set(state) - dels) | adds)
+
     def is_goal(self, state: frozenset) -> bool:
-        return all((var in state) == value for var, value in self.goal.items())
+        return self.satisfies(state, self.goal)
 
     def run(self, plan: list[str]) -> frozenset | None:
         state = self.init
@@ -80,11 +112,19 @@ class RandomModel:
     def bad_fact(self, var: str, value: bool) -> bool:
         return self.fact_utility.get((var, value), 0) < 0
 
+    def effects_of(self, plan: list[str]) -> set[tuple[str, bool]]:
+        """The effects of the plan's actions that fired (the plan applicable)."""
+        state, effects = self.init, set()
+        for action in plan:
+            effects |= set(self.firing(state, action))
+            state = self.apply(state, action)
+        return effects
+
     def caused(self, plan: list[str]) -> set[tuple[str, bool]]:
-        """Caused(p): p holds in the final state and some action of the plan has p as effect."""
+        """Caused(p): p holds in the final state and some action of the plan has p
+        as an effect (that fired)."""
         final = self.run(plan)
-        effects = {(var, value) for action in plan for var, value in self.eff[action].items()}
-        return {(var, value) for var, value in effects if (var in final) == value}
+        return {(var, value) for var, value in self.effects_of(plan) if (var in final) == value}
 
     def best_reachable_utility(self) -> int:
         return max(self.state_utility(state) for state in self.distances())
@@ -132,7 +172,7 @@ class RandomModel:
                 if "deontology" in principles and self.bad_action(action):
                     continue
                 succ = (self.apply(state, action),
-                        effected | {(var, value) for var, value in self.eff[action].items()
+                        effected | {(var, value) for var, value in self.firing(state, action)
                                     if self.bad_fact(var, value)})
                 if succ not in dist:
                     dist[succ] = dist[node] + 1
@@ -147,6 +187,15 @@ class RandomModel:
         for a in self.actions:
             lines += [f"pre({a},{v},{str(b).lower()})." for v, b in self.pre[a].items()]
             lines += [f"eff({a},{v},{str(b).lower()})." for v, b in self.eff[a].items()]
+        for a, effects in self.ceff.items():
+            for k, conditions, sets in effects:
+                lines += [f"ceff({a},{k},{v},{str(b).lower()})." for v, b in sets.items()]
+                lines += [f"cpre({a},{k},{v},{str(b).lower()})." for v, b in conditions.items()]
+        for d, axioms in self.derived.items():
+            lines.append(f"derived({d}).")
+            for k, conditions in enumerate(axioms):
+                lines.append(f"axiom({d},{k}).")
+                lines += [f"axiom_pre({d},{k},{v},{str(b).lower()})." for v, b in conditions.items()]
         lines += [f"init({v})." for v in sorted(self.init)]
         lines += [f"goal({v},{str(b).lower()})." for v, b in self.goal.items()]
         lines += [f"utility({a},{u})." for a, u in self.action_utility.items()]
@@ -154,7 +203,14 @@ class RandomModel:
         return "\n".join(lines) + "\n"
 
 
-def random_model(seed: int, max_variables: int = 4, max_actions: int = 4) -> RandomModel:
+def random_model(seed: int, max_variables: int = 4, max_actions: int = 4,
+                 conditional: bool = False, derived: bool = False,
+                 far_goal: bool = False) -> RandomModel:
+    """A small random model; with ``conditional``, actions also get conditional
+    effects, and with ``derived``, derived variables that preconditions,
+    conditions and the goal may read (the model without them is the same).
+    With ``far_goal`` the goal is made of literals of a reachable state
+    farthest from the initial state (so that plans are longer)."""
     rng = random.Random(seed)
     variables = [f"v{i}" for i in range(rng.randint(1, max_variables))]
     actions = [f"a{i}" for i in range(rng.randint(1, max_actions))]
@@ -171,7 +227,48 @@ def random_model(seed: int, max_variables: int = 4, max_actions: int = 4) -> Ran
     action_utility = {a: rng.randint(-2, 2) for a in actions if rng.random() < 0.6}
     fact_utility = {(v, b): rng.randint(-3, 3) for v in variables for b in (True, False)
                     if rng.random() < 0.5}
-    return RandomModel(variables, actions, pre, eff, init, goal, action_utility, fact_utility)
+    spec = RandomModel(variables, actions, pre, eff, init, goal, action_utility, fact_utility)
+    if derived:
+        _add_derived(spec, rng)
+    if conditional:
+        _add_conditional_effects(spec, rng)
+    if far_goal:
+        distances = spec.distances()
+        far = max(distances.values())
+        state = rng.choice(sorted((s for s, d in distances.items() if d == far), key=sorted))
+        differ = [v for v in spec.variables if (v in state) != (v in spec.init)]
+        chosen = rng.sample(differ, min(len(differ), rng.randint(1, 3))) or spec.variables[:1]
+        spec.goal = {v: v in state for v in chosen}
+    return spec
+
+
+def _add_derived(spec: RandomModel, rng: random.Random) -> None:
+    readable = list(spec.variables)
+    for index in range(rng.randint(1, 2)):
+        name = f"d{index}"
+        spec.derived[name] = [
+            {v: rng.random() < 0.5 for v in rng.sample(readable, rng.randint(0, min(2, len(readable))))}
+            for _ in range(rng.randint(0 if rng.random() < 0.2 else 1, 2))]
+        readable.append(name)
+    for a in spec.actions:
+        if rng.random() < 0.3:
+            spec.pre[a][rng.choice(list(spec.derived))] = rng.random() < 0.5
+    if rng.random() < 0.3:
+        spec.goal[rng.choice(list(spec.derived))] = rng.random() < 0.5
+
+
+def _add_conditional_effects(spec: RandomModel, rng: random.Random) -> None:
+    readable = list(spec.variables) + list(spec.derived)
+    for a in spec.actions:
+        effects = []
+        for k in range(rng.randint(0, 2)):
+            conditions = {v: rng.random() < 0.5
+                          for v in rng.sample(readable, rng.randint(0, min(2, len(readable))))}
+            sets = {v: rng.random() < 0.5
+                    for v in rng.sample(spec.variables, rng.randint(1, min(2, len(spec.variables))))}
+            effects.append((f"k{k}", conditions, sets))
+        if effects:
+            spec.ceff[a] = effects
 
 
 # -- the language L, read literally (section "Moral Action Query Language") ------
@@ -196,10 +293,7 @@ def holds(spec: RandomModel, plan: list[str], formula: tuple) -> bool:
     if kind == "neutral":
         return element_utility(spec, formula[1]) == 0
     if kind == "caused":
-        final = spec.run(plan)
-        fact = (formula[1], formula[2])
-        in_final = (fact[0] in final) == fact[1]
-        return in_final and any(spec.eff[action].get(fact[0]) == fact[1] for action in plan)
+        return (formula[1], formula[2]) in spec.caused(plan)
     if kind == "geq":
         def worth(facts):
             return sum(spec.fact_utility.get(fact, 0) for fact in set(facts))

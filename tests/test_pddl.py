@@ -196,21 +196,22 @@ def domain(pre="(p ?x)", eff="(q ?x)", extra="", requirements=""):
 
 
 UNSUPPORTED = [
-    (domain(eff="(when (p ?x) (q ?x))", requirements=":conditional-effects"), "conditional effects"),
-    (domain(eff="(forall (?y - thing) (q ?y))", requirements=":conditional-effects"), "forall"),
-    (domain(pre="(exists (?y - thing) (p ?y))", requirements=":existential-preconditions"),
-     "exists"),
-    (domain(pre="(or (p ?x) (q ?x))", requirements=":disjunctive-preconditions"), "disjunctive"),
-    (domain(pre="(imply (p ?x) (q ?x))", requirements=":disjunctive-preconditions"), "imply"),
-    (domain(extra="(:functions (fuel) - number)", requirements=":numeric-fluents"), "numeric"),
-    (domain(eff="(and (q ?x) (increase (total-cost) 1))", requirements=":action-costs"),
-     "increase"),
-    (domain(pre="(> (fuel) 1)", requirements=":numeric-fluents"), "numeric comparisons"),
-    (domain(extra="(:derived (q ?x - thing) (p ?x))", requirements=":derived-predicates"),
-     "derived predicates"),
+    (domain(extra="(:functions (fuel) - number)", pre="(> (fuel) 1)",
+            requirements=":numeric-fluents"), "numeric comparisons (>)"),
+    (domain(extra="(:functions (fuel) - number)", eff="(and (q ?x) (increase (fuel) 1))",
+            requirements=":numeric-fluents"), "numeric effects (increase)"),
+    (domain(extra="(:functions (fuel) - number)", eff="(decrease (fuel) 1)",
+            requirements=":numeric-fluents"), "numeric effects (decrease)"),
+    (domain(extra="(:functions (fuel) - number)", pre="(= (fuel) 1)",
+            requirements=":numeric-fluents"), "numeric fluents (= on a function)"),
+    (domain(eff="(oneof (q ?x) (p ?x))"), "non-deterministic effects (oneof)"),
     (domain().replace(":action a", ":durative-action a"), "durative actions"),
+    (domain().replace("(:action a", "(:process a"), "processes"),
+    (domain().replace("(:action a", "(:event a"), "events"),
+    (domain(extra="(:constraints (always (p o)))"), "constraints"),
+    (domain(pre="(preference p1 (p ?x))"), "preferences"),
     (domain(requirements=":durative-actions"), ":durative-actions"),
-    (domain().replace("?x - thing)", "?x - (either thing object))", 1), "either"),
+    (domain(requirements=":timed-initial-literals"), ":timed-initial-literals"),
 ]
 
 
@@ -256,12 +257,11 @@ def test_problem_for_another_domain(tmp_path):
 
 
 def test_command_line_errors_are_one_line_with_exit_code_2(tmp_path):
-    (tmp_path / "d.pddl").write_text(domain(eff="(when (p ?x) (q ?x))",
-                                            requirements=":conditional-effects"))
+    (tmp_path / "d.pddl").write_text(domain(eff="(oneof (p ?x) (q ?x))"))
     (tmp_path / "broken.pddl").write_text(domain().replace("(:types", "(:types (", 1))
     (tmp_path / "p.pddl").write_text(PROBLEM)
     for files, needle in [(["d.pddl", "p.pddl"], "d.pddl:8: unsupported PDDL feature: "
-                                                 "conditional effects (when)"),
+                                                 "non-deterministic effects (oneof)"),
                           (["broken.pddl", "p.pddl"], "broken.pddl:3:"),
                           (["p.pddl"], "one domain file")]:
         run = ethasp("plan", *files, cwd=tmp_path)

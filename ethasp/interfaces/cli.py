@@ -31,8 +31,9 @@ Lindner, Krivic and Long, "Understanding a Robot's Guiding Ethical Principles
 via Automatically Generated Explanations" (IEEE CASE 2021).
 
 MODEL is one or more ASP files in the vocabulary variable/1, action/1, pre/3,
-eff/3, init/1, goal/2, utility/2, utility/3, or a PDDL domain and problem
-(.pddl) with ASP annotation files; the name of a bundled model (e.g. trolley)
+eff/3, ceff/4, cpre/4, init/1, goal/2, utility/2, utility/3 (derived variables:
+derived/1, axiom/2, axiom_pre/4), or a PDDL domain and problem (STRIPS, ADL,
+derived predicates) with ASP annotation files; the name of a bundled model (e.g. trolley)
 also works.  Bad input gets one line on standard error and exit code 2."""
 
 

@@ -43,6 +43,20 @@ def _describe(problem: clingo.Symbol) -> str:
         return f"two different utilities for one element, one of them {args[0]}"
     if name == "contradicting_effects":
         return f"action {args[0]} sets variable {args[1]} both to true and to false"
+    if name == "condition_without_effect":
+        return f"{args[0]} is a condition of a conditional effect that no ceff/4 has"
+    if name == "derived_misuse":
+        return (f"derived variable {args[0]} in {args[1]} (a derived variable is computed "
+                "from the state: no effect sets it, no initial value, no utility)")
+    if name == "derived_and_variable":
+        return f"{args[0]} is declared both a variable and a derived variable"
+    if name == "undeclared_derived":
+        return f"{args[1]} defines {args[0]}, which is not declared by derived({args[0]})"
+    if name == "condition_without_axiom":
+        return f"{args[0]} is a condition of an axiom that no axiom/2 has"
+    if name == "unstratified":
+        return (f"derived variable {args[0]} depends on the negation of {args[1]}, which "
+                f"depends on {args[0]} (derived variables must be stratified)")
     if name == "no_goal":
         return "the model has no goal (add goal(V,true) or goal(V,false) facts)"
     return str(problem)

@@ -1,17 +1,9 @@
-"""PDDL input: a STRIPS domain and problem as lifted ASP rules.
+"""PDDL input: a domain and problem as lifted ASP rules that clingo grounds.
 
-The fragment read is STRIPS with ``:typing``, ``:negative-preconditions`` and
-``:equality``: preconditions and goals are conjunctions of atoms and negated
-atoms (preconditions also of ``(= t1 t2)`` and ``(not (= t1 t2))``), effects
-are conjunctions of atoms and negated atoms.  Any other feature (conditional
-or quantified effects, disjunctions, numeric fluents, durative actions,
-derived predicates, ...) is refused with an InputError naming it.
-
-Files are parsed with the ``pddl`` package after lowering their case (PDDL
-is case-insensitive, the package's keywords are not).  The translation does
-not ground anything: it writes rules over the model vocabulary of
-``encodings/planning/model.lp`` and the typing vocabulary of ``encodings/planning/pddl.lp``,
-and clingo grounds them.  For a domain with ``(:types room robot)`` and
+The files are read by :mod:`ethasp.planning.pddl_syntax`; this module writes
+rules over the model vocabulary of ``encodings/planning/model.lp`` and the
+typing vocabulary of ``encodings/planning/pddl.lp``.  Nothing is grounded in
+Python.  For a domain with ``(:types room robot)`` and
 
     (:action move :parameters (?r - robot ?from ?to - room)
       :precondition (and (at ?r ?from) (not (= ?from ?to)))
@@ -25,341 +17,545 @@ it writes
     pddl_del(move(R,From,To),at(R,From)) :- action(move(R,From,To)).
     pddl_add(move(R,From,To),at(R,To)) :- action(move(R,From,To)).
 
-plus ``variable/1`` rules for every predicate, ``pddl_object/2`` and
-``pddl_subtype/2`` facts for objects and types, and ``init/1`` and ``goal/2``
-facts.  Names follow the rule of :mod:`ethasp.planning.naming` (``five-will-die`` is
-``five_will_die``).
+plus ``variable/1`` (``derived/1`` for derived predicates) rules for every
+predicate, ``pddl_object/2`` and ``pddl_subtype/2`` facts for objects and
+types, and ``init/1`` and ``goal/2`` facts.  Names follow the rule of
+:mod:`ethasp.planning.naming` (``five-will-die`` is ``five_will_die``).
+
+The ADL fragment
+----------------
+Formulas (preconditions, goals, conditions of effects, bodies of derived
+predicates) are first put in negation normal form (``imply`` and ``not``
+pushed down to atoms, ``forall`` and ``exists`` swapped under ``not``).
+
+* A conjunction of literals becomes ``pre/3`` (``goal/2``, ``cpre/4``,
+  ``axiom_pre/4``) literals; ``=`` and ``not =`` become comparisons in the
+  rule body (in a precondition, they decide which actions exist).
+* Any other subformula (``or``, ``exists``, ``forall``) becomes an auxiliary
+  derived variable ``formula_N(X,...)`` over its free variables, defined by
+  axioms (``derived/1``, ``axiom/2``, ``axiom_pre/4``), as Fast Downward's
+  translator does with axioms: a disjunction has one axiom per disjunct, an
+  existential's variables become part of the axiom's name, and ``forall x
+  F`` is the negation of ``exists x (not F)``.  The model then only needs
+  conjunctions of literals over state variables and derived variables.
+* Where a disjunction or an existential makes up a whole axiom body or a
+  whole effect condition, it is split into several axioms (effects) instead.
+* ``(when C E)`` and ``(forall (?x) E)`` effects become conditional effects
+  ``ceff(A,K,V,B)`` with conditions ``cpre(A,K,W,C)``, where ``K`` is
+  ``N`` or ``(N,X,...)``: the effect's number within the action and the
+  values of the variables it is quantified over.  An effect without a
+  condition is an unconditional one (``pddl_add/2``, ``pddl_del/2``).
+* ``(:derived (p ?x) F)`` gives ``axiom(p(X),K)`` with ``K = (J,I,...)``:
+  the definition's number, the disjunct's number and its existential
+  variables.
+
+Leniency, as planners have it: requirements used but not declared are
+accepted with one warning line per file on standard error; domain constants
+that only the problem declares (as objects) are accepted; an atom that the
+domain or problem uses is a state variable even if its arguments do not
+match the predicate's declared types.  Action costs (``increase`` of
+``total-cost``, numeric facts in the initial state and a ``:metric``) are
+ignored with a warning: plans are shortest in number of actions.  Other
+numeric features, durative actions, processes and events are refused with
+one line naming them.
 """
 
 from __future__ import annotations
 
-import re
 import sys
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Iterable, Sequence
 
 from ethasp.errors import InputError
 from ethasp.planning.naming import pddl_name_to_asp
+from ethasp.planning.pddl_syntax import (FRAGMENT, IMPLIED, Action, AllEffects, And, Atom,
+                                         CostEffect, Derived, Domain, Effect, Equal, Exists,
+                                         Forall, ForallEffect, Formula, Imply, Literal, Not, Or,
+                                         Param, PddlFile, Problem, When, read_domain,
+                                         read_problem)
 
-FRAGMENT = "ethasp reads STRIPS with :typing, :negative-preconditions and :equality"
+__all__ = ["FRAGMENT", "PddlFile", "translate", "translate_files", "is_pddl", "split_paths"]
 
-# Keywords (the word after an opening parenthesis) outside the fragment.
-UNSUPPORTED = {
-    "when": "conditional effects (when)",
-    "forall": "universal quantifiers (forall)",
-    "exists": "existential quantifiers (exists)",
-    "or": "disjunctive conditions (or)",
-    "imply": "implications (imply)",
-    "oneof": "non-deterministic effects (oneof)",
-    "either": "either-types (either)",
-    "increase": "numeric effects (increase)",
-    "decrease": "numeric effects (decrease)",
-    "assign": "numeric effects (assign)",
-    "scale-up": "numeric effects (scale-up)",
-    "scale-down": "numeric effects (scale-down)",
-    "<": "numeric comparisons (<)",
-    ">": "numeric comparisons (>)",
-    "<=": "numeric comparisons (<=)",
-    ">=": "numeric comparisons (>=)",
-    ":functions": "numeric fluents (:functions)",
-    ":derived": "derived predicates (:derived)",
-    ":durative-action": "durative actions (:durative-action)",
-    ":process": "processes (:process)",
-    ":event": "events (:event)",
-    ":constraints": "constraints (:constraints)",
-    "preference": "preferences (preference)",
-    ":metric": "plan metrics (:metric)",
-}
+AUXILIARY = "formula"
 
-# Requirements that the pddl package knows; others are refused by name.
-KNOWN_REQUIREMENTS = {
-    ":strips", ":typing", ":negative-preconditions", ":equality", ":adl",
-    ":disjunctive-preconditions", ":existential-preconditions",
-    ":universal-preconditions", ":quantified-preconditions", ":conditional-effects",
-    ":derived-predicates", ":non-deterministic", ":fluents", ":numeric-fluents",
-    ":action-costs",
-}
 
-_COMMENT = re.compile(r";[^\n]*")
-_OPENING = re.compile(r"\(\s*([^\s()]+)")
-_REQUIREMENTS = re.compile(r"\(\s*:requirements\b([^()]*)\)")
-_DEFINE = re.compile(r"\(\s*define\s*\(\s*(domain|problem)\b")
-
+# -- negation normal form ---------------------------------------------------------
 
 @dataclass(frozen=True)
-class PddlFile:
-    """A PDDL file's text, lower case, with its name for messages."""
+class Lit:
+    """A literal of a formula in negation normal form: an atom or an equality."""
 
-    name: str
-    text: str
-
-    @classmethod
-    def read(cls, path: Path) -> "PddlFile":
-        if not path.is_file():
-            raise InputError(f"{path}: no such file")
-        try:
-            return cls(str(path), path.read_text().lower())
-        except (OSError, UnicodeDecodeError) as exc:
-            raise InputError(f"{path}: cannot be read ({exc})") from None
-
-    def kind(self) -> str | None:
-        """``domain``, ``problem`` or None, from the ``(define (...`` header."""
-        match = _DEFINE.search(_COMMENT.sub("", self.text))
-        return match.group(1) if match else None
+    atom: Atom | Equal
+    positive: bool
 
 
-def _line(text: str, offset: int) -> int:
-    return text.count("\n", 0, offset) + 1
+TRUE, FALSE = And(()), Or(())
 
 
-def check_fragment(file: PddlFile) -> None:
-    """Refuse, naming it, the first feature outside the fragment (by keyword)."""
-    text = _COMMENT.sub(lambda match: " " * len(match.group(0)), file.text)
-    for match in _OPENING.finditer(text):
-        word = match.group(1)
-        if word in UNSUPPORTED:
-            raise InputError(f"{file.name}:{_line(text, match.start())}: unsupported PDDL "
-                             f"feature: {UNSUPPORTED[word]}; {FRAGMENT}")
-        if word == "=" and re.match(r"\(\s*=\s*\(", text[match.start():]):
-            raise InputError(f"{file.name}:{_line(text, match.start())}: unsupported PDDL "
-                             f"feature: numeric fluents (= on a function); {FRAGMENT}")
-    for match in _REQUIREMENTS.finditer(text):
-        for requirement in match.group(1).split():
-            if requirement not in KNOWN_REQUIREMENTS:
-                raise InputError(f"{file.name}:{_line(text, match.start())}: unsupported PDDL "
-                                 f"requirement {requirement}; {FRAGMENT}")
+def nnf(formula: Formula, positive: bool = True):
+    """The negation normal form of a formula (or of its negation)."""
+    if isinstance(formula, (Atom, Equal)):
+        return Lit(formula, positive)
+    if isinstance(formula, Not):
+        return nnf(formula.argument, not positive)
+    if isinstance(formula, And):
+        parts = tuple(nnf(part, positive) for part in formula.parts)
+        return And(parts) if positive else Or(parts)
+    if isinstance(formula, Or):
+        parts = tuple(nnf(part, positive) for part in formula.parts)
+        return Or(parts) if positive else And(parts)
+    if isinstance(formula, Imply):
+        return nnf(Or((Not(formula.left), formula.right)), positive)
+    if isinstance(formula, Exists):
+        body = nnf(formula.body, positive)
+        return Exists(formula.params, body) if positive else Forall(formula.params, body)
+    if isinstance(formula, Forall):
+        body = nnf(formula.body, positive)
+        return Forall(formula.params, body) if positive else Exists(formula.params, body)
+    raise TypeError(formula)
 
 
-# -- parsing --------------------------------------------------------------------
-
-def _parsers():
-    """The pddl package's parsers, with two changes.
-
-    pddl 0.5 fails on an action without ``:precondition`` (or ``:effect``);
-    an empty conjunction stands in for the missing part.  And the grammar
-    tables are cached (lark's ``cache``, in the temporary folder), which
-    saves about 0.1 seconds for each file read.
-    """
-    from lark import Lark
-    from lark import Transformer as LarkTransformer
-    from pddl.logic.base import And
-    from pddl.parser import GRAMMAR_FILE, PARSERS_DIRECTORY
-    from pddl.parser.domain import DomainParser, DomainTransformer
-    from pddl.parser.problem import ProblemParser
-
-    class Cached:
-        def __init__(self) -> None:
-            LarkTransformer.__init__(self)
-            self._transformer = self.transformer_cls()
-            self._parser = Lark(GRAMMAR_FILE.read_text(), parser="lalr", cache=True,
-                                import_paths=[PARSERS_DIRECTORY], start=self.start_symbol,
-                                transformer=self._transformer)
-
-    class Transformer(DomainTransformer):
-        def action_def(self, args):
-            children = args[5].children
-            body = {children[i]: children[i + 1]
-                    for i in range(0, len(children) - 1, 2) if children[i] is not None}
-            body.setdefault(":precondition", And())
-            body.setdefault(":effect", And())
-            args[5].children = [item for pair in body.items() for item in pair]
-            return super().action_def(args)
-
-    class Domain(Cached, DomainParser):
-        transformer_cls = Transformer
-
-    class Problem(Cached, ProblemParser):
-        pass
-
-    return Domain, Problem
+def free_variables(formula) -> set[str]:
+    """The free variables (names without '?') of a formula in negation normal form."""
+    if isinstance(formula, Lit):
+        atom = formula.atom
+        terms = atom.terms if isinstance(atom, Atom) else (atom.left, atom.right)
+        return {term[1:] for term in terms if term.startswith("?")}
+    if isinstance(formula, (And, Or)):
+        return set().union(*(free_variables(part) for part in formula.parts))
+    if isinstance(formula, (Exists, Forall)):
+        return free_variables(formula.body) - {param.name for param in formula.params}
+    raise TypeError(formula)
 
 
-def _parse(file: PddlFile, parser_class):
-    """Parse with the pddl package; every failure becomes one InputError line."""
-    from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedToken
-    from pddl.exceptions import PDDLMissingRequirementError
+# -- rules --------------------------------------------------------------------------
 
-    saved = getattr(sys, "tracebacklimit", None)
-    try:
-        return parser_class()(file.text)
-    except UnexpectedToken as error:
-        if error.token.type == "$END":
-            raise InputError(f"{file.name}: syntax error: unexpected end of file") from None
-        raise InputError(f"{file.name}:{error.line}:{error.column}: syntax error: "
-                         f"unexpected {str(error.token)!r}") from None
-    except UnexpectedCharacters as error:
-        raise InputError(f"{file.name}:{error.line}:{error.column}: syntax error: "
-                         f"unexpected {error.char!r}") from None
-    except UnexpectedEOF:
-        raise InputError(f"{file.name}: syntax error: unexpected end of file") from None
-    except PDDLMissingRequirementError as error:
-        raise InputError(f"{file.name}: requirement {error.requirement} is used "
-                         "but not declared in :requirements") from None
-    except Exception as error:  # the package raises many kinds; all are bad input
-        first = " ".join(str(error).split("\n", 1)[0].split()) or type(error).__name__
-        raise InputError(f"{file.name}: invalid PDDL: {first}") from None
-    finally:
-        # The package lowers sys.tracebacklimit while parsing and may leave it so.
-        if saved is None:
-            if hasattr(sys, "tracebacklimit"):
-                del sys.tracebacklimit
-        else:
-            sys.tracebacklimit = saved
+@dataclass(frozen=True)
+class Scope:
+    """Variables in scope (PDDL name -> ASP variable) and body atoms that bind them."""
+
+    variables: tuple[tuple[str, str], ...] = ()
+    body: tuple[str, ...] = ()
+
+    def asp(self, name: str) -> str | None:
+        for pddl, asp in reversed(self.variables):
+            if pddl == name:
+                return asp
+        return None
 
 
-# -- translation ----------------------------------------------------------------
+@dataclass
+class Conjunction:
+    """A conjunction of literals: ``(atom, value)`` pairs, comparisons, and the
+    typing atoms and variables of existentials lifted into it."""
+
+    literals: list[tuple[str, str]] = field(default_factory=list)
+    comparisons: list[str] = field(default_factory=list)
+    body: list[str] = field(default_factory=list)
+    variables: list[str] = field(default_factory=list)
+
+    def extend(self, other: "Conjunction") -> None:
+        self.literals += other.literals
+        self.comparisons += other.comparisons
+        self.body += other.body
+        self.variables += other.variables
+
+
+def rule(head: str, body: Iterable[str]) -> str:
+    body = list(dict.fromkeys(body))
+    return f"{head} :- {', '.join(body)}." if body else f"{head}."
+
+
+def term_of(head: str, arguments: Sequence[str]) -> str:
+    return f"{head}({','.join(arguments)})" if arguments else head
+
+
+def name_term(number: int, variables: Sequence[str]) -> str:
+    """The name of an effect or axiom: ``N`` or ``(N,X,...)``."""
+    return f"({','.join([str(number), *variables])})" if variables else str(number)
+
 
 class _Translator:
     """Writes the rules of one domain and problem (see the module docstring)."""
 
-    def __init__(self, domain_file: PddlFile, problem_file: PddlFile):
-        self.domain_file = domain_file
-        self.problem_file = problem_file
+    def __init__(self, domain: Domain, problem: Problem):
+        self.domain = domain
+        self.problem = problem
         self.lines: list[str] = []
-
-    # terms and atoms
-
-    @staticmethod
-    def variable(name: str) -> str:
-        asp = pddl_name_to_asp(name)
-        return asp[0].upper() + asp[1:]
-
-    def term(self, term, parameters: set[str] | None, where: str) -> str:
-        from pddl.logic.terms import Variable
-
-        if isinstance(term, Variable):
-            if parameters is None or str(term.name) not in parameters:
-                raise InputError(f"{where}: unknown variable ?{term.name}")
-            return self.variable(term.name)
-        return pddl_name_to_asp(term.name)
-
-    def atom(self, predicate, parameters: set[str] | None, where: str) -> str:
-        name = pddl_name_to_asp(predicate.name)
-        if not predicate.terms:
-            return name
-        return f"{name}({','.join(self.term(t, parameters, where) for t in predicate.terms)})"
-
-    @staticmethod
-    def type_of(tags, where: str) -> str:
-        tags = sorted(str(tag) for tag in tags)
-        if len(tags) > 1:
-            raise InputError(f"{where}: unsupported PDDL feature: either-types; {FRAGMENT}")
-        return pddl_name_to_asp(tags[0]) if tags else "object"
-
-    # formulas
-
-    def literals(self, formula, where: str, kind: str) -> list[tuple[bool, object]]:
-        """A conjunction as (positive, atom) pairs; atoms are Predicate or EqualTo."""
-        from pddl.logic.base import And, Not
-        from pddl.logic.predicates import EqualTo, Predicate
-
-        if formula is None:
-            return []
-        if isinstance(formula, And):
-            return [pair for operand in formula.operands
-                    for pair in self.literals(operand, where, kind)]
-        if isinstance(formula, Not) and isinstance(formula.argument, (Predicate, EqualTo)):
-            return [(False, formula.argument)]
-        if isinstance(formula, (Predicate, EqualTo)):
-            return [(True, formula)]
-        raise InputError(f"{where}: unsupported PDDL feature in {kind}: {formula}; {FRAGMENT}")
-
-    # the program
+        self.auxiliaries = 0
+        self.fresh = 0
+        self.eithers: set[tuple[str, ...]] = set()
+        self.costs: int | None = None          # offset of the first ignored action cost
+        self.derived = {d.predicate for d in domain.derived}
+        self.objects = {pddl_name_to_asp(p.name) for p in domain.constants + problem.objects}
+        self.names = {*domain.predicates, *self.derived}
 
     def emit(self, line: str) -> None:
         self.lines.append(line)
 
-    def declarations(self, domain, problem) -> None:
-        for name, parent in sorted(domain.types.items(), key=lambda item: str(item[0])):
-            if str(name) != "object":
-                parent_name = pddl_name_to_asp(parent) if parent else "object"
-                self.emit(f"pddl_subtype({pddl_name_to_asp(name)},{parent_name}).")
-        objects = list(domain.constants) + list(problem.objects)
-        for constant in sorted(objects, key=lambda c: str(c.name)):
-            where = f"{self.domain_file.name}, {self.problem_file.name}: object {constant.name}"
-            self.emit(f"pddl_object({pddl_name_to_asp(constant.name)},"
-                      f"{self.type_of(constant.type_tags, where)}).")
+    # -- names and types --------------------------------------------------------
 
-    def predicates(self, domain) -> None:
-        for predicate in sorted(domain.predicates, key=lambda p: str(p.name)):
-            where = f"{self.domain_file.name}: predicate {predicate.name}"
-            names = {str(term.name) for term in predicate.terms}
-            head = self.atom(predicate, names, where)
-            body = [f"has_type({self.variable(term.name)},{self.type_of(term.type_tags, where)})"
-                    for term in predicate.terms]
-            self.emit(f"variable({head})" + (f" :- {', '.join(body)}." if body else "."))
+    def type_term(self, types: tuple[str, ...]) -> str:
+        if not types:
+            return "object"
+        names = tuple(sorted({pddl_name_to_asp(name) for name in types}))
+        if len(names) == 1:
+            return names[0]
+        self.eithers.add(names)
+        return f"either({','.join(names)})"
 
-    def action(self, action) -> None:
-        from pddl.logic.predicates import EqualTo, Predicate
+    def bind(self, scope: Scope, params: Sequence[Param]) -> tuple[Scope, list[str], list[str]]:
+        """A scope extended by typed parameters; their ASP variables and typing atoms."""
+        variables, typing, names = list(scope.variables), [], []
+        taken = {asp for _, asp in scope.variables}
+        for param in params:
+            asp = pddl_name_to_asp(param.name)
+            asp = asp[0].upper() + asp[1:]
+            while asp in taken:
+                self.fresh += 1
+                asp = f"{asp}'{self.fresh}"
+            taken.add(asp)
+            variables.append((param.name, asp))
+            names.append(asp)
+            typing.append(f"has_type({asp},{self.type_term(param.types)})")
+        return Scope(tuple(variables), scope.body + tuple(typing)), names, typing
 
-        where = f"{self.domain_file.name}: action {action.name}"
-        parameters = {str(p.name) for p in action.parameters}
-        name = pddl_name_to_asp(action.name)
-        args = [self.variable(p.name) for p in action.parameters]
-        head = f"{name}({','.join(args)})" if args else name
-        body = [f"has_type({self.variable(p.name)},{self.type_of(p.type_tags, where)})"
-                for p in action.parameters]
-        pre = []
-        for positive, atom in self.literals(action.precondition, where, "a precondition"):
-            if isinstance(atom, EqualTo):
-                left = self.term(atom.left, parameters, where)
-                right = self.term(atom.right, parameters, where)
-                body.append(f"{left} {'=' if positive else '!='} {right}")
+    def term(self, term: str, scope: Scope, file: PddlFile, pos: int) -> str:
+        if term.startswith("?"):
+            asp = scope.asp(term[1:])
+            if asp is None:
+                raise file.error(pos, f"unknown variable {term}")
+            return asp
+        asp = pddl_name_to_asp(term)
+        if asp not in self.objects:
+            raise file.error(pos, f"unknown constant {term} (declare it in :constants "
+                                  "of the domain or :objects of the problem)")
+        return asp
+
+    def atom(self, atom: Atom, scope: Scope, file: PddlFile) -> str:
+        if atom.predicate not in self.names:
+            raise file.error(atom.pos, f"unknown predicate {atom.predicate} "
+                                       "(declare it in :predicates)")
+        declared = self.domain.predicates.get(atom.predicate)
+        if declared is not None and len(declared) != len(atom.terms):
+            raise file.error(atom.pos, f"predicate {atom.predicate} takes {len(declared)} "
+                                       f"argument{'s' if len(declared) != 1 else ''}, "
+                                       f"found {len(atom.terms)}")
+        arguments = [self.term(term, scope, file, atom.pos) for term in atom.terms]
+        return term_of(pddl_name_to_asp(atom.predicate), arguments)
+
+    # -- formulas ---------------------------------------------------------------
+
+    def literal(self, lit: Lit, scope: Scope, file: PddlFile, into: Conjunction) -> None:
+        atom = lit.atom
+        if isinstance(atom, Equal):
+            left = self.term(atom.left, scope, file, atom.pos)
+            right = self.term(atom.right, scope, file, atom.pos)
+            into.comparisons.append(f"{left} {'=' if lit.positive else '!='} {right}")
+        else:
+            into.literals.append((self.atom(atom, scope, file),
+                                  "true" if lit.positive else "false"))
+
+    def conjunction(self, formula, scope: Scope, file: PddlFile, lift: bool) -> Conjunction:
+        """A formula in negation normal form as one conjunction of literals.
+
+        Subformulas that are not literals become auxiliary derived variables,
+        except that with ``lift`` an existential's variables join the
+        conjunction (its axiom or effect takes one instance per value).
+        """
+        result = Conjunction()
+        parts = formula.parts if isinstance(formula, And) else (formula,)
+        for part in parts:
+            if isinstance(part, Lit):
+                self.literal(part, scope, file, result)
+            elif isinstance(part, And):
+                result.extend(self.conjunction(part, scope, file, lift))
+            elif lift and isinstance(part, Exists):
+                inner, names, typing = self.bind(scope, part.params)
+                result.body += typing
+                result.variables += names
+                result.extend(self.conjunction(part.body, inner, file, lift))
+            elif isinstance(part, Forall):
+                counterexample = Exists(part.params, nnf_negate(part.body))
+                result.literals.append((self.auxiliary(counterexample, scope, file), "false"))
             else:
-                pre.append(f"pre({head},{self.atom(atom, parameters, where)},"
-                           f"{'true' if positive else 'false'})")
-        self.emit(f"action({head})" + (f" :- {', '.join(body)}." if body else "."))
-        condition = f" :- action({head})." if body else "."
-        for line in pre:
-            self.emit(line + condition)
-        for positive, atom in self.literals(action.effect, where, "an effect"):
-            if not isinstance(atom, Predicate):
-                raise InputError(f"{where}: unsupported PDDL feature in an effect: {atom}; "
-                                 f"{FRAGMENT}")
-            effect = "pddl_add" if positive else "pddl_del"
-            self.emit(f"{effect}({head},{self.atom(atom, parameters, where)}){condition}")
+                result.literals.append((self.auxiliary(part, scope, file), "true"))
+        return result
 
-    def problem(self, problem) -> None:
-        from pddl.logic.base import Not
-        from pddl.logic.predicates import Predicate
+    def alternatives(self, formula, scope: Scope, file: PddlFile) -> list[Conjunction]:
+        """A formula in negation normal form as a disjunction of conjunctions.
 
-        where = f"{self.problem_file.name}: init"
-        for fact in sorted(problem.init, key=str):
-            if isinstance(fact, Predicate):
-                self.emit(f"init({self.atom(fact, None, where)}).")
-            elif not (isinstance(fact, Not) and isinstance(fact.argument, Predicate)):
-                raise InputError(f"{where}: unsupported PDDL feature: {fact}; {FRAGMENT}")
-        where = f"{self.problem_file.name}: goal"
-        for positive, atom in self.literals(problem.goal, where, "the goal"):
-            if not isinstance(atom, Predicate):
-                raise InputError(f"{where}: unsupported PDDL feature: equality in the goal; "
-                                 f"{FRAGMENT}")
-            self.emit(f"goal({self.atom(atom, None, where)},{'true' if positive else 'false'}).")
+        Only a disjunction or an existential at the top is split (an
+        existential's variables join each conjunction); deeper ones become
+        auxiliary derived variables.
+        """
+        if isinstance(formula, Or):
+            return [alt for part in formula.parts for alt in self.alternatives(part, scope, file)]
+        if isinstance(formula, Exists):
+            inner, names, typing = self.bind(scope, formula.params)
+            result = []
+            for alt in self.alternatives(formula.body, inner, file):
+                alt.body[:0] = typing
+                alt.variables[:0] = names
+                result.append(alt)
+            return result
+        return [self.conjunction(formula, scope, file, lift=True)]
+
+    def auxiliary(self, formula, scope: Scope, file: PddlFile) -> str:
+        """An auxiliary derived variable that holds exactly where the formula holds."""
+        self.auxiliaries += 1
+        name = f"{AUXILIARY}_{self.auxiliaries}"
+        while name.replace("_", "-") in self.names:
+            self.auxiliaries += 1
+            name = f"{AUXILIARY}_{self.auxiliaries}"
+        free = free_variables(formula)
+        arguments = [asp for pddl, asp in dict(scope.variables).items() if pddl in free]
+        head = term_of(name, arguments)
+        self.emit(rule(f"derived({head})", scope.body))
+        for number, alt in enumerate(self.alternatives(formula, scope, file), start=1):
+            self.axiom(head, name_term(number, alt.variables), alt, scope.body)
+        return head
+
+    def axiom(self, head: str, name: str, alt: Conjunction, body: Iterable[str]) -> None:
+        body = [*body, *alt.body, *alt.comparisons]
+        self.emit(rule(f"axiom({head},{name})", body))
+        for atom, value in alt.literals:
+            self.emit(rule(f"axiom_pre({head},{name},{atom},{value})", body))
+
+    # -- the domain -------------------------------------------------------------
+
+    def declarations(self) -> None:
+        for param in self.domain.types:
+            name = pddl_name_to_asp(param.name)
+            if name == "object":
+                continue
+            for parent in param.types or ("object",):
+                self.emit(f"pddl_subtype({name},{pddl_name_to_asp(parent)}).")
+        for param in sorted(self.domain.constants + self.problem.objects, key=lambda p: p.name):
+            for type_name in param.types or ("object",):
+                self.emit(f"pddl_object({pddl_name_to_asp(param.name)},"
+                          f"{pddl_name_to_asp(type_name)}).")
+
+    def predicates(self) -> None:
+        for predicate, params in sorted(self.domain.predicates.items()):
+            if predicate == "=":
+                continue
+            scope, names, typing = self.bind(Scope(), params)
+            kind = "derived" if predicate in self.derived else "variable"
+            self.emit(rule(f"{kind}({term_of(pddl_name_to_asp(predicate), names)})", typing))
+        for definition in self.domain.derived:
+            if definition.predicate not in self.domain.predicates:
+                scope, names, typing = self.bind(Scope(), definition.params)
+                self.emit(rule(f"derived({term_of(pddl_name_to_asp(definition.predicate), names)})",
+                               typing))
+
+    def derived_predicates(self) -> None:
+        file = self.domain.file
+        for number, definition in enumerate(self.domain.derived, start=1):
+            declared = self.domain.predicates.get(definition.predicate)
+            if declared is not None and len(declared) != len(definition.params):
+                raise file.error(definition.pos, f"derived predicate {definition.predicate} "
+                                                 f"takes {len(declared)} arguments, "
+                                                 f"found {len(definition.params)}")
+            scope, names, typing = self.bind(Scope(), definition.params)
+            head = term_of(pddl_name_to_asp(definition.predicate), names)
+            alternatives = self.alternatives(nnf(definition.body), scope, file)
+            for index, alt in enumerate(alternatives, start=1):
+                self.axiom(head, f"({','.join([str(number), str(index), *alt.variables])})",
+                           alt, typing)
+
+    def action(self, action: Action) -> None:
+        file = self.domain.file
+        scope, names, typing = self.bind(Scope(), action.params)
+        head = term_of(pddl_name_to_asp(action.name), names)
+        anchor = f"action({head})"
+        scope = Scope(scope.variables, (anchor,))
+        precondition = self.conjunction(nnf(action.precondition), scope, file, lift=False)
+        self.emit(rule(anchor, typing + precondition.comparisons))
+        for atom, value in precondition.literals:
+            self.emit(rule(f"pre({head},{atom},{value})", [anchor]))
+        number = 0
+        for effect_scope, conditions, literals in self.effect_groups(action.effect, scope):
+            atoms = []
+            for literal in literals:
+                if literal.atom.predicate in self.derived:
+                    raise file.error(literal.atom.pos, f"an effect on the derived predicate "
+                                                       f"{literal.atom.predicate}")
+                atoms.append((self.atom(literal.atom, effect_scope, file), literal.positive))
+            alternatives = ([Conjunction()] if not conditions else
+                            self.alternatives(nnf(And(conditions)), effect_scope, file))
+            quantified = [asp for _, asp in effect_scope.variables[len(names):]]
+            for alt in alternatives:
+                body = [*effect_scope.body, *alt.body, *alt.comparisons]
+                if not alt.literals:
+                    for atom, positive in atoms:
+                        kind = "pddl_add" if positive else "pddl_del"
+                        self.emit(rule(f"{kind}({head},{atom})", body))
+                    continue
+                number += 1
+                name = name_term(number, quantified + alt.variables)
+                for atom, positive in atoms:
+                    value = "true" if positive else "false"
+                    self.emit(rule(f"ceff({head},{name},{atom},{value})", body))
+                for condition_atom, condition_value in alt.literals:
+                    self.emit(rule(f"cpre({head},{name},{condition_atom},{condition_value})",
+                                   body))
+
+    def effect_groups(self, effect: Effect, scope: Scope):
+        """The literal effects, grouped by scope and conditions (one group per
+        ``when`` and ``forall``, in the order written)."""
+        groups: list[tuple[Scope, tuple, list[Literal]]] = []
+        for effect_scope, conditions, literal in self.effects(effect, scope, ()):
+            if groups and groups[-1][0] is effect_scope and groups[-1][1] is conditions:
+                groups[-1][2].append(literal)
+            else:
+                groups.append((effect_scope, conditions, [literal]))
+        return groups
+
+    def effects(self, effect: Effect, scope: Scope, conditions: tuple):
+        """The literal effects under their scope and conditions."""
+        if isinstance(effect, Literal):
+            yield scope, conditions, effect
+        elif isinstance(effect, AllEffects):
+            for part in effect.parts:
+                yield from self.effects(part, scope, conditions)
+        elif isinstance(effect, ForallEffect):
+            inner, _, _ = self.bind(scope, effect.params)
+            yield from self.effects(effect.effect, inner, conditions)
+        elif isinstance(effect, When):
+            yield from self.effects(effect.effect, scope, conditions + (effect.condition,))
+        elif isinstance(effect, CostEffect):
+            if self.costs is None:
+                self.costs = effect.pos
+        else:
+            raise TypeError(effect)
+
+    # -- the problem -------------------------------------------------------------
+
+    def initial_state(self) -> None:
+        file = self.problem.file
+        for atom in self.problem.init:
+            if atom.predicate in self.derived:
+                raise file.error(atom.pos, f"the derived predicate {atom.predicate} "
+                                           "in the initial state")
+            self.emit(f"init({self.atom(atom, Scope(), file)}).")
+
+    def goal(self) -> None:
+        file = self.problem.file
+        formula = nnf(self.problem.goal)
+        goal = self.conjunction(formula, Scope(), file, lift=False)
+        if goal.comparisons or not (goal.literals or goal.comparisons):
+            # comparisons (or nothing at all): the whole goal as one derived variable
+            goal = Conjunction([(self.auxiliary(formula, Scope(), file), "true")])
+        for atom, value in goal.literals:
+            self.emit(f"goal({atom},{value}).")
+
+    # -- requirements and warnings ------------------------------------------------
+
+    def warnings(self) -> list[str]:
+        """One line per file: undeclared requirements, ignored costs and metric."""
+        declared = closure(self.domain.requirements)
+        lines = []
+        for file, used, requirements in (
+                (self.domain.file, self.domain.used, declared),
+                (self.problem.file, self.problem.used,
+                 declared | closure(self.problem.requirements))):
+            notes = []
+            missing = sorted(set(used) - requirements - {":strips"})
+            if missing:
+                notes.append(f"requirement{'s' if len(missing) > 1 else ''} "
+                             f"{', '.join(missing)} used but not declared (read anyway)")
+            if file is self.domain.file and self.costs is not None:
+                notes.append("action costs are ignored (plans are shortest in number of actions)")
+            if file is self.problem.file and self.problem.metric is not None:
+                notes.append("the metric is ignored (plans are shortest in number of actions)")
+            if notes:
+                lines.append(f"{file.name}: warning: {'; '.join(notes)}")
+        return lines
+
+    def check_numeric_init(self) -> None:
+        for function, pos in self.problem.numeric_init:
+            if function not in self.domain.functions:
+                raise self.problem.file.error(pos, f"unknown function {function}")
+
+    def check_types(self) -> None:
+        known = {"object"}
+        for param in self.domain.types + self.domain.constants + self.problem.objects:
+            known |= set(param.types)
+        known |= {param.name for param in self.domain.types}
+
+        def check(params: Iterable[Param], file: PddlFile, pos: int) -> None:
+            for param in params:
+                for type_name in param.types:
+                    if type_name not in known:
+                        raise file.error(pos, f"unknown type {type_name}")
+
+        file = self.domain.file
+        for predicate, params in self.domain.predicates.items():
+            check(params, file, self.domain.predicate_pos[predicate])
+        for action in self.domain.actions:
+            check(action.params, file, action.pos)
+        for definition in self.domain.derived:
+            check(definition.params, file, definition.pos)
 
     def translate(self) -> str:
-        for file in (self.domain_file, self.problem_file):
-            check_fragment(file)
-        domain_parser, problem_parser = _parsers()
-        domain = _parse(self.domain_file, domain_parser)
-        problem = _parse(self.problem_file, problem_parser)
-        if problem.domain_name != domain.name:
-            raise InputError(f"{self.problem_file.name}: the problem is for domain "
-                             f"{problem.domain_name}, not {domain.name} "
-                             f"({self.domain_file.name})")
-        self.emit(f"% {self.domain_file.name} and {self.problem_file.name}, "
+        if self.problem.domain_name != self.domain.name:
+            raise InputError(f"{self.problem.file.name}: the problem is for domain "
+                             f"{self.problem.domain_name}, not {self.domain.name} "
+                             f"({self.domain.file.name})")
+        self.check_types()
+        self.check_numeric_init()
+        self.emit(f"% {self.domain.file.name} and {self.problem.file.name}, "
                   "translated by ethasp (see encodings/planning/pddl.lp)")
-        self.declarations(domain, problem)
-        self.predicates(domain)
-        for action in sorted(domain.actions, key=lambda a: str(a.name)):
+        self.declarations()
+        self.predicates()
+        self.derived_predicates()
+        for action in self.domain.actions:
             self.action(action)
-        self.problem(problem)
+        self.initial_state()
+        self.goal()
+        for names in sorted(self.eithers):
+            for name in names:
+                self.emit(f"pddl_subtype({name},either({','.join(names)})).")
+        for line in self.warnings():
+            print(line, file=sys.stderr)
         return "\n".join(self.lines) + "\n"
 
 
+def closure(requirements: Iterable[str]) -> set[str]:
+    """Requirements with those they imply."""
+    result, todo = set(), list(requirements)
+    while todo:
+        requirement = todo.pop()
+        if requirement not in result:
+            result.add(requirement)
+            todo += IMPLIED.get(requirement, ())
+    return result
+
+
+def nnf_negate(formula):
+    """The negation of a formula in negation normal form, in negation normal form."""
+    if isinstance(formula, Lit):
+        return Lit(formula.atom, not formula.positive)
+    if isinstance(formula, And):
+        return Or(tuple(nnf_negate(part) for part in formula.parts))
+    if isinstance(formula, Or):
+        return And(tuple(nnf_negate(part) for part in formula.parts))
+    if isinstance(formula, Exists):
+        return Forall(formula.params, nnf_negate(formula.body))
+    if isinstance(formula, Forall):
+        return Exists(formula.params, nnf_negate(formula.body))
+    raise TypeError(formula)
+
+
 def translate(domain: PddlFile, problem: PddlFile) -> str:
-    """The ASP rules of a PDDL domain and problem (to be read with encodings/planning/pddl.lp)."""
-    return _Translator(domain, problem).translate()
+    """The ASP rules of a PDDL domain and problem (to be read with encodings/planning/pddl.lp).
+
+    Warnings (undeclared requirements, ignored action costs) go to standard
+    error, one line per file.
+    """
+    return _Translator(read_domain(domain), read_problem(problem)).translate()
 
 
 def is_pddl(path: str | Path) -> bool:

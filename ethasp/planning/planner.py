@@ -55,7 +55,8 @@ from ethasp.resources import ENCODINGS, encoding
 # What a model defines (encodings/planning/model.lp and reasons/labels.lp):
 # programs about a plan or a formula read these atoms of the ground model.
 MODEL_VOCABULARY = (("variable", 1), ("action", 1), ("pre", 3), ("eff", 3), ("ceff", 4),
-                    ("cpre", 4), ("init", 1), ("goal", 2), ("utility", 2), ("utility", 3),
+                    ("cpre", 4), ("derived", 1), ("axiom", 2), ("axiom_pre", 4), ("init", 1),
+                    ("goal", 2), ("utility", 2), ("utility", 3),
                     ("agent_label", 2), ("action_label", 3), ("fact_label", 3))
 
 TRACE_ENCODINGS = ("planning/model.lp", "planning/trace.lp", "judgement/judge.lp")
@@ -270,7 +271,11 @@ class Planner:
                  for a in self.get("cpre", 4)],
                 [a.arguments[0] for a in self.get("init", 1)],
                 [(a.arguments[0], value(a.arguments[1])) for a in self.get("goal", 2)],
-                weights)
+                weights,
+                [(a.arguments[0], a.arguments[1], a.arguments[2], value(a.arguments[3]))
+                 for a in self.get("axiom_pre", 4)],
+                [(a.arguments[0], a.arguments[1]) for a in self.get("axiom", 2)],
+                [a.arguments[0] for a in self.get("derived", 1)])
         return self._ground_model
 
     @_locked

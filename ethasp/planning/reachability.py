@@ -90,6 +90,9 @@ class GroundModel:
     init: frozenset[clingo.Symbol]
     goal: list[Literal]
     weights: dict[Literal, int] = field(default_factory=dict)
+    # Derived variables: each holds in a state where all literals of one of its
+    # axioms hold (the least fixpoint, stratified by negation).
+    axioms: dict[clingo.Symbol, list[tuple[Literal, ...]]] = field(default_factory=dict)
 
     def utility(self, state: Iterable[clingo.Symbol]) -> int:
         """u(s): the sum of the utilities of the facts of a state (true variables given)."""
@@ -107,16 +110,68 @@ class Best:
     layer: int
 
 
+def _groups(depends: dict) -> list[list]:
+    """The strongly connected groups of a dependency graph, dependencies first
+    (Tarjan's algorithm, iterative)."""
+    index: dict = {}
+    low: dict = {}
+    on_stack: set = set()
+    stack: list = []
+    groups: list[list] = []
+    counter = 0
+    for root in sorted(depends, key=str):
+        if root in index:
+            continue
+        work = [(root, iter(sorted(depends[root], key=str)))]
+        index[root] = low[root] = counter
+        counter += 1
+        stack.append(root)
+        on_stack.add(root)
+        while work:
+            node, children = work[-1]
+            advanced = False
+            for child in children:
+                if child not in index:
+                    index[child] = low[child] = counter
+                    counter += 1
+                    stack.append(child)
+                    on_stack.add(child)
+                    work.append((child, iter(sorted(depends[child], key=str))))
+                    advanced = True
+                    break
+                if child in on_stack:
+                    low[node] = min(low[node], index[child])
+            if advanced:
+                continue
+            work.pop()
+            if work:
+                parent = work[-1][0]
+                low[parent] = min(low[parent], low[node])
+            if low[node] == index[node]:
+                group = []
+                while True:
+                    member = stack.pop()
+                    on_stack.discard(member)
+                    group.append(member)
+                    if member == node:
+                        break
+                groups.append(group)
+    return groups
+
+
 def _order(model: GroundModel, index: dict[clingo.Symbol, int],
            rounds: int = FORCE_ROUNDS) -> list[int]:
     """A variable order for the diagrams: variables that actions use together
     are placed near each other (the FORCE heuristic: each action pulls its
     variables towards their centre, for a few rounds)."""
     position = {i: float(i) for i in index.values()}
+    def positions(literals) -> set[int]:
+        return {index[v] for v, _ in literals if v in index}   # derived ones aside
+
     uses = []
     for action in model.actions:
-        used = {index[v] for v, _ in action.pre} | {index[e.variable] for e in action.effects}
-        used |= {index[v] for e in action.effects for v, _ in e.condition}
+        used = positions(action.pre) | {index[e.variable] for e in action.effects}
+        used |= {i for e in action.effects for i in positions(e.condition)}
         uses.append(used)
     # Variables that most actions use (a robot's hands, a fuel level) would pull
     # everything together: they take no part in the pulling.
@@ -199,6 +254,8 @@ class Reachability:
         # grown (see _reorder), not at CUDD's small default thresholds.
         self.bdd.configure(reordering=False)
         self._next_reordering = REORDER_NODES
+        self._derived: dict = {}
+        self._derive()
         self._images = [self._cluster(group) for group in _clusters(model, self.index)]
         init = self._cube([(v, v in model.init) for v in model.variables])
         self.layers = [init]
@@ -214,8 +271,32 @@ class Reachability:
         return self.bdd.var(f"{'y' if after else 'x'}{self.index[variable]}")
 
     def _literal(self, literal: Literal, after: bool = False):
-        node = self._var(literal[0], after)
+        if literal[0] in self._derived:
+            node = self._derived[literal[0]]
+        else:
+            node = self._var(literal[0], after)
         return node if literal[1] else ~node
+
+    def _derive(self) -> None:
+        """The set of states where each derived variable holds: strongly connected
+        groups of derived variables in the order of their dependencies, each
+        iterated from false to its least fixpoint."""
+        axioms = self.model.axioms
+        depends = {d: {v for body in bodies for v, _ in body if v in axioms}
+                   for d, bodies in axioms.items()}
+        for group in _groups(depends):
+            for derived in group:
+                self._derived[derived] = self.bdd.false
+            changed = True
+            while changed:
+                changed = False
+                for derived in group:
+                    value = self.bdd.false
+                    for body in axioms[derived]:
+                        value |= self._cube(body)
+                    if value != self._derived[derived]:
+                        self._derived[derived] = value
+                        changed = True
 
     def _cube(self, literals: Iterable[Literal], after: bool = False):
         node = self.bdd.true
@@ -510,9 +591,13 @@ def from_atoms(variables: Sequence[clingo.Symbol], actions: Sequence[clingo.Symb
                ceff: Iterable[tuple[clingo.Symbol, clingo.Symbol, clingo.Symbol, bool]],
                cpre: Iterable[tuple[clingo.Symbol, clingo.Symbol, clingo.Symbol, bool]],
                init: Iterable[clingo.Symbol], goal: Iterable[Literal],
-               weights: dict[Literal, int]) -> GroundModel:
+               weights: dict[Literal, int],
+               axiom_pre: Iterable[tuple[clingo.Symbol, clingo.Symbol, clingo.Symbol, bool]] = (),
+               axioms: Iterable[tuple[clingo.Symbol, clingo.Symbol]] = (),
+               derived: Iterable[clingo.Symbol] = ()) -> GroundModel:
     """A ground model from the atoms of the model vocabulary (actions, then
-    ``pre(A,V,B)``, ``eff(A,V,B)``, ``ceff(A,K,V,B)``, ``cpre(A,K,V,B)``)."""
+    ``pre(A,V,B)``, ``eff(A,V,B)``, ``ceff(A,K,V,B)``, ``cpre(A,K,V,B)``, ...,
+    ``axiom_pre(D,K,V,B)`` and ``axiom(D,K)`` of derived variables)."""
     pres: dict[clingo.Symbol, list[Literal]] = {a: [] for a in actions}
     effects: dict[clingo.Symbol, list[Effect]] = {a: [] for a in actions}
     for action, variable, value in pre:
@@ -530,4 +615,13 @@ def from_atoms(variables: Sequence[clingo.Symbol], actions: Sequence[clingo.Symb
             effects[action].append(Effect(variable, value, condition))
     ground = [GroundAction(a, tuple(sorted(pres[a], key=str)),
                            tuple(sorted(effects[a], key=str))) for a in actions]
-    return GroundModel(list(variables), ground, frozenset(init), list(goal), dict(weights))
+    bodies: dict[tuple[clingo.Symbol, clingo.Symbol], list[Literal]] = {
+        (name, key): [] for name, key in axioms}
+    for name, key, variable, value in axiom_pre:
+        bodies.setdefault((name, key), []).append((variable, value))
+    # A derived variable without axioms never holds.
+    derived_axioms: dict[clingo.Symbol, list[tuple[Literal, ...]]] = {d: [] for d in derived}
+    for (name, _), body in sorted(bodies.items(), key=str):
+        derived_axioms.setdefault(name, []).append(tuple(sorted(body, key=str)))
+    return GroundModel(list(variables), ground, frozenset(init), list(goal), dict(weights),
+                       derived_axioms)

@@ -1,0 +1,98 @@
+"""Property tests: conditional effects and derived variables in the ASP model
+vocabulary (ceff/4, cpre/4, derived/1, axiom/2, axiom_pre/4) against the
+brute-force oracle (tests/oracle.py): shortest plans, validation, Caused, and
+HPlans under each principle (do-no-harm counts only effects that fire)."""
+
+from __future__ import annotations
+
+import random
+
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from conftest import answer_sets
+from ethasp import Model, Plan, find_plan, validate
+from ethasp.principles.restriction import plan_with_principles
+from oracle import plan_through, random_model
+
+SEEDS = st.integers(min_value=0, max_value=10**9)
+HORIZON = 40
+
+
+def spec_of(seed: int):
+    """Models with conditional effects, half of them with derived variables,
+    half of them with goals that need longer plans."""
+    return random_model(seed, max_variables=5, max_actions=5, conditional=True,
+                        derived=seed % 2 == 0, far_goal=seed % 4 < 2)
+
+
+@settings(max_examples=150, deadline=None)
+@given(SEEDS)
+def test_shortest_plans_agree_with_the_oracle(seed):
+    spec = spec_of(seed)
+    result = find_plan(Model.from_string(spec.to_asp()), max_horizon=20)
+    expected = spec.shortest_plan_length()
+    if expected is None:
+        assert result.status == "none", (result, spec)
+    else:
+        assert result.status == "found", (result, spec)
+        assert len(result.plan) == expected, (result, expected, spec)
+        assert spec.is_plan([str(a) for a in result.plan])
+
+
+@settings(max_examples=200, deadline=None)
+@given(SEEDS, st.lists(st.integers(0, 3), max_size=6))
+def test_validation_agrees_with_the_oracle(seed, choices):
+    spec = spec_of(seed)
+    plan = [spec.actions[i % len(spec.actions)] for i in choices]
+    check = validate(Model.from_string(spec.to_asp()), Plan.parse(" ".join(plan)))
+    state, first = spec.init, None
+    for index, action in enumerate(plan, start=1):
+        if not spec.applicable(state, action):
+            first = index
+            break
+        state = spec.apply(state, action)
+    assert check.failure_step == first, (plan, check, spec)
+    assert check.valid == spec.is_plan(plan)
+    if first is None:
+        expected = sorted(v if v in state else f"-{v}" for v in spec.variables)
+        assert check.final_state == expected, (plan, check, spec)
+
+
+@settings(max_examples=200, deadline=None)
+@given(SEEDS, st.integers(min_value=0, max_value=6))
+def test_caused_counts_only_effects_that_fire(seed, walk):
+    spec = spec_of(seed)
+    rng = random.Random(seed)
+    plan = plan_through(spec, rng, walk)
+    if plan is None:
+        return
+    occurs = "".join(f"occurs({a},{t}). " for t, a in enumerate(plan, start=1))
+    answer = answer_sets(["planning/model.lp", "planning/trace.lp"],
+                         spec.to_asp() + occurs + "#show caused/2.")
+    assert len(answer) == 1
+    caused = {atom for atom in answer[0] if atom.startswith("caused(")}
+    expected = {f"caused({v},{str(b).lower()})" for v, b in spec.caused(plan)}
+    assert caused == expected, (plan, spec)
+
+
+PRINCIPLES = [["deontology"], ["do-no-harm"], ["utilitarianism"],
+              ["deontology", "do-no-harm", "utilitarianism"]]
+
+
+@settings(max_examples=150, deadline=None)
+@given(SEEDS, st.sampled_from(PRINCIPLES))
+def test_hplans_agree_with_the_oracle(seed, principles):
+    spec = spec_of(seed)
+    result = plan_with_principles(Model.from_string(spec.to_asp()), principles,
+                                  max_horizon=HORIZON)
+    expected = spec.shortest_permissible_length(principles)
+    if expected is None:
+        assert result.status == "none", (result, spec)
+        return
+    assert result.status == "found", (result, spec, expected)
+    plan = [str(action) for action in result.plan]
+    assert spec.is_plan(plan), (plan, spec)
+    for principle in principles:
+        assert spec.permissible(plan, principle), (principle, plan, spec)
+    assert len(plan) == expected, (plan, expected, spec)
