@@ -12,7 +12,9 @@ from clingo import ast
 from clorm import FactBase, unify
 
 from ethasp.errors import InputError
+from ethasp.planning.namespace import NamespaceCheck
 from ethasp.planning.naming import Naming, PddlNaming
+from ethasp.planning.terms import read_text, scan_file, scan_program
 from ethasp.resources import encoding
 from ethasp.vocabulary import Error
 
@@ -24,6 +26,7 @@ class Source:
     name: str
     text: str
     path: Path | None = None
+    generated: bool = False   # written by ethasp (a PDDL translation), not by a user
 
 
 class Messages:
@@ -35,7 +38,8 @@ class Messages:
     def __call__(self, code: clingo.MessageCode, message: str) -> None:
         first = message.split("\n", 1)[0]
         if code == clingo.MessageCode.RuntimeError or ": error:" in first:
-            self.errors.append(" ".join(message.split()))
+            # "file:1:3-4: error: syntax error, ..." -> "file:1:3-4: syntax error, ..."
+            self.errors.append(" ".join(message.replace(": error: ", ": ", 1).split()))
 
     def raise_first(self, fallback: str) -> None:
         raise InputError(self.errors[0] if self.errors else fallback)
@@ -56,6 +60,10 @@ def _describe(problem: clingo.Symbol) -> str:
         return f"two different utilities for one element, one of them {args[0]}"
     if name == "contradicting_effects":
         return f"action {args[0]} sets variable {args[1]} both to true and to false"
+    if name == "too_large":
+        return (f"{args[0]}: the utility is too large: with {args[2]} morally valued elements, "
+                f"|utility| must be at most {args[1]} (= (2^31 - 1) / {args[2]}), so that every "
+                "sum of utilities stays within clingo's 32-bit integers")
     if name == "no_goal":
         return "the model has no goal (add goal(V,true) or goal(V,false) facts)"
     return str(problem)
@@ -90,16 +98,17 @@ class Model:
             from ethasp.planning.pddl import split_paths, translate_files
 
             pddl_paths, paths = split_paths(paths)
-            program, name = translate_files(pddl_paths)
-            sources.append(Source(name, encoding("planning/pddl.lp").read_text() + program))
+            try:
+                program, name = translate_files(pddl_paths)
+            except RecursionError:
+                raise InputError(f"{', '.join(map(str, pddl_paths))}: expressions nested too "
+                                 "deeply to read") from None
+            sources.append(Source(name, encoding("planning/pddl.lp").read_text() + program,
+                                  generated=True))
             naming = PddlNaming()
         for path in paths:
-            if not path.is_file():
-                raise InputError(f"{path}: no such file")
-            try:
-                text = path.read_text()
-            except (OSError, UnicodeDecodeError) as exc:
-                raise InputError(f"{path}: cannot be read ({exc})") from None
+            text = read_text(path)
+            scan_file(path, text)
             sources.append(Source(str(path), text, path))
         if not sources:
             raise InputError("no model file given")
@@ -111,6 +120,7 @@ class Model:
     def from_string(cls, text: str, name: str = "<model>", allow_scripts: bool = False,
                     check: bool = True) -> "Model":
         """A model from ASP text."""
+        scan_program(text, name)
         return cls._build([Source(name, text)], allow_scripts, check)
 
     @classmethod
@@ -122,14 +132,24 @@ class Model:
             model.check()
         return model
 
+    @property
+    def is_pddl(self) -> bool:
+        """Is this a PDDL task (a translation plus annotation files)?"""
+        return any(source.generated for source in self.sources)
+
     def _parse(self, source: Source) -> None:
+        """Parse a source: syntax, #script blocks, and the model's namespace
+        (:mod:`ethasp.planning.namespace`) for the files users write."""
         messages = Messages()
         scripts: list[str] = []
+        namespace = None if source.generated else NamespaceCheck(pddl=self.is_pddl)
 
         def visit(statement):
             if statement.ast_type == ast.ASTType.Script:
                 begin = statement.location.begin
                 scripts.append(f"{begin.filename}:{begin.line}")
+            elif namespace is not None:
+                namespace(statement)
 
         try:
             if source.path is not None:
@@ -168,9 +188,7 @@ class Model:
         try:
             for name in encodings:
                 ctl.load(str(encoding(name)))
-            fact_text = "".join(f"{fact}.\n" for fact in facts)
-            if fact_text:
-                ctl.add("base", [], fact_text)
+            add_facts(ctl, facts)
             ctl.ground([("base", [])])
         except RuntimeError:
             messages.raise_first("grounding failed")
@@ -190,14 +208,55 @@ class Model:
         return []
 
     def check(self) -> None:
-        """Raise InputError naming the first defect found by check.lp."""
-        symbols = self.solve_once(["planning/model.lp", "planning/check.lp"])
-        errors = sorted(unify([Error], symbols).query(Error).all(), key=lambda e: str(e.problem))
-        if errors:
-            names = ", ".join(source.name for source in self.sources)
-            raise InputError(f"{names}: {_describe(errors[0].problem.symbol)}")
+        """Raise InputError naming the first defect found by check.lp, or if the
+        model's rules have no answer set or more than one (a model describes one
+        planning task: a choice, a disjunction or a constraint in it would let the
+        model vary with the searches of the encodings)."""
+        ctl = self.ground(["planning/model.lp", "planning/check.lp"])
+        ctl.configuration.solve.models = 2
+        answers: list[list[clingo.Symbol]] = []
+        with ctl.solve(yield_=True) as handle:
+            for answer in handle:
+                answers.append(list(answer.symbols(shown=True)))
+        names = ", ".join(source.name for source in self.sources if not source.generated) \
+            or ", ".join(source.name for source in self.sources)
+        for symbols in answers[:1]:
+            errors = sorted(unify([Error], symbols).query(Error).all(),
+                            key=lambda e: str(e.problem))
+            if errors:
+                raise InputError(f"{names}: {_describe(errors[0].problem.symbol)}")
+        if not answers:
+            raise InputError(f"{names}: the model's rules have no answer set (a constraint or "
+                             "a contradiction rules every one out), so it describes no "
+                             "planning task")
+        if len(answers) > 1:
+            raise InputError(f"{names}: the model's rules have more than one answer set (a "
+                             "choice, a disjunction or a loop through negation); a model must "
+                             "describe one planning task")
 
     def facts(self, predicates) -> FactBase:
         """The model's facts of the given clorm predicates (its rules grounded)."""
         ctl = self.ground(["planning/model.lp"])
         return unify(list(predicates), [atom.symbol for atom in ctl.symbolic_atoms if atom.is_fact])
+
+
+def add_facts(ctl: clingo.Control, facts: Iterable) -> None:
+    """Add facts to a control object's base program.
+
+    Clingo symbols and clorm facts are added as atoms through clingo's backend:
+    no text is written, so no name (an action, a formula) can become a rule.
+    Strings are program text that ethasp itself writes (``time(0..1)``), never
+    user input; they are added as text.
+    """
+    symbols, texts = [], []
+    for fact in facts:
+        if isinstance(fact, str):
+            texts.append(fact if fact.rstrip().endswith(".") else fact + ".")
+        else:
+            symbols.append(fact if isinstance(fact, clingo.Symbol) else fact.raw)
+    if texts:
+        ctl.add("base", [], "\n".join(texts))
+    if symbols:
+        with ctl.backend() as backend:
+            for symbol in symbols:
+                backend.add_rule([backend.add_atom(symbol)])
