@@ -10,6 +10,7 @@ from clorm import Raw
 
 from ethasp.errors import InputError
 from ethasp.planning.naming import pddl_atom_to_term
+from ethasp.planning.terms import TermError, parse_symbol
 from ethasp.vocabulary import Occurs
 
 
@@ -33,14 +34,19 @@ def split_terms(text: str) -> list[str]:
 
 
 def parse_action(text: str) -> clingo.Symbol:
-    """An action term, e.g. ``push(man)``, or a PDDL action, e.g. ``(push man)``."""
+    """An action term, e.g. ``push(man)``, or a PDDL action, e.g. ``(push man)``.
+
+    The text is read as one term (:func:`ethasp.planning.terms.parse_symbol`),
+    never as rule text.
+    """
     if text.startswith("("):
         return pddl_atom_to_term(text)
     try:
-        symbol = clingo.parse_term(text)
-    except RuntimeError:
-        raise InputError(f"not an action term: {text!r}") from None
-    return symbol
+        return parse_symbol(text, "action")
+    except TermError as error:
+        shown = text if len(text) <= 60 else text[:57] + "..."
+        detail = f" ({error.reason})" if error.reason else ""
+        raise InputError(f"not an action term: {shown!r}{detail}") from None
 
 
 @dataclass(frozen=True)

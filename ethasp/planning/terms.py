@@ -37,6 +37,24 @@ _OPERATORS = set("+-*/\\^&?~")
 _BASES = {"x": 16, "o": 8, "b": 2}
 
 
+class LimitError(InputError):
+    """A text beyond clingo's limits; ``reason`` says what, without the place."""
+
+    def __init__(self, where: str, reason: str):
+        super().__init__(f"{where}: {reason}")
+        self.where = where
+        self.reason = reason
+
+
+class TermError(InputError):
+    """A text that is not a term, or not within the limits; ``reason`` says why
+    when more than "not a term" is to be said ('' otherwise)."""
+
+    def __init__(self, what: str, message: str, reason: str = ""):
+        super().__init__(f"{what}: {message}")
+        self.reason = reason
+
+
 @dataclass
 class Scan:
     """What a scan of a program text found: the files it includes."""
@@ -122,17 +140,18 @@ def scan_program(text: str, name: str) -> Scan:
             value, end = _number(text, index)
             if value > INT_MAX:
                 literal = text[index:end]
-                raise InputError(
-                    f"{_where(name, line, index - line_start + 1)}: the integer {literal} is "
-                    f"out of range: clingo's integers are 32-bit, from {INT_MIN} to {INT_MAX}")
+                raise LimitError(
+                    _where(name, line, index - line_start + 1),
+                    f"the integer {literal} is out of range: clingo's integers are 32-bit, "
+                    f"from {INT_MIN} to {INT_MAX}")
             index = end
         else:
             if char == "(":
                 depth += 1
                 if depth > MAX_NESTING:
-                    raise InputError(
-                        f"{_where(name, line, index - line_start + 1)}: parentheses nested more "
-                        f"than {MAX_NESTING} deep (the limit of ethasp)")
+                    raise LimitError(
+                        _where(name, line, index - line_start + 1),
+                        f"parentheses nested more than {MAX_NESTING} deep (the limit of ethasp)")
             elif char == ")":
                 depth = max(0, depth - 1)
             elif char == "." and not text.startswith("..", index) and \
@@ -141,9 +160,10 @@ def scan_program(text: str, name: str) -> Scan:
             elif char in _OPERATORS and not (char in "-~" and index > 0 and text[index - 1] == ":"):
                 operators += 1
                 if operators > MAX_NESTING:
-                    raise InputError(
-                        f"{_where(name, line)}: more than {MAX_NESTING} arithmetic operators in "
-                        "one statement (the limit of ethasp)")
+                    raise LimitError(
+                        _where(name, line),
+                        f"more than {MAX_NESTING} arithmetic operators in one statement "
+                        "(the limit of ethasp)")
             index += 1
     return scan
 
@@ -229,16 +249,19 @@ def parse_symbol(text: str, what: str = "term") -> clingo.Symbol:
     """
     stripped = text.strip()
     if not stripped:
-        raise InputError(f"{what}: empty term")
-    scan_program(stripped, what)
+        raise TermError(what, "empty term", "empty")
+    try:
+        scan_program(stripped, what)
+    except LimitError as error:
+        raise TermError(what, error.reason, error.reason) from None
     operator = _arithmetic(stripped)
     if operator is not None:
-        raise InputError(f"{what}: not a term: {_short(stripped)!r} (arithmetic such as "
-                         f"'{operator}' is not allowed in a name)")
+        reason = f"arithmetic such as '{operator}' is not allowed in a name"
+        raise TermError(what, f"not a term: {_short(stripped)!r} ({reason})", reason)
     try:
         symbol = clingo.parse_term(stripped, logger=lambda code, message: None)
     except RuntimeError:
-        raise InputError(f"{what}: not a term: {_short(stripped)!r}") from None
+        raise TermError(what, f"not a term: {_short(stripped)!r}") from None
     return symbol
 
 
