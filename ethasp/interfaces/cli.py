@@ -4,7 +4,10 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
+import os
 import sys
+import threading
 from pathlib import Path
 from typing import Sequence
 
@@ -13,6 +16,7 @@ from typing import TYPE_CHECKING
 from ethasp.errors import InputError
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
+from ethasp.planning.terms import read_text
 from ethasp.resources import MODELS
 from ethasp.planning.search import DEFAULT_MAX_HORIZON, FOUND, find_plan
 
@@ -30,7 +34,13 @@ via Automatically Generated Explanations" (IEEE CASE 2021).
 MODEL is one or more ASP files in the vocabulary variable/1, action/1, pre/3,
 eff/3, init/1, goal/2, utility/2, utility/3, or a PDDL domain and problem
 (.pddl) with ASP annotation files; the name of a bundled model (e.g. trolley)
-also works.  Bad input gets one line on standard error and exit code 2."""
+also works.  Bad input gets one line on standard error and exit code 2;
+Ctrl-C one line and exit code 130."""
+
+# Bounds of the numeric options (a larger value is refused, not wrapped).
+MAX_HORIZON = 1_000_000
+MAX_SECONDS = 1_000_000.0
+MAX_REASONS = 1_000_000
 
 
 def model_paths(names: Sequence[str]) -> list[Path]:
@@ -55,15 +65,34 @@ def load_model(args: argparse.Namespace) -> Model:
     return Model.load(model_paths(args.model), allow_scripts=args.allow_scripts)
 
 
-def _seconds(text: str) -> float:
-    """A --time-limit: a positive number of seconds."""
+def _seconds(text: str) -> float | None:
+    """A --time-limit: seconds, a finite number from 0 to MAX_SECONDS; 0 means none."""
     try:
         value = float(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"not a number of seconds: {text!r}") from None
-    if not value > 0:
-        raise argparse.ArgumentTypeError(f"must be more than 0 seconds: {text!r}")
-    return value
+    if math.isnan(value) or value < 0 or value > MAX_SECONDS:
+        raise argparse.ArgumentTypeError(
+            f"must be a number of seconds from 0 to {MAX_SECONDS:,.0f} (0: no limit): {text!r}")
+    return value if value > 0 else None
+
+
+def _count(name: str, largest: int):
+    """An argparse type: a whole number from 0 to ``largest``."""
+    def parse(text: str) -> int:
+        try:
+            value = int(text.strip())
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
+        if not 0 <= value <= largest:
+            raise argparse.ArgumentTypeError(f"must be from 0 to {largest:,}: {text!r}")
+        return value
+    parse.__name__ = name
+    return parse
+
+
+_horizon = _count("horizon", MAX_HORIZON)
+_reasons = _count("reasons limit", MAX_REASONS)
 
 
 def _steps(count: int) -> str:
@@ -171,10 +200,7 @@ def _given_plan(args: argparse.Namespace) -> Plan:
     """The plan of --plan, or of --plan-file (for plans too long for a command line)."""
     if args.plan_file is None:
         return Plan.parse(args.plan)
-    try:
-        return Plan.parse(Path(args.plan_file).read_text())
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"{args.plan_file}: cannot be read ({exc})") from None
+    return Plan.parse(read_text(Path(args.plan_file), "--plan-file"))
 
 
 def _add_plan_arguments(parser: argparse.ArgumentParser, required: bool = True,
@@ -237,11 +263,25 @@ def command_ask(args: argparse.Namespace) -> int:
     return 0
 
 
+def _writable(path: Path, what: str) -> None:
+    """Refuse a file that cannot be written before any work is done."""
+    if path.is_dir():
+        raise InputError(f"{what} {path}: is a directory, not a file")
+    parent = path.parent if str(path.parent) else Path(".")
+    if not parent.is_dir():
+        raise InputError(f"{what} {path}: cannot be written (no directory {parent})")
+    if not os.access(parent, os.W_OK) or (path.exists() and not os.access(path, os.W_OK)):
+        raise InputError(f"{what} {path}: cannot be written (permission denied)")
+
+
 def command_dialogue(args: argparse.Namespace) -> int:
     from ethasp.questions.dialogue import Dialogue
     from ethasp.interfaces.prompt import Prompt
 
     _reasons_limit(args)
+    save = None if args.save == "-" else Path(args.save)
+    if save is not None:
+        _writable(save, "--save")
     model = load_model(args)
     options = dict(max_horizon=args.max_horizon, time_limit=args.time_limit,
                    reasons_limit=args.reasons_limit)
@@ -262,10 +302,11 @@ def command_dialogue(args: argparse.Namespace) -> int:
         loaded.model_files = files
         return loaded
 
-    save = None if args.save == "-" else Path(args.save)
     if interactive:
         print("ethasp dialogue: type help for the commands, quit to end.")
-    return Prompt(dialogue, save, sys.stdout, load).run(read)
+    prompt = Prompt(dialogue, save, sys.stdout, load)
+    args.on_interrupt = prompt.save_now      # Ctrl-C saves the dialogue first
+    return prompt.run(read)
 
 
 def command_query(args: argparse.Namespace) -> int:
@@ -289,15 +330,15 @@ def _add_model_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def _add_search_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--max-horizon", type=int, default=DEFAULT_MAX_HORIZON, metavar="N",
+    parser.add_argument("--max-horizon", type=_horizon, default=DEFAULT_MAX_HORIZON, metavar="N",
                         help=f"search plans of at most N steps (default {DEFAULT_MAX_HORIZON})")
     parser.add_argument("--time-limit", type=_seconds, default=None, metavar="SECONDS",
-                        help="stop searching after SECONDS and report 'bounded'")
+                        help="stop searching after SECONDS and report 'bounded' (0: no limit)")
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="ethasp", description=DESCRIPTION,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = _Parser(prog="ethasp", description=DESCRIPTION,
+                     formatter_class=argparse.RawDescriptionHelpFormatter)
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
     plan = commands.add_parser(
@@ -331,12 +372,12 @@ def build_parser() -> argparse.ArgumentParser:
     _add_plan_arguments(judging)
     judging.add_argument("--principle", action="append", metavar="NAME",
                          help="deontology, do-no-harm or utilitarianism (repeatable)")
-    judging.add_argument("--max-horizon", type=int, default=DEFAULT_MAX_HORIZON, metavar="N",
+    judging.add_argument("--max-horizon", type=_horizon, default=DEFAULT_MAX_HORIZON, metavar="N",
                          help="search a best reachable state among the states reachable in "
                               f"at most N steps (default {DEFAULT_MAX_HORIZON})")
     judging.add_argument("--time-limit", type=_seconds, default=None, metavar="SECONDS",
-                         help="stop that search after SECONDS and report 'bounded'")
-    judging.add_argument("--reasons-limit", type=int, default=None, metavar="N",
+                         help="stop that search after SECONDS and report 'bounded' (0: no limit)")
+    judging.add_argument("--reasons-limit", type=_reasons, default=None, metavar="N",
                          help="compute at most N sufficient and N necessary reasons per "
                               "judgement (default: ethasp.reasons.DEFAULT_LIMIT; "
                               "0: no explanations)")
@@ -368,7 +409,7 @@ def build_parser() -> argparse.ArgumentParser:
     contrast.add_argument("--under", default=None, metavar="Q",
                           help="the principle the contrast plan must satisfy (default P)")
     _add_search_arguments(contrast)
-    contrast.add_argument("--reasons-limit", type=int, default=None,
+    contrast.add_argument("--reasons-limit", type=_reasons, default=None,
                           metavar="N", help="at most N reasons of each kind per judgement")
     contrast.set_defaults(run=command_ask)
 
@@ -388,27 +429,102 @@ def build_parser() -> argparse.ArgumentParser:
                       help="where the dialogue is saved when it ends "
                            "(default ethasp-dialogue.json; - for nowhere)")
     _add_search_arguments(talk)
-    talk.add_argument("--reasons-limit", type=int, default=None, metavar="N",
+    talk.add_argument("--reasons-limit", type=_reasons, default=None, metavar="N",
                       help="at most N reasons of each kind per judgement")
     talk.set_defaults(run=command_dialogue)
     return parser
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
+class _Parser(argparse.ArgumentParser):
+    """Usage errors in one line, like every other error."""
+
+    def error(self, message: str):
+        command = self.prog if self.prog.startswith("ethasp ") else "ethasp"
+        self.exit(2, f"ethasp: error: {' '.join(message.split())} "
+                     f"(see {command} --help)\n")
+
+
+def _command(args: argparse.Namespace) -> int:
+    """Run a command; errors become one line on standard error and an exit code."""
     try:
         return args.run(args)
     except InputError as error:
-        print(f"ethasp: error: {error}", file=sys.stderr)
+        _error(str(error))
         return 2
-    except KeyboardInterrupt:
-        print("ethasp: interrupted", file=sys.stderr)
-        return 130
     except BrokenPipeError:
         # The reader went away (e.g. ethasp ... | head): stop quietly.
         sys.stderr.close()
         return 1
+    except RecursionError:
+        _error("the input is nested too deeply to read")
+        return 2
+    except MemoryError:
+        _error("out of memory: the input is too large")
+        return 2
+
+
+def _error(message: str) -> None:
+    print(f"ethasp: error: {' '.join(message.split())}", file=sys.stderr, flush=True)
+
+
+def _interrupted(args: argparse.Namespace, worker: threading.Thread) -> int:
+    """Ctrl-C: one line (after saving a dialogue), exit code 130."""
+    hook = getattr(args, "on_interrupt", None)
+    note = ""
+    if hook is not None:
+        try:
+            note = f"; {hook()}"
+        except Exception as error:  # noqa: BLE001 (the line must still be printed)
+            note = f"; dialogue not saved: {error}"
+    print(f"ethasp: interrupted{note}", file=sys.stderr, flush=True)
+    if worker.is_alive():
+        # The command is still inside clingo (or reading input): end the process now.
+        try:
+            sys.stdout.flush()
+        except (OSError, ValueError):
+            pass
+        os._exit(130)
+    return 130
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """The ethasp command line.  The command runs in a worker thread, so that
+    Ctrl-C is handled at once even while clingo grounds or solves."""
+    args = None
+    try:
+        parser = build_parser()
+        try:
+            args = parser.parse_args(argv)
+        except SystemExit as done:   # --help, or a usage error already printed
+            return done.code if isinstance(done.code, int) else (0 if done.code is None else 2)
+        outcome: dict = {}
+
+        def work() -> None:
+            try:
+                outcome["code"] = _command(args)
+            except BaseException as error:  # noqa: BLE001 (handed to the main thread)
+                outcome["error"] = error
+
+        worker = threading.Thread(target=work, name="ethasp-command", daemon=True)
+        worker.start()
+        try:
+            while worker.is_alive():
+                worker.join(1.0)
+        except KeyboardInterrupt:
+            return _interrupted(args, worker)
+        if "error" in outcome:
+            error = outcome["error"]
+            if isinstance(error, KeyboardInterrupt):
+                return _interrupted(args, worker)
+            if os.environ.get("ETHASP_DEBUG"):
+                raise error
+            _error(f"internal error: {type(error).__name__}: {error} (please report it; "
+                   "ETHASP_DEBUG=1 shows where)")
+            return 70
+        return outcome["code"]
+    except KeyboardInterrupt:
+        print("ethasp: interrupted", file=sys.stderr, flush=True)
+        return 130
 
 
 if __name__ == "__main__":

@@ -129,7 +129,9 @@ class Prompt:
         return True
 
     def run(self, read: Callable[[], str]) -> int:
-        """Read and carry out commands until quit, end of input or Ctrl-C."""
+        """Read and carry out commands until quit or end of input, then save the
+        dialogue (InputError if it cannot be written).  On Ctrl-C (a
+        KeyboardInterrupt here) the dialogue is saved and the interrupt raised on."""
         self.show_current()
         try:
             while True:
@@ -144,11 +146,22 @@ class Prompt:
                     self.say(f"error: {error}")
         except KeyboardInterrupt:
             self.say("")
-        finally:
-            if self.save_path is not None:
-                self.dialogue.save(self.save_path)
-                self.say(f"dialogue saved to {self.save_path}")
+            self.say(self.save_now())
+            raise
+        if self.save_path is not None:
+            self.dialogue.save(self.save_path)
+            self.say(f"dialogue saved to {self.save_path}")
         return 0
+
+    def save_now(self) -> str:
+        """Save the dialogue as it stands (for an interrupt); what happened, in words."""
+        if self.save_path is None:
+            return "dialogue not saved (--save -)"
+        try:
+            self.dialogue.save(self.save_path)
+        except InputError as error:
+            return f"dialogue not saved: {error}"
+        return f"dialogue saved to {self.save_path}"
 
 
 def transcript(dialogue: Dialogue) -> str:
