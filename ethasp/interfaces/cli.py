@@ -467,7 +467,7 @@ def _error(message: str) -> None:
     print(f"ethasp: error: {' '.join(message.split())}", file=sys.stderr, flush=True)
 
 
-def _interrupted(args: argparse.Namespace, worker: threading.Thread) -> int:
+def _interrupted(args: argparse.Namespace, done: threading.Event) -> int:
     """Ctrl-C: one line (after saving a dialogue), exit code 130."""
     hook = getattr(args, "on_interrupt", None)
     note = ""
@@ -477,7 +477,7 @@ def _interrupted(args: argparse.Namespace, worker: threading.Thread) -> int:
         except Exception as error:  # noqa: BLE001 (the line must still be printed)
             note = f"; dialogue not saved: {error}"
     print(f"ethasp: interrupted{note}", file=sys.stderr, flush=True)
-    if worker.is_alive():
+    if not done.is_set():
         # The command is still inside clingo (or reading input): end the process now.
         try:
             sys.stdout.flush()
@@ -498,24 +498,28 @@ def main(argv: Sequence[str] | None = None) -> int:
         except SystemExit as done:   # --help, or a usage error already printed
             return done.code if isinstance(done.code, int) else (0 if done.code is None else 2)
         outcome: dict = {}
+        done = threading.Event()
 
         def work() -> None:
             try:
                 outcome["code"] = _command(args)
             except BaseException as error:  # noqa: BLE001 (handed to the main thread)
                 outcome["error"] = error
+            finally:
+                done.set()
 
-        worker = threading.Thread(target=work, name="ethasp-command", daemon=True)
-        worker.start()
+        # (An Event, not Thread.join: an interrupted join can mark a running
+        # thread as stopped.)
+        threading.Thread(target=work, name="ethasp-command", daemon=True).start()
         try:
-            while worker.is_alive():
-                worker.join(1.0)
+            while not done.wait(1.0):
+                pass
         except KeyboardInterrupt:
-            return _interrupted(args, worker)
+            return _interrupted(args, done)
         if "error" in outcome:
             error = outcome["error"]
             if isinstance(error, KeyboardInterrupt):
-                return _interrupted(args, worker)
+                return _interrupted(args, done)
             if os.environ.get("ETHASP_DEBUG"):
                 raise error
             _error(f"internal error: {type(error).__name__}: {error} (please report it; "

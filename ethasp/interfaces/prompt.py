@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import threading
 from pathlib import Path
 from typing import Callable, TextIO
 
@@ -66,6 +67,8 @@ class Prompt:
         self.save_path = save_path
         self.output = output
         self.load = load
+        self._saving = threading.Lock()   # an interrupt saves from another thread
+        self._ended = False
 
     def say(self, text: str) -> None:
         print(text, file=self.output, flush=True)
@@ -148,20 +151,30 @@ class Prompt:
             self.say("")
             self.say(self.save_now())
             raise
-        if self.save_path is not None:
-            self.dialogue.save(self.save_path)
-            self.say(f"dialogue saved to {self.save_path}")
+        with self._saving:
+            if self._ended:          # saved on an interrupt meanwhile
+                return 130
+            self._ended = True
+            if self.save_path is not None:
+                self.dialogue.save(self.save_path)
+                self.say(f"dialogue saved to {self.save_path}")
         return 0
 
     def save_now(self) -> str:
-        """Save the dialogue as it stands (for an interrupt); what happened, in words."""
-        if self.save_path is None:
-            return "dialogue not saved (--save -)"
-        try:
-            self.dialogue.save(self.save_path)
-        except InputError as error:
-            return f"dialogue not saved: {error}"
-        return f"dialogue saved to {self.save_path}"
+        """Save the dialogue as it stands and end it (on an interrupt, from any
+        thread); what happened, in words."""
+        with self._saving:
+            if self._ended:          # it ended meanwhile, and saved itself
+                return f"dialogue saved to {self.save_path}" if self.save_path \
+                    else "dialogue not saved (--save -)"
+            self._ended = True
+            if self.save_path is None:
+                return "dialogue not saved (--save -)"
+            try:
+                self.dialogue.save(self.save_path)
+            except InputError as error:
+                return f"dialogue not saved: {error}"
+            return f"dialogue saved to {self.save_path}"
 
 
 def transcript(dialogue: Dialogue) -> str:
