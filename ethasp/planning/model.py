@@ -12,7 +12,7 @@ from clingo import ast
 from clorm import FactBase, unify
 
 from ethasp.errors import InputError
-from ethasp.planning.namespace import NamespaceCheck
+from ethasp.planning.namespace import NamespaceCheck, misused_vocabulary
 from ethasp.planning.naming import Naming, PddlNaming
 from ethasp.planning.terms import read_text, scan_file, scan_program
 from ethasp.resources import encoding
@@ -98,6 +98,8 @@ class Model:
             from ethasp.planning.pddl import split_paths, translate_files
 
             pddl_paths, paths = split_paths(paths)
+            for path in pddl_paths:
+                read_text(path)      # a clear message for directories, binary files, ...
             try:
                 program, name = translate_files(pddl_paths)
             except RecursionError:
@@ -225,6 +227,10 @@ class Model:
                             key=lambda e: str(e.problem))
             if errors:
                 raise InputError(f"{names}: {_describe(errors[0].problem.symbol)}")
+        misspelt = misused_vocabulary((name, arity) for name, arity, _ in
+                                      ctl.symbolic_atoms.signatures)
+        if misspelt:
+            raise InputError(f"{names}: {misspelt}")
         if not answers:
             raise InputError(f"{names}: the model's rules have no answer set (a constraint or "
                              "a contradiction rules every one out), so it describes no "

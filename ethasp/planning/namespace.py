@@ -81,6 +81,21 @@ def signature_text(signature: tuple[str, int]) -> str:
     return f"{signature[0]}/{signature[1]}"
 
 
+def misused_vocabulary(signatures) -> str:
+    """A sentence on the first predicate that has a name of the vocabulary but
+    another arity (``init(v,true)`` for ``init(v)``), else ''."""
+    arities: dict[str, list[tuple[str, int]]] = {}
+    for signature in VOCABULARY:
+        arities.setdefault(signature[0], []).append(signature)
+    for signature in sorted(set(signatures)):
+        known = arities.get(signature[0])
+        if known and signature not in VOCABULARY:
+            meant = " or ".join(VOCABULARY[s] for s in known)
+            return (f"{signature_text(signature)} is not in the model vocabulary, which has "
+                    f"{' and '.join(signature_text(s) for s in known)} ({meant})")
+    return ""
+
+
 def vocabulary_text() -> str:
     """The model vocabulary as a short list, for messages."""
     return ", ".join(signature_text(s) for s in MODEL_VOCABULARY)

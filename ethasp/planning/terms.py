@@ -145,6 +145,9 @@ def scan_program(text: str, name: str) -> Scan:
                     f"the integer {literal} is out of range: clingo's integers are 32-bit, "
                     f"from {INT_MIN} to {INT_MAX}")
             index = end
+        elif char < " " and char not in "\t\r\f\v":
+            raise LimitError(_where(name, line, index - line_start + 1),
+                             f"a control character {ord(char):#04x}: not a program text")
         else:
             if char == "(":
                 depth += 1

@@ -151,25 +151,33 @@ class Dialogue:
     @classmethod
     def from_json(cls, data: dict, model: Model | None = None,
                   max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
-                  reasons_limit: int = DEFAULT_LIMIT) -> "Dialogue":
+                  reasons_limit: int = DEFAULT_LIMIT, source: str = "saved dialogue"
+                  ) -> "Dialogue":
         """Rebuild a saved dialogue, asking its questions again in order.
 
         The data is checked first (types, at most :data:`MAX_STEPS` questions);
-        plans and questions are read as terms, never as rule text.
+        plans and questions are read as terms, never as rule text.  Errors name
+        ``source`` (the file, when loaded).
         """
-        _check_saved(data)
+        try:
+            _check_saved(data)
+        except InputError as error:
+            raise InputError(f"{source}: {error}") from None
         if model is None:
             if not data.get("model"):
                 raise InputError("the saved dialogue names no model files; give the model")
             model = Model.load(data["model"])
-        plan = Plan(tuple(parse_action(action) for action in data["plan"]))
-        dialogue = cls(model, select_principles([data["principle"]])[0].name, plan,
-                       data["principle"], [], list(data.get("model", [])), max_horizon,
-                       time_limit, reasons_limit)
-        for step in data.get("steps", []):
-            dialogue.switch_principle(step["under"])
-            dialogue.ask(Question.from_json(step["question"]))
-        dialogue.switch_principle(data.get("under", dialogue.principle))
+        try:
+            plan = Plan(tuple(parse_action(action) for action in data["plan"]))
+            dialogue = cls(model, select_principles([data["principle"]])[0].name, plan,
+                           data["principle"], [], list(data.get("model", [])), max_horizon,
+                           time_limit, reasons_limit)
+            for step in data.get("steps", []):
+                dialogue.switch_principle(step["under"])
+                dialogue.ask(Question.from_json(step["question"]))
+            dialogue.switch_principle(data.get("under", dialogue.principle))
+        except InputError as error:
+            raise InputError(f"{source}: {error}") from None
         return dialogue
 
     @classmethod
@@ -181,13 +189,13 @@ class Dialogue:
         except (json.JSONDecodeError, RecursionError) as error:
             reason = "nested too deeply" if isinstance(error, RecursionError) else str(error)
             raise InputError(f"{path}: not a saved dialogue ({reason})") from None
-        return cls.from_json(data, model, **options)
+        return cls.from_json(data, model, **options, source=str(path))
 
 
 def _check_saved(data) -> None:
     """Raise InputError unless ``data`` has the shape :meth:`Dialogue.to_json` writes."""
     def wrong(what: str) -> InputError:
-        return InputError(f"saved dialogue: {what}")
+        return InputError(what)
 
     if not isinstance(data, dict) or data.get("format") != FORMAT:
         raise InputError("not a saved ethasp dialogue (no \"format\": \"ethasp-dialogue\")")
