@@ -8,6 +8,7 @@ import math
 import os
 import sys
 import threading
+import time
 from pathlib import Path
 from typing import Sequence
 
@@ -467,7 +468,24 @@ def _error(message: str) -> None:
     print(f"ethasp: error: {' '.join(message.split())}", file=sys.stderr, flush=True)
 
 
-def _interrupted(args: argparse.Namespace, done: threading.Event) -> int:
+# A command that has not answered this long after its time limit is stuck where
+# clingo cannot be stopped (grounding that does not end): seconds = limit * 2 + this.
+OVERRUN_GRACE = 10.0
+
+
+def _end(code: int, end_process: bool) -> int:
+    """Leave with ``code`` while the command's thread may still be inside clingo
+    (or reading input): the process ends at once when it is the command line's."""
+    if end_process:
+        try:
+            sys.stdout.flush()
+        except (OSError, ValueError):
+            pass
+        os._exit(code)
+    return code
+
+
+def _interrupted(args: argparse.Namespace, done: threading.Event, end_process: bool) -> int:
     """Ctrl-C: one line (after saving a dialogue), exit code 130."""
     hook = getattr(args, "on_interrupt", None)
     note = ""
@@ -477,19 +495,19 @@ def _interrupted(args: argparse.Namespace, done: threading.Event) -> int:
         except Exception as error:  # noqa: BLE001 (the line must still be printed)
             note = f"; dialogue not saved: {error}"
     print(f"ethasp: interrupted{note}", file=sys.stderr, flush=True)
-    if not done.is_set():
-        # The command is still inside clingo (or reading input): end the process now.
-        try:
-            sys.stdout.flush()
-        except (OSError, ValueError):
-            pass
-        os._exit(130)
-    return 130
+    return 130 if done.is_set() else _end(130, end_process)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """The ethasp command line.  The command runs in a worker thread, so that
-    Ctrl-C is handled at once even while clingo grounds or solves."""
+    """The ethasp command line (``argv`` None: the process's arguments).
+
+    The command runs in a worker thread, so that Ctrl-C is handled at once even
+    while clingo grounds or solves, and so that a command still running long
+    after its time limit (clingo cannot interrupt grounding) is ended with an
+    error.  Called with ``argv`` from Python, main returns in these cases and
+    leaves the worker behind; as the command line, it ends the process.
+    """
+    end_process = argv is None
     args = None
     try:
         parser = build_parser()
@@ -508,18 +526,26 @@ def main(argv: Sequence[str] | None = None) -> int:
             finally:
                 done.set()
 
+        limit = getattr(args, "time_limit", None)
+        overrun = None if not limit or args.run is command_dialogue \
+            else 2 * limit + OVERRUN_GRACE
+        started = time.monotonic()
         # (An Event, not Thread.join: an interrupted join can mark a running
         # thread as stopped.)
         threading.Thread(target=work, name="ethasp-command", daemon=True).start()
         try:
-            while not done.wait(1.0):
-                pass
+            while not done.wait(0.5):
+                if overrun is not None and time.monotonic() - started > overrun:
+                    _error(f"no answer within the time limit of {limit:g} s: still grounding "
+                           f"or solving after {overrun:g} s (clingo cannot stop grounding; "
+                           "does the model's grounding end?)")
+                    return _end(2, end_process)
         except KeyboardInterrupt:
-            return _interrupted(args, done)
+            return _interrupted(args, done, end_process)
         if "error" in outcome:
             error = outcome["error"]
             if isinstance(error, KeyboardInterrupt):
-                return _interrupted(args, done)
+                return _interrupted(args, done, end_process)
             if os.environ.get("ETHASP_DEBUG"):
                 raise error
             _error(f"internal error: {type(error).__name__}: {error} (please report it; "

@@ -10,6 +10,8 @@ annotation file or a file they include
   predicates, and what ``encodings/planning/model.lp`` (and, for PDDL tasks,
   ``encodings/planning/pddl.lp``) derive from the model alone: ``fact/2``,
   ``weight/2``, ``has_type/2``, ...;
+* defines no constant (``#const``) whose name the encodings use (a constant
+  is replaced in every file of a program: ``#const true = false.``);
 * has no optimisation statements, weak constraints, ``#heuristic``,
   ``#project``, ``#edge``, theory atoms or program parts other than ``base``:
   each would change the searches of the encodings;
@@ -359,6 +361,18 @@ def owner(signature: tuple[str, int], pddl: bool = True) -> Owner | None:
     return result
 
 
+_COMMENTS = re.compile(r"%\*.*?\*%|%[^\n]*|\"(?:\\.|[^\"\\])*\"", re.S)
+
+
+@lru_cache(maxsize=None)
+def encoding_names() -> frozenset[str]:
+    """Every lower-case name (predicate or constant) written in an encoding."""
+    names: set[str] = set()
+    for path in _encoding_files():
+        names |= set(_NAME.findall(_COMMENTS.sub(" ", path.read_text())))
+    return frozenset(names)
+
+
 @lru_cache(maxsize=None)
 def readable(pddl: bool = False) -> frozenset[tuple[str, int]]:
     """The encodings' predicates a model may read: those of the model layer."""
@@ -385,6 +399,12 @@ class NamespaceCheck:
         self.names = frozenset(name for name, _ in self.reserved)
 
     def __call__(self, statement) -> None:
+        if statement.ast_type == ast.ASTType.Definition and statement.name in encoding_names():
+            begin = statement.location.begin
+            raise InputError(
+                f"{begin.filename}:{begin.line}: the model defines the constant "
+                f"{statement.name} (#const), a name the encodings use: it would change them; "
+                "rename it")
         if statement.ast_type == ast.ASTType.Rule:
             text = str(statement)
             if "&" not in text and self.names.isdisjoint(_NAME.findall(text)):

@@ -15,14 +15,19 @@ from ethasp.vocabulary import Occurs
 
 
 def split_terms(text: str) -> list[str]:
-    """Split "a1 push(man, bridge) a3" at spaces outside parentheses."""
-    terms, depth, current = [], 0, []
+    """Split "a1 push(man, bridge) a3" at spaces outside parentheses and strings."""
+    terms, depth, current, quoted, escaped = [], 0, [], False, False
     for char in text:
-        if char in "([":
+        if quoted:
+            quoted = escaped or char != '"'
+            escaped = not escaped and char == "\\"
+        elif char == '"':
+            quoted = True
+        elif char in "([":
             depth += 1
         elif char in ")]":
             depth -= 1
-        if char.isspace() and depth == 0:
+        elif char.isspace() and depth == 0:
             if current:
                 terms.append("".join(current))
                 current = []
@@ -40,7 +45,11 @@ def parse_action(text: str) -> clingo.Symbol:
     never as rule text.
     """
     if text.startswith("("):
-        return pddl_atom_to_term(text)
+        try:
+            return pddl_atom_to_term(text)
+        except InputError as error:
+            if "," not in text:      # not a tuple term such as (p,q) either
+                raise error from None
     try:
         return parse_symbol(text, "action")
     except TermError as error:

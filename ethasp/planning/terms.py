@@ -232,7 +232,7 @@ def _arithmetic(text: str) -> str | None:
             previous = '"'
         elif char in "+*/\\^&?~|":
             return char
-        elif char == "-" and (previous.isalnum() or previous in ")\"'_"):
+        elif char == "-" and previous and (previous.isalnum() or previous in ")\"'_"):
             return char
         elif text.startswith("..", index):
             return ".."
