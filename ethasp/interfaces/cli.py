@@ -448,13 +448,22 @@ class _Parser(argparse.ArgumentParser):
 def _command(args: argparse.Namespace) -> int:
     """Run a command; errors become one line on standard error and an exit code."""
     try:
-        return args.run(args)
+        code = args.run(args)
+        sys.stdout.flush()
+        return code
     except InputError as error:
         _error(str(error))
         return 2
     except BrokenPipeError:
         # The reader went away (e.g. ethasp ... | head): stop quietly.
         sys.stderr.close()
+        return 1
+    except OSError as error:        # standard output cannot be written (a full disk)
+        try:
+            sys.stdout = open(os.devnull, "w")   # nothing more to flush at exit
+        except OSError:
+            pass
+        _error(f"cannot write the answer ({error.strerror or error})")
         return 1
     except RecursionError:
         _error("the input is nested too deeply to read")

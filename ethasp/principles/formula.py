@@ -160,7 +160,7 @@ class _Parser:
     def parse(self) -> Formula:
         """formula ::= disjunction ["->" formula]; disjunctions and conjunctions are
         left associative chains of "or" and "and"; "not" binds tightest."""
-        operands: list[tuple[clingo.Symbol, int]] = []      # (term, its nesting depth)
+        operands: list[tuple[clingo.Symbol, int]] = []      # (term, operators nested in it)
         operators: list[tuple[str, int]] = []                # (operator or "(", position)
 
         def reduce_while_stronger(level: int) -> None:
@@ -180,7 +180,7 @@ class _Parser:
                     opened += 1
                 else:
                     break
-            operands.append((self.atom(), 1))
+            operands.append((self.atom(), 0))
             # Closing parentheses (an unmatched one is reported at the end).
             while opened and self.accept(")"):
                 reduce_while_stronger(0)
