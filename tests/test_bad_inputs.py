@@ -27,6 +27,7 @@ PLACEHOLDERS = {
     "deep_not": shlex.quote("not " * 10_001 + "Bad(pull)"),
     "deep_name": shlex.quote("Good(" + "f(" * 10_001 + "a" + ")" * 10_001 + ")"),
     "deep_question": shlex.quote("why " + "f(" * 10_001 + "a" + ")" * 10_001),
+    "long": "a" * 5000,
 }
 
 

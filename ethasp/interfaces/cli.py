@@ -52,7 +52,11 @@ def model_paths(names: Sequence[str]) -> list[Path]:
     paths = []
     for name in names:
         path = Path(name)
-        if not path.exists():
+        try:
+            exists = path.exists()
+        except (OSError, ValueError):       # a name too long, ...: read_text says so
+            exists = True
+        if not exists:
             bundled = MODELS / (name if name.endswith(".lp") else name + ".lp")
             if "/" not in name and not bundled.is_file():
                 bundled = MODELS / "pddl" / name
@@ -266,13 +270,19 @@ def command_ask(args: argparse.Namespace) -> int:
 
 def _writable(path: Path, what: str) -> None:
     """Refuse a file that cannot be written before any work is done."""
-    if path.is_dir():
-        raise InputError(f"{what} {path}: is a directory, not a file")
-    parent = path.parent if str(path.parent) else Path(".")
-    if not parent.is_dir():
-        raise InputError(f"{what} {path}: cannot be written (no directory {parent})")
-    if not os.access(parent, os.W_OK) or (path.exists() and not os.access(path, os.W_OK)):
-        raise InputError(f"{what} {path}: cannot be written (permission denied)")
+    try:
+        if path.is_dir():
+            raise InputError(f"{what} {path}: is a directory, not a file")
+        parent = path.parent if str(path.parent) else Path(".")
+        if not parent.is_dir():
+            raise InputError(f"{what} {path}: cannot be written (no directory {parent})")
+        if not os.access(parent, os.W_OK) or (path.exists() and not os.access(path, os.W_OK)):
+            raise InputError(f"{what} {path}: cannot be written (permission denied)")
+        if len(path.name.encode()) > os.pathconf(parent, "PC_NAME_MAX"):
+            raise InputError(f"{what} {path}: cannot be written (file name too long)")
+    except (OSError, ValueError) as error:
+        reason = getattr(error, "strerror", None) or str(error)
+        raise InputError(f"{what} {path}: cannot be written ({reason})") from None
 
 
 def command_dialogue(args: argparse.Namespace) -> int:
@@ -458,7 +468,11 @@ def _command(args: argparse.Namespace) -> int:
         # The reader went away (e.g. ethasp ... | head): stop quietly.
         sys.stderr.close()
         return 1
-    except OSError as error:        # standard output cannot be written (a full disk)
+    except OSError as error:
+        if error.filename is not None:       # a file named by the user
+            _error(f"{error.filename}: {error.strerror or error}")
+            return 2
+        # Standard output cannot be written (a full disk).
         try:
             sys.stdout = open(os.devnull, "w")   # nothing more to flush at exit
         except OSError:

@@ -206,11 +206,11 @@ def _reason(exc: Exception) -> str:
 def read_text(path: Path, what: str = "") -> str:
     """The text of a file a user names, or an InputError saying why it cannot be read."""
     label = f"{what} {path}".strip()
-    if path.is_dir():
-        raise InputError(f"{label}: is a directory, not a file")
-    if not path.exists():
-        raise InputError(f"{label}: no such file")
     try:
+        if path.is_dir():
+            raise InputError(f"{label}: is a directory, not a file")
+        if not path.exists():
+            raise InputError(f"{label}: no such file")
         return path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError, ValueError) as exc:
         raise InputError(f"{label}: cannot be read ({_reason(exc)})") from None
