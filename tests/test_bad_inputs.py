@@ -28,6 +28,7 @@ PLACEHOLDERS = {
     "deep_name": shlex.quote("Good(" + "f(" * 10_001 + "a" + ")" * 10_001 + ")"),
     "deep_question": shlex.quote("why " + "f(" * 10_001 + "a" + ")" * 10_001),
     "long": "a" * 5000,
+    "undecodable": shlex.quote('"\udcff"'),        # a byte that is not UTF-8, as Python keeps it
 }
 
 

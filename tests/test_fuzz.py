@@ -54,7 +54,7 @@ QUESTIONS = ["why refrain rather than pull", "why pull", "why not pull", "why re
              "why pull?", "WHY NOT refrain"]
 
 TOKEN = re.compile(r"[A-Za-z_'][A-Za-z0-9_']*|\d+|\s+|.", re.S)
-CHARACTERS = "()[]{},.;:-_'\"%#&|+*/\\<>=!~@? \n\tabzXY0129"
+CHARACTERS = "()[]{},.;:-_'\"%#&|+*/\\<>=!~@? \n\tabzXY0129é€\x7f"
 NUMBERS = ["0", "-1", "2147483647", "2147483648", "-2147483648", "3000000000",
            "99999999999999999999", "1073741823", "0x7FFFFFFF", "0xFFFFFFFFF"]
 
@@ -257,7 +257,7 @@ def test_mutated_questions(question, command):
 
 
 @fuzz(120)
-@given(st.text(alphabet=CHARACTERS, max_size=40))
+@given(st.text(alphabet=CHARACTERS + "\x00\udcff", max_size=40))
 def test_random_plans_and_formulas(text):
     check(["judge", "trolley", "--plan", text, "--json", "--reasons-limit", "1", *LIMITS])
     check(["query", "trolley", "--plan", "pull", text])

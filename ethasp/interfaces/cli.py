@@ -306,7 +306,9 @@ def command_dialogue(args: argparse.Namespace) -> int:
     interactive = sys.stdin.isatty()
 
     def read() -> str:
-        return input("ethasp> " if interactive else "")
+        line = input("ethasp> " if interactive else "")
+        # Bytes that are not UTF-8 become U+FFFD, so that messages can show them.
+        return line.encode("utf-8", "surrogateescape").decode("utf-8", "replace")
 
     def load(path: str) -> Dialogue:
         loaded = Dialogue.load(path, model, **options)

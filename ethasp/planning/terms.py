@@ -8,6 +8,9 @@ So every text that reaches clingo from a user, model files included, is
 scanned first, and refused with one line when it
 
 * writes an integer outside ``INT_MIN..INT_MAX``, or
+* has a character that is not ASCII outside strings and comments (clingo
+  reads only ASCII names, and its message about such a character makes its
+  Python library abort), or a control character, or
 * nests parentheses more than ``MAX_NESTING`` deep, or has more than
   ``MAX_NESTING`` arithmetic operators in one statement (term).
 
@@ -34,6 +37,12 @@ INT_MAX = 2**31 - 1
 MAX_NESTING = 10_000
 
 _OPERATORS = set("+-*/\\^&?~")
+_DIGITS = frozenset("0123456789")
+_LETTERS = frozenset("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ_'")
+
+
+def _ascii_word(char: str) -> bool:
+    return char.isascii() and (char.isalnum() or char == "_")
 _BASES = {"x": 16, "o": 8, "b": 2}
 
 
@@ -72,13 +81,13 @@ def _number(text: str, start: int) -> tuple[int, int]:
     if text.startswith("0", start) and start + 2 <= len(text) and text[start + 1] in _BASES:
         base = _BASES[text[start + 1]]
         end = start + 2
-        while end < len(text) and text[end].isalnum():
+        while end < len(text) and _ascii_word(text[end]):
             end += 1
         try:
             return int(text[start + 2:end], base), end
         except ValueError:
             return 0, end  # clingo reports the syntax error
-    while end < len(text) and text[end].isdigit():
+    while end < len(text) and text[end] in _DIGITS:
         end += 1
     return int(text[start:end]), end
 
@@ -97,6 +106,13 @@ def scan_program(text: str, name: str) -> Scan:
         if char == "\n":
             line, line_start = line + 1, index + 1
             index += 1
+        elif not char.isascii():
+            # (clingo's message about such a character cuts it in the middle of its
+            # UTF-8 bytes, which its Python library cannot decode: it aborts.)
+            shown = char if char.isprintable() else f"U+{ord(char):04X}"
+            raise LimitError(_where(name, line, index - line_start + 1),
+                             f"the character {shown!r} outside a string or comment "
+                             "(names in ASP are ASCII)")
         elif char == "%":
             if text.startswith("%*", index):           # block comment
                 end = text.find("*%", index + 2)
@@ -116,7 +132,7 @@ def scan_program(text: str, name: str) -> Scan:
             index = end + 1
         elif char == "#":
             end = index + 1
-            while end < length and (text[end].isalnum() or text[end] == "_"):
+            while end < length and _ascii_word(text[end]):
                 end += 1
             directive = text[index:end]
             if directive == "#script":
@@ -132,11 +148,11 @@ def scan_program(text: str, name: str) -> Scan:
                     if close > 0:
                         scan.includes.append((rest[1:close], line))
             index = end
-        elif char.isalpha() or char == "_" or char == "'":
+        elif char in _LETTERS:
             index += 1
-            while index < length and (text[index].isalnum() or text[index] in "_'"):
+            while index < length and (_ascii_word(text[index]) or text[index] == "'"):
                 index += 1
-        elif char.isdigit():
+        elif char in _DIGITS:
             value, end = _number(text, index)
             if value > INT_MAX:
                 literal = text[index:end]
@@ -253,6 +269,10 @@ def parse_symbol(text: str, what: str = "term") -> clingo.Symbol:
     stripped = text.strip()
     if not stripped:
         raise TermError(what, "empty term", "empty")
+    try:
+        stripped.encode("utf-8")
+    except UnicodeEncodeError:   # bytes that were not UTF-8 (kept as surrogates)
+        raise TermError(what, "not UTF-8 text", "not UTF-8 text") from None
     try:
         scan_program(stripped, what)
     except LimitError as error:
