@@ -106,7 +106,7 @@ def hard_gripper(tmp_path, balls: int = 14):
 
 def test_long_plan_search_stops_at_once(tmp_path):
     process = start("plan", *hard_gripper(tmp_path))
-    time.sleep(3)                      # loading done, deep in the search
+    time.sleep(5)                      # loading done, deep in the search
     assert process.poll() is None, "the search ended before the interrupt"
     code, out, err = interrupt(process)
     assert code == 130 and out == ""
@@ -115,7 +115,7 @@ def test_long_plan_search_stops_at_once(tmp_path):
 
 def test_permissible_plan_search_stops_at_once(tmp_path):
     process = start("plan", *hard_gripper(tmp_path), "--principle", "utilitarianism")
-    time.sleep(3)
+    time.sleep(5)
     assert process.poll() is None, "the search ended before the interrupt"
     code, out, err = interrupt(process)
     assert code == 130 and out == ""
