@@ -19,16 +19,6 @@ class Action(Predicate, name="action"):
     name: Raw
 
 
-class Pre(Predicate, name="pre"):
-    action: Raw
-    variable: Raw
-    value: ConstantStr
-
-
-class Eff(Predicate, name="eff"):
-    action: Raw
-    variable: Raw
-    value: ConstantStr
 
 
 class Init(Predicate, name="init"):
@@ -44,6 +34,7 @@ class Goal(Predicate, name="goal"):
 
 class Error(Predicate, name="error"):
     problem: Raw
+
 
 
 # -- plans and traces (transition.lp, trace.lp) -------------------------------
@@ -82,9 +73,6 @@ class IsPlan(Predicate, name="plan"):
     pass
 
 
-class UnreachableGoal(Predicate, name="unreachable_goal"):
-    pass
-
 
 # -- judgements and the language L (language.lp, judge.lp, judgement/best.lp) ----
 
@@ -112,14 +100,20 @@ class Alternative(Predicate, name="alternative"):
     name: Raw
 
 
+class UpperBound(Predicate, name="upper_bound"):
+    bound: int
+
+
+class BestFact(Predicate, name="best_fact"):
+    variable: Raw
+    value: ConstantStr
+
+
 class AtHorizon(Predicate, name="at_horizon"):
     variable: Raw
     value: ConstantStr
     time: int
 
-
-class UpperBound(Predicate, name="upper_bound"):
-    bound: int
 
 
 # -- reasons and their words (encodings/reasons/) --------------------------------
@@ -147,13 +141,6 @@ class Conjunct(Predicate, name="conjunct"):
     value: ConstantStr
 
 
-class OtherThan(Predicate, name="other_than"):
-    variable: Raw
-    value: ConstantStr
-
-
-class Explain(Predicate, name="explain"):
-    name: Raw
 
 
 class AgentLabel(Predicate, name="agent_label"):

@@ -107,7 +107,7 @@ def test_relevance_picks_a_necessary_reason_of_least_cost(formula, pick, weight,
     worth = dict(zip("cde", worths))
     text = program(formula, actual) + "\n" + "\n".join(
         [f"weight({e},{u})." for e, u in weight.items()]
-        + [f"worth({c},{w})." for c, w in worth.items()])
+        + [f"conj_worth({c},{w})." for c, w in worth.items()])
     found = answer_sets(CORE + ["reasons/necessary.lp", "reasons/relevance.lp"], text,
                         ("0", "--opt-mode=opt", "--opt-strategy=usc"))
     if not expected:

@@ -4,7 +4,11 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
+import os
 import sys
+import threading
+import time
 from pathlib import Path
 from typing import Sequence
 
@@ -16,6 +20,7 @@ from ethasp.planning.budget import DEFAULT_TIME_LIMIT, Budget
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
 from ethasp.interfaces.version import package_version
+from ethasp.planning.terms import read_text
 from ethasp.resources import MODELS
 from ethasp.planning.search import DEFAULT_MAX_HORIZON, FOUND, find_plan
 
@@ -33,8 +38,14 @@ via Automatically Generated Explanations" (IEEE CASE 2021).
 MODEL is one or more ASP files in the vocabulary variable/1, action/1, pre/3,
 eff/3, ceff/4, cpre/4, init/1, goal/2, utility/2, utility/3 (derived variables:
 derived/1, axiom/2, axiom_pre/4), or a PDDL domain and problem (STRIPS, ADL,
-derived predicates) with ASP annotation files; the name of a bundled model (e.g. trolley)
-also works.  Bad input gets one line on standard error and exit code 2."""
+derived predicates) with ASP annotation files; the name of a bundled model (e.g.
+trolley) also works.  Bad input gets one line on standard error and exit code 2;
+Ctrl-C one line and exit code 130."""
+
+# Bounds of the numeric options (a larger value is refused, not wrapped).
+MAX_HORIZON = 1_000_000
+MAX_SECONDS = 1_000_000.0
+MAX_REASONS = 1_000_000
 
 
 def model_paths(names: Sequence[str]) -> list[Path]:
@@ -45,7 +56,11 @@ def model_paths(names: Sequence[str]) -> list[Path]:
     paths = []
     for name in names:
         path = Path(name)
-        if not path.exists():
+        try:
+            exists = path.exists()
+        except (OSError, ValueError):       # a name too long, ...: read_text says so
+            exists = True
+        if not exists:
             bundled = MODELS / (name if name.endswith(".lp") else name + ".lp")
             if "/" not in name and not bundled.is_file():
                 bundled = MODELS / "pddl" / name
@@ -60,14 +75,33 @@ def load_model(args: argparse.Namespace) -> Model:
 
 
 def _seconds(text: str) -> float | None:
-    """A --time-limit: seconds (0 or inf: no limit)."""
+    """A --time-limit: seconds, a finite number from 0 to MAX_SECONDS; 0 means none."""
     try:
         value = float(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"not a number of seconds: {text!r}") from None
-    if value != value or value < 0:
-        raise argparse.ArgumentTypeError(f"must be 0 (no limit) or more seconds: {text!r}")
-    return None if value == 0 or value == float("inf") else value
+    if math.isnan(value) or value < 0 or value > MAX_SECONDS:
+        raise argparse.ArgumentTypeError(
+            f"must be a number of seconds from 0 to {MAX_SECONDS:,.0f} (0: no limit): {text!r}")
+    return value if value > 0 else None
+
+
+def _count(name: str, largest: int):
+    """An argparse type: a whole number from 0 to ``largest``."""
+    def parse(text: str) -> int:
+        try:
+            value = int(text.strip())
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
+        if not 0 <= value <= largest:
+            raise argparse.ArgumentTypeError(f"must be from 0 to {largest:,}: {text!r}")
+        return value
+    parse.__name__ = name
+    return parse
+
+
+_horizon = _count("horizon", MAX_HORIZON)
+_reasons = _count("reasons limit", MAX_REASONS)
 
 
 def budget(args: argparse.Namespace) -> Budget:
@@ -226,10 +260,7 @@ def _given_plan(args: argparse.Namespace) -> Plan:
     """The plan of --plan, or of --plan-file (for plans too long for a command line)."""
     if args.plan_file is None:
         return Plan.parse(args.plan)
-    try:
-        return Plan.parse(Path(args.plan_file).read_text())
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"{args.plan_file}: cannot be read ({exc})") from None
+    return Plan.parse(read_text(Path(args.plan_file), "--plan-file"))
 
 
 def _add_plan_arguments(parser: argparse.ArgumentParser, required: bool = True,
@@ -294,11 +325,31 @@ def command_ask(args: argparse.Namespace) -> int:
     return 0
 
 
+def _writable(path: Path, what: str) -> None:
+    """Refuse a file that cannot be written before any work is done."""
+    try:
+        if path.is_dir():
+            raise InputError(f"{what} {path}: is a directory, not a file")
+        parent = path.parent if str(path.parent) else Path(".")
+        if not parent.is_dir():
+            raise InputError(f"{what} {path}: cannot be written (no directory {parent})")
+        if not os.access(parent, os.W_OK) or (path.exists() and not os.access(path, os.W_OK)):
+            raise InputError(f"{what} {path}: cannot be written (permission denied)")
+        if len(path.name.encode()) > os.pathconf(parent, "PC_NAME_MAX"):
+            raise InputError(f"{what} {path}: cannot be written (file name too long)")
+    except (OSError, ValueError) as error:
+        reason = getattr(error, "strerror", None) or str(error)
+        raise InputError(f"{what} {path}: cannot be written ({reason})") from None
+
+
 def command_dialogue(args: argparse.Namespace) -> int:
     from ethasp.questions.dialogue import Dialogue
     from ethasp.interfaces.prompt import Prompt
 
     _reasons_limit(args)
+    save = None if args.save == "-" else Path(args.save)
+    if save is not None:
+        _writable(save, "--save")
     model = load_model(args)
     options = dict(max_horizon=args.max_horizon, time_limit=args.time_limit,
                    reasons_limit=args.reasons_limit)
@@ -314,7 +365,9 @@ def command_dialogue(args: argparse.Namespace) -> int:
     interactive = sys.stdin.isatty()
 
     def read() -> str:
-        return input("ethasp> " if interactive else "")
+        line = input("ethasp> " if interactive else "")
+        # Bytes that are not UTF-8 become U+FFFD, so that messages can show them.
+        return line.encode("utf-8", "surrogateescape").decode("utf-8", "replace")
 
     def load(path: str) -> Dialogue:
         loaded = Dialogue.load(path, model, **options)
@@ -322,10 +375,11 @@ def command_dialogue(args: argparse.Namespace) -> int:
         loaded.on_progress = progress
         return loaded
 
-    save = None if args.save == "-" else Path(args.save)
     if interactive:
         print("ethasp dialogue: type help for the commands, quit to end.")
-    return Prompt(dialogue, save, sys.stdout, load, progress).run(read)
+    prompt = Prompt(dialogue, save, sys.stdout, load, progress)
+    args.on_interrupt = prompt.save_now      # Ctrl-C saves the dialogue first
+    return prompt.run(read)
 
 
 def command_serve(args: argparse.Namespace) -> int:
@@ -377,14 +431,14 @@ def _add_limits(parser: argparse.ArgumentParser, per: str = "") -> None:
 
 
 def _add_search_arguments(parser: argparse.ArgumentParser, per: str = "") -> None:
-    parser.add_argument("--max-horizon", type=int, default=DEFAULT_MAX_HORIZON, metavar="N",
+    parser.add_argument("--max-horizon", type=_horizon, default=DEFAULT_MAX_HORIZON, metavar="N",
                         help=f"search plans of at most N steps (default {DEFAULT_MAX_HORIZON})")
     _add_limits(parser, per)
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="ethasp", description=DESCRIPTION,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = _Parser(prog="ethasp", description=DESCRIPTION,
+                     formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--version", action="version", version=f"ethasp {package_version()}")
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
@@ -420,14 +474,14 @@ def build_parser() -> argparse.ArgumentParser:
     _add_plan_arguments(judging)
     judging.add_argument("--principle", action="append", metavar="NAME",
                          help="deontology, do-no-harm or utilitarianism (repeatable)")
-    judging.add_argument("--max-horizon", type=int, default=DEFAULT_MAX_HORIZON, metavar="N",
+    judging.add_argument("--max-horizon", type=_horizon, default=DEFAULT_MAX_HORIZON, metavar="N",
                          help="compare with the states reachable in at most N steps "
                               f"(default {DEFAULT_MAX_HORIZON})")
     _add_limits(judging)
     judging.add_argument("--best", action="store_true",
                          help="also find a best reachable state (utilitarianism; by default "
                               "the search stops at the first state that decides the verdict)")
-    judging.add_argument("--reasons-limit", type=int, default=None, metavar="N",
+    judging.add_argument("--reasons-limit", type=_reasons, default=None, metavar="N",
                          help="compute at most N sufficient and N necessary reasons per "
                               "judgement (default: ethasp.reasons.DEFAULT_LIMIT; "
                               "0: no explanations)")
@@ -460,7 +514,7 @@ def build_parser() -> argparse.ArgumentParser:
     contrast.add_argument("--under", default=None, metavar="Q",
                           help="the principle the contrast plan must satisfy (default P)")
     _add_search_arguments(contrast)
-    contrast.add_argument("--reasons-limit", type=int, default=None,
+    contrast.add_argument("--reasons-limit", type=_reasons, default=None,
                           metavar="N", help="at most N reasons of each kind per judgement")
     _add_svg_argument(contrast, "the contrast plan aligned with the plan asked about")
     contrast.set_defaults(run=command_ask)
@@ -481,7 +535,7 @@ def build_parser() -> argparse.ArgumentParser:
                       help="where the dialogue is saved when it ends "
                            "(default ethasp-dialogue.json; - for nowhere)")
     _add_search_arguments(talk, " per question")
-    talk.add_argument("--reasons-limit", type=int, default=None, metavar="N",
+    talk.add_argument("--reasons-limit", type=_reasons, default=None, metavar="N",
                       help="at most N reasons of each kind per judgement")
     talk.set_defaults(run=command_dialogue)
 
@@ -508,27 +562,144 @@ def build_parser() -> argparse.ArgumentParser:
                           "loopback serves the page to other machines)")
     web.add_argument("--open", action="store_true", help="open the page in a web browser")
     _add_search_arguments(web)
-    web.add_argument("--reasons-limit", type=int, default=None, metavar="N",
+    web.add_argument("--reasons-limit", type=_reasons, default=None, metavar="N",
                      help="at most N reasons of each kind per judgement")
     web.set_defaults(run=command_serve)
     return parser
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
+class _Parser(argparse.ArgumentParser):
+    """Usage errors in one line, like every other error."""
+
+    def error(self, message: str):
+        command = self.prog if self.prog.startswith("ethasp ") else "ethasp"
+        self.exit(2, f"ethasp: error: {' '.join(message.split())} "
+                     f"(see {command} --help)\n")
+
+
+def _command(args: argparse.Namespace) -> int:
+    """Run a command; errors become one line on standard error and an exit code."""
     try:
-        return args.run(args)
+        code = args.run(args)
+        sys.stdout.flush()
+        return code
     except InputError as error:
-        print(f"ethasp: error: {error}", file=sys.stderr)
+        _error(str(error))
         return 2
-    except KeyboardInterrupt:
-        print("ethasp: interrupted", file=sys.stderr)
-        return 130
     except BrokenPipeError:
         # The reader went away (e.g. ethasp ... | head): stop quietly.
         sys.stderr.close()
         return 1
+    except OSError as error:
+        if error.filename is not None:       # a file named by the user
+            _error(f"{error.filename}: {error.strerror or error}")
+            return 2
+        # Standard output cannot be written (a full disk).
+        try:
+            sys.stdout = open(os.devnull, "w")   # nothing more to flush at exit
+        except OSError:
+            pass
+        _error(f"cannot write the answer ({error.strerror or error})")
+        return 1
+    except RecursionError:
+        _error("the input is nested too deeply to read")
+        return 2
+    except MemoryError:
+        _error("out of memory: the input is too large")
+        return 2
+
+
+def _error(message: str) -> None:
+    print(f"ethasp: error: {' '.join(message.split())}", file=sys.stderr, flush=True)
+
+
+# A command that has not answered this long after its time limit is stuck where
+# clingo cannot be stopped (grounding that does not end): seconds = limit * 2 + this.
+OVERRUN_GRACE = 10.0
+
+
+def _end(code: int, end_process: bool) -> int:
+    """Leave with ``code`` while the command's thread may still be inside clingo
+    (or reading input): the process ends at once when it is the command line's."""
+    if end_process:
+        try:
+            sys.stdout.flush()
+        except (OSError, ValueError):
+            pass
+        os._exit(code)
+    return code
+
+
+def _interrupted(args: argparse.Namespace, done: threading.Event, end_process: bool) -> int:
+    """Ctrl-C: one line (after saving a dialogue), exit code 130."""
+    hook = getattr(args, "on_interrupt", None)
+    note = ""
+    if hook is not None:
+        try:
+            note = f"; {hook()}"
+        except Exception as error:  # noqa: BLE001 (the line must still be printed)
+            note = f"; dialogue not saved: {error}"
+    print(f"ethasp: interrupted{note}", file=sys.stderr, flush=True)
+    return 130 if done.is_set() else _end(130, end_process)
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """The ethasp command line (``argv`` None: the process's arguments).
+
+    The command runs in a worker thread, so that Ctrl-C is handled at once even
+    while clingo grounds or solves, and so that a command still running long
+    after its time limit (clingo cannot interrupt grounding) is ended with an
+    error.  Called with ``argv`` from Python, main returns in these cases and
+    leaves the worker behind; as the command line, it ends the process.
+    """
+    end_process = argv is None
+    args = None
+    try:
+        parser = build_parser()
+        try:
+            args = parser.parse_args(argv)
+        except SystemExit as done:   # --help, or a usage error already printed
+            return done.code if isinstance(done.code, int) else (0 if done.code is None else 2)
+        outcome: dict = {}
+        done = threading.Event()
+
+        def work() -> None:
+            try:
+                outcome["code"] = _command(args)
+            except BaseException as error:  # noqa: BLE001 (handed to the main thread)
+                outcome["error"] = error
+            finally:
+                done.set()
+
+        limit = getattr(args, "time_limit", None)
+        overrun = None if not limit or args.run is command_dialogue \
+            else 2 * limit + OVERRUN_GRACE
+        started = time.monotonic()
+        # (An Event, not Thread.join: an interrupted join can mark a running
+        # thread as stopped.)
+        threading.Thread(target=work, name="ethasp-command", daemon=True).start()
+        try:
+            while not done.wait(0.5):
+                if overrun is not None and time.monotonic() - started > overrun:
+                    _error(f"no answer within the time limit of {limit:g} s: still grounding "
+                           f"or solving after {overrun:g} s (clingo cannot stop grounding; "
+                           "does the model's grounding end?)")
+                    return _end(2, end_process)
+        except KeyboardInterrupt:
+            return _interrupted(args, done, end_process)
+        if "error" in outcome:
+            error = outcome["error"]
+            if isinstance(error, KeyboardInterrupt):
+                return _interrupted(args, done, end_process)
+            if os.environ.get("ETHASP_DEBUG"):
+                raise error
+            _error(f"internal error: {type(error).__name__}: {error} (please report it; "
+                   "ETHASP_DEBUG=1 shows where)")
+            return 70
+        return outcome["code"]
+    except KeyboardInterrupt:
+        print("ethasp: interrupted", file=sys.stderr, flush=True)
+        return 130
 
 
 if __name__ == "__main__":

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import threading
 from pathlib import Path
 from typing import Callable, TextIO
 
@@ -68,6 +69,8 @@ class Prompt:
         self.output = output
         self.load = load
         self.progress = progress
+        self._saving = threading.Lock()   # an interrupt saves from another thread
+        self._ended = False
 
     def say(self, text: str) -> None:
         if self.progress is not None:
@@ -133,7 +136,9 @@ class Prompt:
         return True
 
     def run(self, read: Callable[[], str]) -> int:
-        """Read and carry out commands until quit, end of input or Ctrl-C."""
+        """Read and carry out commands until quit or end of input, then save the
+        dialogue (InputError if it cannot be written).  On Ctrl-C (a
+        KeyboardInterrupt here) the dialogue is saved and the interrupt raised on."""
         self.show_current()
         try:
             while True:
@@ -148,11 +153,32 @@ class Prompt:
                     self.say(f"error: {error}")
         except KeyboardInterrupt:
             self.say("")
-        finally:
+            self.say(self.save_now())
+            raise
+        with self._saving:
+            if self._ended:          # saved on an interrupt meanwhile
+                return 130
+            self._ended = True
             if self.save_path is not None:
                 self.dialogue.save(self.save_path)
                 self.say(f"dialogue saved to {self.save_path}")
         return 0
+
+    def save_now(self) -> str:
+        """Save the dialogue as it stands and end it (on an interrupt, from any
+        thread); what happened, in words."""
+        with self._saving:
+            if self._ended:          # it ended meanwhile, and saved itself
+                return f"dialogue saved to {self.save_path}" if self.save_path \
+                    else "dialogue not saved (--save -)"
+            self._ended = True
+            if self.save_path is None:
+                return "dialogue not saved (--save -)"
+            try:
+                self.dialogue.save(self.save_path)
+            except InputError as error:
+                return f"dialogue not saved: {error}"
+            return f"dialogue saved to {self.save_path}"
 
 
 def transcript(dialogue: Dialogue) -> str:

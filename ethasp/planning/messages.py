@@ -16,7 +16,8 @@ class Messages:
     def __call__(self, code: clingo.MessageCode, message: str) -> None:
         first = message.split("\n", 1)[0]
         if code == clingo.MessageCode.RuntimeError or ": error:" in first:
-            self.errors.append(" ".join(message.split()))
+            # "file:1:3-4: error: syntax error, ..." -> "file:1:3-4: syntax error, ..."
+            self.errors.append(" ".join(message.replace(": error: ", ": ", 1).split()))
 
     def raise_first(self, fallback: str) -> None:
         raise InputError(self.errors[0] if self.errors else fallback)

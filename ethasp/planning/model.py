@@ -9,14 +9,18 @@ from typing import TYPE_CHECKING, Iterable, Sequence
 import clingo
 import clingo.script
 from clingo import ast
+from clorm import unify
 
 from ethasp.errors import InputError
 from ethasp.planning.messages import Messages
+from ethasp.planning.namespace import NamespaceCheck, misused_vocabulary
 from ethasp.planning.naming import Naming, PddlNaming
+from ethasp.planning.terms import read_text, scan_file, scan_program
+from ethasp.resources import encoding
+from ethasp.vocabulary import Error
 
 if TYPE_CHECKING:
     from ethasp.planning.planner import Planner
-from ethasp.resources import encoding
 
 
 @dataclass(frozen=True)
@@ -26,6 +30,7 @@ class Source:
     name: str
     text: str
     path: Path | None = None
+    generated: bool = False   # written by ethasp (a PDDL translation), not by a user
 
 
 def _describe(problem: clingo.Symbol) -> str:
@@ -57,6 +62,10 @@ def _describe(problem: clingo.Symbol) -> str:
     if name == "unstratified":
         return (f"derived variable {args[0]} depends on the negation of {args[1]}, which "
                 f"depends on {args[0]} (derived variables must be stratified)")
+    if name == "too_large":
+        return (f"{args[0]}: the utility is too large: with {args[2]} morally valued elements, "
+                f"|utility| must be at most {args[1]} (= (2^31 - 1) / {args[2]}), so that every "
+                "sum of utilities stays within clingo's 32-bit integers")
     if name == "no_goal":
         return "the model has no goal (add goal(V,true) or goal(V,false) facts)"
     return str(problem)
@@ -92,16 +101,19 @@ class Model:
             from ethasp.planning.pddl import split_paths, translate_files
 
             pddl_paths, paths = split_paths(paths)
-            program, name = translate_files(pddl_paths)
-            sources.append(Source(name, encoding("planning/pddl.lp").read_text() + program))
+            for path in pddl_paths:
+                read_text(path)      # a clear message for directories, binary files, ...
+            try:
+                program, name = translate_files(pddl_paths)
+            except RecursionError:
+                raise InputError(f"{', '.join(map(str, pddl_paths))}: expressions nested too "
+                                 "deeply to read") from None
+            sources.append(Source(name, encoding("planning/pddl.lp").read_text() + program,
+                                  generated=True))
             naming = PddlNaming()
         for path in paths:
-            if not path.is_file():
-                raise InputError(f"{path}: no such file")
-            try:
-                text = path.read_text()
-            except (OSError, UnicodeDecodeError) as exc:
-                raise InputError(f"{path}: cannot be read ({exc})") from None
+            text = read_text(path)
+            scan_file(path, text)
             sources.append(Source(str(path), text, path))
         if not sources:
             raise InputError("no model file given")
@@ -113,6 +125,7 @@ class Model:
     def from_string(cls, text: str, name: str = "<model>", allow_scripts: bool = False,
                     check: bool = True) -> "Model":
         """A model from ASP text."""
+        scan_program(text, name)
         return cls._build([Source(name, text)], allow_scripts, check)
 
     @classmethod
@@ -124,14 +137,24 @@ class Model:
             model.check()
         return model
 
+    @property
+    def is_pddl(self) -> bool:
+        """Is this a PDDL task (a translation plus annotation files)?"""
+        return any(source.generated for source in self.sources)
+
     def _parse(self, source: Source) -> None:
+        """Parse a source: syntax, #script blocks, and the model's namespace
+        (:mod:`ethasp.planning.namespace`) for the files users write."""
         messages = Messages()
         scripts: list[str] = []
+        namespace = None if source.generated else NamespaceCheck(pddl=self.is_pddl)
 
         def visit(statement):
             if statement.ast_type == ast.ASTType.Script:
                 begin = statement.location.begin
                 scripts.append(f"{begin.filename}:{begin.line}")
+            elif namespace is not None:
+                namespace(statement)
 
         try:
             if source.path is not None:
@@ -169,14 +192,34 @@ class Model:
             self._planner = Planner(self)
         return self._planner
 
+    def check(self) -> None:
+        """Raise InputError naming the first defect found by check.lp, or if the
+        model's rules have no answer set or more than one (a model describes one
+        planning task: a choice, a disjunction or a constraint in it would let the
+        model vary with the searches of the encodings).  The model's planner
+        grounds it once for this and for everything after."""
+        planner = self.planner
+        names = ", ".join(source.name for source in self.sources if not source.generated) \
+            or ", ".join(source.name for source in self.sources)
+        answers = planner.base_answers()
+        for symbols in answers[:1]:
+            errors = sorted(error.problem.symbol for error in
+                            unify([Error], symbols).query(Error).all())
+            if errors:
+                raise InputError(f"{names}: {_describe(errors[0])}")
+        misspelt = misused_vocabulary(planner.signatures())
+        if misspelt:
+            raise InputError(f"{names}: {misspelt}")
+        if not answers:
+            raise InputError(f"{names}: the model's rules have no answer set (a constraint or "
+                             "a contradiction rules every one out), so it describes no "
+                             "planning task")
+        if len(answers) > 1:
+            raise InputError(f"{names}: the model's rules have more than one answer set (a "
+                             "choice, a disjunction or a loop through negation); a model must "
+                             "describe one planning task")
+
     def facts(self, predicates):
         """The model's atoms of the given clorm predicates (its rules grounded
         once, by its planner), as a clorm FactBase."""
         return self.planner.facts(predicates)
-
-    def check(self) -> None:
-        """Raise InputError naming the first defect found by check.lp."""
-        errors = sorted(self.planner.get("error", 1), key=str)
-        if errors:
-            names = ", ".join(source.name for source in self.sources)
-            raise InputError(f"{names}: {_describe(errors[0].arguments[0])}")

@@ -10,18 +10,24 @@ from clorm import Raw
 
 from ethasp.errors import InputError
 from ethasp.planning.naming import pddl_atom_to_term
+from ethasp.planning.terms import TermError, parse_symbol
 from ethasp.vocabulary import Occurs
 
 
 def split_terms(text: str) -> list[str]:
-    """Split "a1 push(man, bridge) a3" at spaces outside parentheses."""
-    terms, depth, current = [], 0, []
+    """Split "a1 push(man, bridge) a3" at spaces outside parentheses and strings."""
+    terms, depth, current, quoted, escaped = [], 0, [], False, False
     for char in text:
-        if char in "([":
+        if quoted:
+            quoted = escaped or char != '"'
+            escaped = not escaped and char == "\\"
+        elif char == '"':
+            quoted = True
+        elif char in "([":
             depth += 1
         elif char in ")]":
             depth -= 1
-        if char.isspace() and depth == 0:
+        elif char.isspace() and depth == 0:
             if current:
                 terms.append("".join(current))
                 current = []
@@ -33,14 +39,23 @@ def split_terms(text: str) -> list[str]:
 
 
 def parse_action(text: str) -> clingo.Symbol:
-    """An action term, e.g. ``push(man)``, or a PDDL action, e.g. ``(push man)``."""
+    """An action term, e.g. ``push(man)``, or a PDDL action, e.g. ``(push man)``.
+
+    The text is read as one term (:func:`ethasp.planning.terms.parse_symbol`),
+    never as rule text.
+    """
     if text.startswith("("):
-        return pddl_atom_to_term(text)
+        try:
+            return pddl_atom_to_term(text)
+        except InputError as error:
+            if "," not in text:      # not a tuple term such as (p,q) either
+                raise error from None
     try:
-        symbol = clingo.parse_term(text)
-    except RuntimeError:
-        raise InputError(f"not an action term: {text!r}") from None
-    return symbol
+        return parse_symbol(text, "action")
+    except TermError as error:
+        shown = text if len(text) <= 60 else text[:57] + "..."
+        detail = f" ({error.reason})" if error.reason else ""
+        raise InputError(f"not an action term: {shown!r}{detail}") from None
 
 
 @dataclass(frozen=True)

@@ -97,6 +97,34 @@ def available_restrictions() -> list[str]:
     return sorted(path.stem for path in (ENCODINGS / RESTRICTIONS).glob("*.lp"))
 
 
+def add_facts(ctl: clingo.Control, facts: Iterable) -> None:
+    """Add facts to a control object's base program.
+
+    Clingo symbols and clorm facts are added as atoms through clingo's backend:
+    no text is written, so no name (an action, a formula) can become a rule.
+    Strings are program text that ethasp itself writes (``time(0..1)``), never
+    user input; they are added as text.
+    """
+    symbols, texts = [], []
+    for fact in facts:
+        if isinstance(fact, str):
+            texts.append(fact if fact.rstrip().endswith(".") else fact + ".")
+        else:
+            symbols.append(fact if isinstance(fact, clingo.Symbol) else fact.raw)
+    if texts:
+        ctl.add("base", [], "\n".join(texts))
+    if symbols:
+        with ctl.backend() as backend:
+            for symbol in symbols:
+                backend.add_rule([backend.add_atom(symbol)])
+
+
+def occurrences(plan) -> list[clingo.Symbol]:
+    """A plan's ``occurs(A,T)`` atoms."""
+    return [clingo.Function("occurs", [action, clingo.Number(step)])
+            for step, action in enumerate(plan, start=1)]
+
+
 class Answer:
     """The shown atoms of an answer set, indexed by predicate, with their text
     as facts made once (programs that read an answer set are given it as facts)."""
@@ -222,6 +250,23 @@ class Planner:
         self._atoms: dict[tuple[str, int], list[clingo.Symbol]] = {}
 
     # -- the ground model -----------------------------------------------------------
+
+    @_locked
+    def base_answers(self) -> list[list[clingo.Symbol]]:
+        """The shown atoms (``error/1`` of check.lp) of up to two answer sets of
+        the model's base part: a model must have exactly one."""
+        if self._searching:
+            raise RuntimeError("the model is checked before any search")
+        self.ctl.configuration.solve.models = "2"
+        answers: list[list[clingo.Symbol]] = []
+        with self.ctl.solve(yield_=True) as handle:
+            for answer in handle:
+                answers.append(list(answer.symbols(shown=True)))
+        return answers
+
+    def signatures(self) -> list[tuple[str, int]]:
+        """The signatures of the predicates of the model's base grounding."""
+        return [(name, arity) for name, arity, _ in self.ctl.symbolic_atoms.signatures]
 
     def get(self, name: str, arity: int) -> list[clingo.Symbol]:
         """The ground atoms of a predicate of the model's base part (model.lp's
@@ -353,16 +398,14 @@ class Planner:
             self._ground(parts)
         self.grounded = max(self.grounded, horizon)
 
-    def _register(self, name: str, value: clingo.Symbol, facts: str = "") -> None:
+    def _register(self, name: str, value: clingo.Symbol,
+                  facts: Sequence[clingo.Symbol] = ()) -> None:
         """Ground the parts of one input value up to the horizon grounded so far."""
         self._start_search()
         if value in self._inputs[name]:
             return
         parts = [(name, [value])]
-        if facts:
-            fact_part = f"{name}_facts_{len(self._inputs[name])}"
-            self.ctl.add(fact_part, [], facts)
-            parts.insert(0, (fact_part, []))
+        add_facts(self.ctl, facts)        # seen by the parts grounded next
         times = range(1, self._loopfree + 1) if name == "simple_path" else \
             range(0, self.grounded + 1)
         parts += self._input_parts(name, value, times)
@@ -379,7 +422,7 @@ class Planner:
         if key not in self._question_ids:
             name = clingo.Function("q", [clingo.Number(len(self._question_ids) + 1)])
             own = [Constraint(name, term) for term in key]
-            facts = "".join(f"contrast({name},{term}).\n" for term in key)
+            facts = [clingo.Function("contrast", [name, term]) for term in key]
             self._register("question", name, facts)
             self._questions[name] = own
             self._question_ids[key] = name
@@ -391,8 +434,9 @@ class Planner:
         key = frozenset(state)
         if key not in self._avoided:
             number = len(self._avoided) + 1
-            facts = "".join(f"other_than({number},{variable},{'true' if value else 'false'}).\n"
-                            for variable, value in sorted(key, key=str))
+            facts = [clingo.Function("other_than", [clingo.Number(number), variable,
+                                                     clingo.Function(str(value).lower())])
+                     for variable, value in sorted(key, key=str)]
             self._register("other_state", clingo.Number(number), facts)
             self._avoided[key] = number
         return self._avoided[key]
@@ -513,16 +557,19 @@ class Planner:
         return self._model_text
 
     def program(self, encodings: Sequence[str], facts: str = "", arguments: Sequence[str] = (),
-                model: bool = True) -> clingo.Control:
+                model: bool = True, symbols: Iterable[clingo.Symbol] = ()) -> clingo.Control:
         """A grounded control with the ground model's facts (unless ``model`` is
         False), the encodings and further facts: programs about one plan or one
-        formula, which read the model but do not search it."""
+        formula, which read the model but do not search it.  ``facts`` is text
+        that clingo itself printed (atoms of answer sets, the ground model);
+        ``symbols`` (plans, terms users gave) go in through the backend."""
         messages = Messages()
         ctl = clingo.Control(list(arguments), logger=messages, message_limit=20)
         try:
             for name in encodings:
                 ctl.load(str(encoding(name)))
             ctl.add("base", [], (self.model_text() if model else "") + facts)
+            add_facts(ctl, symbols)
             ctl.ground([("base", [])])
         except RuntimeError:
             messages.raise_first("grounding failed")
@@ -541,16 +588,15 @@ class Planner:
         for done, answer in self._traces.get(plan, []):
             if wanted <= done:
                 return answer
-        facts = "".join(f"occurs({action},{step}).\n"
-                        for step, action in enumerate(plan, start=1))
-        answer = self.solve_program(list(TRACE_ENCODINGS) + list(encodings), facts)
+        answer = self.solve_program(list(TRACE_ENCODINGS) + list(encodings),
+                                    symbols=occurrences(plan))
         self._traces.setdefault(plan, []).append((wanted, answer))
         return answer
 
     def solve_program(self, encodings: Sequence[str], facts: str = "",
-                      model: bool = True) -> Answer:
+                      model: bool = True, symbols: Iterable[clingo.Symbol] = ()) -> Answer:
         """The first answer set of :meth:`program` (empty if there is none)."""
-        ctl = self.program(encodings, facts, model=model)
+        ctl = self.program(encodings, facts, model=model, symbols=symbols)
         with ctl.solve(yield_=True) as handle:
             for answer in handle:
                 return Answer(list(answer.symbols(shown=True)))

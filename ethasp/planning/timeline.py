@@ -20,6 +20,7 @@ from ethasp.errors import InputError
 from ethasp.planning.model import Model
 from ethasp.planning.naming import Naming
 from ethasp.planning.plan import Plan
+from ethasp.planning.planner import occurrences
 from ethasp.planning.validation import read_validation
 from ethasp.vocabulary import (Action, ActionLabel, AgentLabel, Caused, Causing, Changed,
                                FactLabel, Final, Goal, Init, Initially, SetAt, UtilityOfFinal,
@@ -178,8 +179,7 @@ def timeline(model: Model, plan: Plan, valuation: Valuation | None = None) -> Ti
         raise InputError(f"the plan has {len(plan)} steps; pictures are drawn for plans of "
                          f"at most {MAX_STEPS} steps")
     valuation = valuation or Valuation.of_model(model)
-    facts = "".join(f"occurs({action},{step}).\n" for step, action in enumerate(plan, start=1))
-    ctl = model.planner.program(STEPS, facts)
+    ctl = model.planner.program(STEPS, symbols=occurrences(plan))
     symbols: list[clingo.Symbol] = []
     with ctl.solve(yield_=True) as handle:
         for answer in handle:

@@ -24,6 +24,13 @@ facts that GEq compares, named ``c(1)``, ``c(2)``, ... (``conj/3`` facts).
 ``true`` and ``false`` are the empty conjunction ``all(empty)`` and the empty
 disjunction ``any(empty)``.  :func:`format_formula` prints such terms back in
 the same syntax.
+
+Parsing and printing are iterative, so parentheses may nest as deep as a user
+types them.  The term built may nest operators at most
+:data:`ethasp.planning.terms.MAX_NESTING` (10,000) deep (a chain of ``and``
+or ``or`` nests one level per operator): clingo grounds deeper terms slowly
+and crashes on much deeper ones, so deeper formulas get an error naming the
+column.
 """
 
 from __future__ import annotations
@@ -36,6 +43,7 @@ import clingo
 from clorm import Raw
 
 from ethasp.errors import InputError
+from ethasp.planning.terms import MAX_NESTING, TermError, parse_symbol
 from ethasp.vocabulary import Conj, FormulaOf
 
 Function = clingo.Function
@@ -93,8 +101,16 @@ class Formula:
         return format_formula(self.term, self.conjunctions)
 
 
+# Operators of the parser and their binding strength (stronger binds tighter).
+_PRECEDENCE = {"imp": 1, "or": 2, "and": 3, "neg": 4}
+_INFIX = (("->", "imp"), ("or", "or"), ("and", "and"))
+_OPEN = "("
+
+
 class _Parser:
-    """Recursive descent over the text; positions are 0-based internally."""
+    """An operator-precedence parser with explicit stacks (no recursion), so that
+    parentheses may nest without limit; the term built may nest operators at most
+    :data:`MAX_NESTING` deep.  Positions are 0-based internally."""
 
     def __init__(self, text: str, elements: Elements):
         self.text = text
@@ -142,40 +158,67 @@ class _Parser:
     # -- formulas -----------------------------------------------------------------
 
     def parse(self) -> Formula:
-        term = self.implication()
+        """formula ::= disjunction ["->" formula]; disjunctions and conjunctions are
+        left associative chains of "or" and "and"; "not" binds tightest."""
+        operands: list[tuple[clingo.Symbol, int]] = []      # (term, operators nested in it)
+        operators: list[tuple[str, int]] = []                # (operator or "(", position)
+
+        def reduce_while_stronger(level: int) -> None:
+            while operators and operators[-1][0] != _OPEN \
+                    and _PRECEDENCE[operators[-1][0]] > level:
+                self.apply(operators.pop(), operands)
+
+        opened = 0                                           # "(" on the stack
+        while True:
+            # An operand: prefixes ("not", "("), then an atom.
+            while True:
+                start = self.pos
+                if self.accept("not"):
+                    operators.append(("neg", start))
+                elif self.accept("("):
+                    operators.append((_OPEN, start))
+                    opened += 1
+                else:
+                    break
+            operands.append((self.atom(), 0))
+            # Closing parentheses (an unmatched one is reported at the end).
+            while opened and self.accept(")"):
+                reduce_while_stronger(0)
+                operators.pop()
+                opened -= 1
+            # An infix operator, or the end.
+            for token, name in _INFIX:
+                self.skip()
+                start = self.pos
+                if self.accept(token):
+                    # "->" is right associative; "and", "or" are left associative.
+                    level = _PRECEDENCE[name]
+                    reduce_while_stronger(level if name == "imp" else level - 1)
+                    operators.append((name, start))
+                    break
+            else:
+                break
+        reduce_while_stronger(0)
+        if opened:
+            self.fail(f"expected ')', found {self.found()}")
         self.skip()
         if self.pos < len(self.text):
             self.fail(f"unexpected {self.found()}")
+        term, _ = operands.pop()
         return Formula(term, self.conjunctions)
 
-    def implication(self) -> clingo.Symbol:
-        left = self.disjunction()
-        if self.accept("->"):
-            return Function("imp", [left, self.implication()])
-        return left
-
-    def disjunction(self) -> clingo.Symbol:
-        left = self.conjunction()
-        while self.accept("or"):
-            left = Function("or", [left, self.conjunction()])
-        return left
-
-    def conjunction(self) -> clingo.Symbol:
-        left = self.negation()
-        while self.accept("and"):
-            left = Function("and", [left, self.negation()])
-        return left
-
-    def negation(self) -> clingo.Symbol:
-        if self.accept("not"):
-            return Function("neg", [self.negation()])
-        return self.atom()
+    def apply(self, operator: tuple[str, int], operands: list) -> None:
+        """Replace the operands of an operator on the stack by its term."""
+        name, position = operator
+        arguments = [operands.pop()] if name == "neg" else [operands.pop(-2), operands.pop()]
+        depth = 1 + max(depth for _, depth in arguments)
+        if depth > MAX_NESTING:
+            self.fail(f"the formula nests operators more than {MAX_NESTING} deep (the limit "
+                      "of ethasp; a chain of 'and' or 'or' nests one level per operator)",
+                      position)
+        operands.append((Function(name, [term for term, _ in arguments]), depth))
 
     def atom(self) -> clingo.Symbol:
-        if self.accept("("):
-            term = self.implication()
-            self.expect(")")
-            return term
         word = self.word()
         key = word.lower() if word else None
         if key == "true" and self.accept(word):
@@ -232,9 +275,11 @@ class _Parser:
         negative = text.startswith("-")
         name = text[1:].lstrip() if negative else text
         try:
-            symbol = clingo.parse_term(name, logger=lambda code, message: None)
-        except RuntimeError:
-            self.fail(f"not an action or variable name: '{text}'", start)
+            symbol = parse_symbol(name, "name")
+        except TermError as error:
+            shown = text if len(text) <= 60 else text[:57] + "..."
+            detail = f" ({error.reason})" if error.reason else ""
+            self.fail(f"not an action or variable name: '{shown}'{detail}", start)
         is_action = symbol in self.elements.actions
         is_variable = symbol in self.elements.variables
         if is_action and is_variable:
@@ -295,13 +340,19 @@ def format_fact(variable, value) -> str:
     return str(variable) if _truth(value) else f"-{variable}"
 
 
-def _lookup(mapping: Mapping | None, name) -> list:
-    if not mapping:
-        return []
-    if name in mapping:
-        return list(mapping[name])
-    by_text = {str(key): value for key, value in mapping.items()}
-    return list(by_text.get(str(name), []))
+class _Lookup:
+    """Members of conjunctions or of all/any names, found by symbol or by text."""
+
+    def __init__(self, mapping: Mapping | None):
+        self.mapping = mapping or {}
+        self.by_text: dict[str, list] | None = None
+
+    def __call__(self, name) -> list:
+        if name in self.mapping:
+            return list(self.mapping[name])
+        if self.by_text is None:
+            self.by_text = {str(key): list(value) for key, value in self.mapping.items()}
+        return list(self.by_text.get(str(name), []))
 
 
 def _element(term: clingo.Symbol) -> str:
@@ -312,43 +363,85 @@ def _element(term: clingo.Symbol) -> str:
     raise ValueError(f"not an element of L: {term}")
 
 
-def _format(term: clingo.Symbol, conj: ConjMembers | None, members: Members | None
-            ) -> tuple[str, int]:
-    """The text of a term and its binding strength."""
+_CONNECTIVES = {"neg": 1, "and": 2, "or": 2, "imp": 2}
+_STRENGTH = {"neg": _NOT, "and": _AND, "or": _OR, "imp": _IMP}
+
+
+def _atom_text(term: clingo.Symbol, conj: _Lookup) -> str:
     name, args = term.name, term.arguments
-
-    def sub(child: clingo.Symbol, strength: int) -> str:
-        text, own = _format(child, conj, members)
-        return f"({text})" if own < strength else text
-
-    if name == "neg" and len(args) == 1:
-        return f"not {sub(args[0], _NOT)}", _NOT
-    if name == "and" and len(args) == 2:
-        return f"{sub(args[0], _AND)} and {sub(args[1], _NOT)}", _AND
-    if name == "or" and len(args) == 2:
-        return f"{sub(args[0], _OR)} or {sub(args[1], _AND)}", _OR
-    if name == "imp" and len(args) == 2:
-        return f"{sub(args[0], _OR)} -> {sub(args[1], _IMP)}", _IMP
-    if name in ("all", "any") and len(args) == 1:
-        parts = _lookup(members, args[0])
-        if not parts:
-            return ("true" if name == "all" else "false"), _ATOM
-        if len(parts) == 1:
-            return _format(parts[0], conj, members)
-        if name == "all":
-            return " and ".join(sub(part, _NOT) for part in parts), _AND
-        return " or ".join(sub(part, _AND) for part in parts), _OR
     if name in ("good", "bad", "neutral") and len(args) == 1:
-        return f"{ATOMS[name]}({_element(args[0])})", _ATOM
+        return f"{ATOMS[name]}({_element(args[0])})"
     if name == "caused" and len(args) == 2:
-        return f"Caused({format_fact(*args)})", _ATOM
+        return f"Caused({format_fact(*args)})"
     if name == "geq" and len(args) == 2:
         sides = []
         for side in args:
-            facts = [format_fact(variable, value) for variable, value in _lookup(conj, side)]
+            facts = [format_fact(variable, value) for variable, value in conj(side)]
             sides.append(" & ".join(facts) if facts else "()")
-        return f"GEq({sides[0]}, {sides[1]})", _ATOM
+        return f"GEq({sides[0]}, {sides[1]})"
     raise ValueError(f"not a formula of L: {term}")
+
+
+def _format(term: clingo.Symbol, conj: _Lookup, members: _Lookup) -> str:
+    """The text of a formula term, built with an explicit stack (no recursion).
+
+    The stack holds text to emit, formulas to print with the binding strength
+    their place requires (in parentheses if they bind less tightly), and
+    markers for the all/any names being printed (a name inside itself is a
+    cycle, not a formula).
+    """
+    out: list[str] = []
+    active: set[str] = set()
+    stack: list = [(term, 0)]
+    while stack:
+        item = stack.pop()
+        if isinstance(item, str):
+            out.append(item)
+            continue
+        if item[0] is None:                      # done with an all/any name
+            active.discard(item[1])
+            continue
+        term, required = item
+        if term.type != clingo.SymbolType.Function:
+            raise ValueError(f"not a formula of L: {term}")
+        name, args = term.name, term.arguments
+        parts: list = []
+        if name in ("all", "any") and len(args) == 1:
+            key = str(args[0])
+            if key in active:
+                raise ValueError(f"not a formula of L: {name}({key}) contains itself")
+            parts = members(args[0])
+            if len(parts) == 1:                  # prints as its one member
+                active.add(key)
+                stack += [(None, key), (parts[0], required)]
+                continue
+            strength = _ATOM if not parts else (_AND if name == "all" else _OR)
+        elif name in _CONNECTIVES and len(args) == _CONNECTIVES[name]:
+            strength = _STRENGTH[name]
+        else:
+            out.append(_atom_text(term, conj))
+            continue
+        if name == "neg":
+            items: list = ["not ", (args[0], _NOT)]
+        elif name == "and":
+            items = [(args[0], _AND), " and ", (args[1], _NOT)]
+        elif name == "or":
+            items = [(args[0], _OR), " or ", (args[1], _AND)]
+        elif name == "imp":
+            items = [(args[0], _OR), " -> ", (args[1], _IMP)]
+        elif not parts:
+            items = ["true" if name == "all" else "false"]
+        else:
+            joint, level = (" and ", _NOT) if name == "all" else (" or ", _AND)
+            items = []
+            for index, part in enumerate(parts):
+                items += ([joint] if index else []) + [(part, level)]
+            active.add(str(args[0]))
+            items.append((None, str(args[0])))
+        if strength < required:
+            items = ["("] + items + [")"]
+        stack += reversed(items)
+    return "".join(out)
 
 
 def format_formula(term: clingo.Symbol, conj_members: ConjMembers | None = None,
@@ -361,7 +454,7 @@ def format_formula(term: clingo.Symbol, conj_members: ConjMembers | None = None,
     formulas.  A name missing from a mapping has no members (as in ASP): an
     empty ``all`` prints ``true``, an empty ``any`` prints ``false``.
     """
-    return _format(term, conj_members, members)[0]
+    return _format(term, _Lookup(conj_members), _Lookup(members))
 
 
 def format_literal(term: clingo.Symbol, conj_members: ConjMembers | None = None) -> str:

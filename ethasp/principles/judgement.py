@@ -35,7 +35,7 @@ from ethasp.planning.budget import Budget
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
-from ethasp.planning.planner import Answer
+from ethasp.planning.planner import Answer, occurrences
 from ethasp.planning.validation import TRACE_ATOMS, Validation, read_validation, validate
 from ethasp.principles.formula import Elements, parse_formula
 from ethasp.principles.principle import Principle, available_principles, select_principles
@@ -129,12 +129,10 @@ def evaluation(model: Model, plan: Plan) -> Answer:
     return model.planner.trace(plan, [LANGUAGE, EVIDENCE, *plain])
 
 
-def trace_facts(model: Model, plan: Plan) -> str:
-    """A valid plan's trace as facts: ``occurs/2``, ``final/2``, ``caused/2``."""
+def trace_facts(model: Model, plan: Plan) -> list[clingo.Symbol]:
+    """A valid plan's trace as atoms: ``occurs/2``, ``final/2``, ``caused/2``."""
     trace = model.planner.trace(plan)
-    text = "".join(f"occurs({action},{step}).\n" for step, action in enumerate(plan, start=1))
-    return text + "".join(f"{symbol}.\n" for symbol in trace.select([("final", 2),
-                                                                       ("caused", 2)]))
+    return occurrences(plan) + trace.select([("final", 2), ("caused", 2)])
 
 
 def final_utility(model: Model, plan: Plan) -> int:
@@ -143,16 +141,14 @@ def final_utility(model: Model, plan: Plan) -> int:
     return next(iter(answer.query(UtilityOfFinal).all())).utility
 
 
-def evaluate(model: Model, plan: Plan, encodings: Sequence[str], facts: str = "") -> Answer:
-    """Evaluate formulas of L (given by principle encodings and facts, for
-    instance a state to compare with) over a plan's trace: the verdicts and
-    the atoms that reasons read (``judgement/evidence.lp``)."""
+def evaluate(model: Model, plan: Plan, encodings: Sequence[str], facts: Iterable = ()
+             ) -> Answer:
+    """Evaluate formulas of L (given by principle encodings and facts, clingo
+    symbols or clorm facts: for instance a state to compare with) over a plan's
+    trace: the verdicts and the atoms that reasons read (``judgement/evidence.lp``)."""
+    symbols = trace_facts(model, plan) + [getattr(fact, "raw", fact) for fact in facts]
     return model.planner.solve_program(list(FORMULAS) + [EVIDENCE] + list(encodings),
-                                       trace_facts(model, plan) + facts)
-
-
-def _asp(facts: Iterable) -> str:
-    return "".join(f"{fact}.\n" for fact in facts)
+                                       symbols=symbols)
 
 
 @dataclass
@@ -215,7 +211,7 @@ def judge(model: Model, plan: Plan, principles: Iterable[str] | None = None,
             facts = compared.state.asp_facts()
         elif compared.best is not None and compared.best.found is not None:
             facts = compared.best.found.asp_facts()
-        comparison = evaluate(model, plan, [p.encoding for p in comparing], _asp(facts))
+        comparison = evaluate(model, plan, [p.encoding for p in comparing], facts)
         answer = Answer(answer.get("verdict", 2) + comparison.get("verdict", 2))
     verdicts = {str(atom.name.symbol): atom.value == "true"
                 for atom in unify([Verdict], answer.get("verdict", 2)).query(Verdict).all()}
@@ -241,7 +237,7 @@ def query(model: Model, plan: Plan, formula: str) -> QueryResult:
     """Evaluate a formula of L (text, see :mod:`ethasp.principles.formula`) for a plan."""
     parsed = parse_formula(formula, Elements.of_model(model))
     _require_plan(model, validate(model, plan))
-    answer = evaluate(model, plan, [], _asp(parsed.facts(QUERY_NAME)))
+    answer = evaluate(model, plan, [], parsed.facts(QUERY_NAME))
     verdicts = unify([Verdict], answer.get("verdict", 2)).query(Verdict).all()
     value = any(str(atom.name.symbol) == "query" and atom.value == "true" for atom in verdicts)
     return QueryResult(plan, str(parsed), value)

@@ -32,7 +32,7 @@ from ethasp.planning.budget import Budget
 from ethasp.planning.planner import Planner, Setting
 from ethasp.planning.reachability import Best, Reachability
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
-from ethasp.vocabulary import Alternative, AtHorizon, Conj
+from ethasp.vocabulary import Alternative, AtHorizon, BestFact, Conj, UpperBound
 
 PROVEN, BOUNDED = "proven", "bounded"
 
@@ -133,8 +133,8 @@ def _state(model_variables, best: Best) -> ReachableState:
 def upper_bound(planner: Planner) -> int:
     """No reachable state has a higher utility (per variable, the best utility of
     a value reachable ignoring delete effects: ``upper_bound/1`` of best.lp)."""
-    atoms = planner.search_atoms("upper_bound", 1)
-    return atoms[0].arguments[0].number
+    atoms = unify([UpperBound], planner.search_atoms("upper_bound", 1)).query(UpperBound).all()
+    return next(iter(atoms)).bound
 
 
 # Models with more variables than this are first probed by short searches for a
@@ -205,8 +205,8 @@ def _restriction(r: Reachability, within: str, other_than):
 def _bound_states(planner: Planner, r: Reachability):
     """The reachable states that attain the upper bound are those with every
     ``best_fact/2`` of best.lp: a cube, cheap to test a layer against."""
-    facts = [(a.arguments[0], a.arguments[1].name == "true")
-             for a in planner.search_atoms("best_fact", 2)]
+    atoms = unify([BestFact], planner.search_atoms("best_fact", 2)).query(BestFact).all()
+    facts = [(atom.variable.symbol, atom.value == "true") for atom in atoms]
     return r.condition(facts)
 
 

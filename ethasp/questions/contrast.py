@@ -26,7 +26,7 @@ from ethasp.errors import InputError
 from ethasp.planning.budget import Budget
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan, parse_action
-from ethasp.planning.planner import Constraint
+from ethasp.planning.planner import Constraint, occurrences
 from ethasp.planning.search import BOUNDED, DEFAULT_MAX_HORIZON, FOUND, NONE
 from ethasp.planning.validation import validate
 from ethasp.principles.judgement import Judgement
@@ -64,9 +64,9 @@ def check_question(model: Model, question: Question, plan: Plan) -> list[Constra
     facts = [f"time(0..{horizon}).", f"horizon({horizon})."]
     if horizon:
         facts.append(f"step(1..{horizon}).")
-    facts += [f"contrast({c.question},{c.term})." for c in constraints]
-    facts += [f"occurs({action},{step})." for step, action in enumerate(plan, start=1)]
-    ctl = model.planner.program([QUESTIONS], "\n".join(facts) + "\n")
+    symbols = [clingo.Function("contrast", [c.question, c.term]) for c in constraints]
+    ctl = model.planner.program([QUESTIONS], "\n".join(facts) + "\n",
+                                symbols=symbols + occurrences(plan))
     symbols: list[clingo.Symbol] = []
     with ctl.solve(yield_=True) as handle:
         for answer in handle:

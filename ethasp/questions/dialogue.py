@@ -21,7 +21,8 @@ from ethasp.principles.judgement import JudgementReport
 from ethasp.reasons.reasons import judge
 from ethasp.planning.budget import Budget, Progress
 from ethasp.planning.model import Model
-from ethasp.planning.plan import Plan
+from ethasp.planning.plan import Plan, parse_action
+from ethasp.planning.terms import read_text
 from ethasp.principles.principle import select_principles
 from ethasp.questions.question import Question
 from ethasp.reasons.reasons import DEFAULT_LIMIT
@@ -29,6 +30,9 @@ from ethasp.planning.search import DEFAULT_MAX_HORIZON
 
 FORMAT = "ethasp-dialogue"
 VERSION = 1
+
+# The most questions a saved dialogue may hold: loading asks each one again.
+MAX_STEPS = 1000
 
 
 @dataclass
@@ -148,24 +152,36 @@ class Dialogue:
         }
 
     def save(self, path: str | Path) -> None:
-        """Write the whole dialogue to a JSON file."""
-        Path(path).write_text(json.dumps(self.to_json(), indent=2) + "\n")
+        """Write the whole dialogue to a JSON file (InputError if it cannot be written)."""
+        text = json.dumps(self.to_json(), indent=2) + "\n"
+        try:
+            Path(path).write_text(text, encoding="utf-8")
+        except (OSError, ValueError) as error:
+            reason = getattr(error, "strerror", None) or " ".join(str(error).split())
+            raise InputError(f"{path}: the dialogue cannot be saved ({reason})") from None
 
     @classmethod
     def from_json(cls, data: dict, model: Model | None = None,
                   max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
-                  reasons_limit: int = DEFAULT_LIMIT, budget: Budget | None = None
-                  ) -> "Dialogue":
+                  reasons_limit: int = DEFAULT_LIMIT, source: str = "saved dialogue",
+                  budget: Budget | None = None) -> "Dialogue":
         """Rebuild a saved dialogue, asking its questions again in order (under
-        ``budget`` if given, else each under the dialogue's time limit)."""
-        if not isinstance(data, dict) or data.get("format") != FORMAT:
-            raise InputError("not a saved ethasp dialogue")
+        ``budget`` if given, else each under the dialogue's time limit).
+
+        The data is checked first (types, at most :data:`MAX_STEPS` questions);
+        plans and questions are read as terms, never as rule text.  Errors name
+        ``source`` (the file, when loaded).
+        """
+        try:
+            _check_saved(data)
+        except InputError as error:
+            raise InputError(f"{source}: {error}") from None
         if model is None:
             if not data.get("model"):
                 raise InputError("the saved dialogue names no model files; give the model")
             model = Model.load(data["model"])
         try:
-            plan = Plan.parse(" ".join(data["plan"]))
+            plan = Plan(tuple(parse_action(action) for action in data["plan"]))
             dialogue = cls(model, select_principles([data["principle"]])[0].name, plan,
                            data["principle"], [], list(data.get("model", [])), max_horizon,
                            time_limit, reasons_limit)
@@ -173,17 +189,56 @@ class Dialogue:
                 dialogue.switch_principle(step["under"])
                 dialogue.ask(Question.from_json(step["question"]), budget)
             dialogue.switch_principle(data.get("under", dialogue.principle))
-        except (KeyError, TypeError) as error:
-            raise InputError(f"saved dialogue is incomplete: missing {error}") from None
+        except InputError as error:
+            raise InputError(f"{source}: {error}") from None
         return dialogue
 
     @classmethod
     def load(cls, path: str | Path, model: Model | None = None, **options) -> "Dialogue":
         """Load a dialogue saved with :meth:`save`."""
+        text = read_text(Path(path))
         try:
-            data = json.loads(Path(path).read_text())
-        except FileNotFoundError:
-            raise InputError(f"{path}: no such file") from None
-        except (OSError, json.JSONDecodeError) as error:
-            raise InputError(f"{path}: not a saved dialogue ({error})") from None
-        return cls.from_json(data, model, **options)
+            data = json.loads(text)
+        except (json.JSONDecodeError, RecursionError) as error:
+            reason = "nested too deeply" if isinstance(error, RecursionError) else str(error)
+            raise InputError(f"{path}: not a saved dialogue ({reason})") from None
+        return cls.from_json(data, model, **options, source=str(path))
+
+
+def _check_saved(data) -> None:
+    """Raise InputError unless ``data`` has the shape :meth:`Dialogue.to_json` writes."""
+    def wrong(what: str) -> InputError:
+        return InputError(what)
+
+    if not isinstance(data, dict) or data.get("format") != FORMAT:
+        raise InputError("not a saved ethasp dialogue (no \"format\": \"ethasp-dialogue\")")
+    version = data.get("version", VERSION)
+    if not isinstance(version, int) or isinstance(version, bool) or version > VERSION:
+        raise wrong(f"version {version!r} is not one this ethasp reads (up to {VERSION})")
+    for key in ("principle", "plan"):
+        if key not in data:
+            raise wrong(f"missing '{key}'")
+    if not isinstance(data["principle"], str):
+        raise wrong("'principle' must be a principle's name")
+    if "under" in data and not isinstance(data["under"], str):
+        raise wrong("'under' must be a principle's name")
+    if not isinstance(data["plan"], list) or not all(isinstance(a, str) for a in data["plan"]):
+        raise wrong("'plan' must be a list of actions (strings)")
+    model = data.get("model", [])
+    if not isinstance(model, list) or not all(isinstance(name, str) for name in model):
+        raise wrong("'model' must be a list of file names")
+    steps = data.get("steps", [])
+    if not isinstance(steps, list):
+        raise wrong("'steps' must be a list")
+    if len(steps) > MAX_STEPS:
+        raise wrong(f"{len(steps)} questions, more than {MAX_STEPS} (the limit of ethasp)")
+    for number, step in enumerate(steps, start=1):
+        if not isinstance(step, dict) or not isinstance(step.get("under"), str) \
+                or not isinstance(step.get("question"), dict):
+            raise wrong(f"step {number} must have 'question' (an object) and 'under' "
+                        "(a principle's name)")
+        question = step["question"]
+        for key in ("kind", "action", "other"):
+            if key in question and question[key] is not None \
+                    and not isinstance(question[key], str):
+                raise wrong(f"step {number}: the question's '{key}' must be a string")

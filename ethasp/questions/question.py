@@ -28,10 +28,16 @@ _WORD = re.compile(r"\s+(rather\s+than|before)\s+", re.IGNORECASE)
 
 
 def _split_outside_parentheses(text: str) -> tuple[str, str, str] | None:
-    """Split "A rather than B" / "A before B" at a keyword outside parentheses."""
-    depth = 0
+    """Split "A rather than B" / "A before B" at a keyword outside parentheses
+    and strings (iteratively: any nesting)."""
+    depth, quoted, escaped = 0, False, False
     for index, char in enumerate(text):
-        if char in "([":
+        if quoted:
+            quoted = escaped or char != '"'
+            escaped = not escaped and char == "\\"
+        elif char == '"':
+            quoted = True
+        elif char in "([":
             depth += 1
         elif char in ")]":
             depth -= 1

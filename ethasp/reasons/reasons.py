@@ -69,7 +69,7 @@ OTHER = clingo.Function("other")
 LABELS = (("agent_label", 2), ("action_label", 3), ("fact_label", 3))
 
 # The atoms of an evaluation that the reasons' programs read (judgement/evidence.lp).
-EVIDENCE = (("formula", 2), ("member", 2), ("conj", 3), ("worth", 2), ("verdict", 2),
+EVIDENCE = (("formula", 2), ("member", 2), ("conj", 3), ("conj_worth", 2), ("verdict", 2),
             ("satisfied", 1), ("weight", 2))
 
 
@@ -169,13 +169,13 @@ def explain(model: Model, plan: Plan, principle: str | Principle, limit: int = D
     memo = model.planner.memo
     if key in memo:
         return memo[key]
-    facts = ""
+    facts: list = []
     compared: list[str] | None = None
     if chosen.reads_alternatives:
         if alternative is None:
             alternative = other_state(model, plan, budget, max_horizon)
         if alternative is not None:
-            facts = "".join(f"{fact}.\n" for fact in alternative.asp_facts(OTHER))
+            facts = alternative.asp_facts(OTHER)
             compared = alternative.literals
     answer = (evaluate(model, plan, [chosen.encoding], facts) if chosen.reads_alternatives
               else evaluation(model, plan))

@@ -1,0 +1,123 @@
+"""Ctrl-C: a real SIGINT to an ethasp process gives one line and exit code 130;
+a dialogue is saved first."""
+
+from __future__ import annotations
+
+import json
+import signal
+import subprocess
+import sys
+import threading
+import time
+
+import pytest
+
+from conftest import MODELS
+
+pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
+
+# A guard against a hang, not a measure of speed: a process that ignores the
+# interrupt is killed after this many seconds and the test fails.
+HANG = 60
+
+
+def start(*arguments: str) -> subprocess.Popen:
+    return subprocess.Popen([sys.executable, "-m", "ethasp.interfaces.cli", *arguments],
+                            stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+
+
+def wait_for_line(process: subprocess.Popen, fragment: str) -> list[str]:
+    """Read standard output until a line holding ``fragment`` (killing a hung process)."""
+    timer = threading.Timer(HANG, process.kill)
+    timer.start()
+    lines = []
+    try:
+        for line in process.stdout:
+            lines.append(line)
+            if fragment in line:
+                return lines
+    finally:
+        timer.cancel()
+    raise AssertionError(f"no line with {fragment!r}: {lines}")
+
+
+def interrupt(process: subprocess.Popen) -> tuple[int, str, str]:
+    """Send SIGINT (standard input stays open, as at a terminal); the exit code and
+    what the process wrote after that."""
+    process.send_signal(signal.SIGINT)
+    try:
+        process.wait(timeout=HANG)
+    except subprocess.TimeoutExpired:
+        process.kill()
+        process.communicate()
+        raise AssertionError("the process did not stop on Ctrl-C") from None
+    out, err = process.stdout.read(), process.stderr.read()
+    process.stdin.close()
+    return process.returncode, out, err
+
+
+def assert_one_line(err: str, fragment: str) -> None:
+    assert "Traceback" not in err
+    # Warnings of lenient PDDL reading come first, each a line of its own.
+    lines = [line for line in err.splitlines() if ": warning: " not in line]
+    assert len(lines) == 1 and fragment in lines[0], err
+
+
+def test_dialogue_waiting_for_input_is_saved_then_exits_130(tmp_path):
+    saved = tmp_path / "dialogue.json"
+    process = start("dialogue", str(MODELS / "trolley.lp"), "--principle", "do-no-harm",
+                    "--save", str(saved))
+    wait_for_line(process, "next contrasts must satisfy")
+    code, _, err = interrupt(process)
+    assert code == 130
+    assert_one_line(err, f"ethasp: interrupted; dialogue saved to {saved}")
+    data = json.loads(saved.read_text())
+    assert data["format"] == "ethasp-dialogue" and data["plan"] == ["refrain"]
+
+
+def test_dialogue_after_a_question_keeps_the_question(tmp_path):
+    saved = tmp_path / "dialogue.json"
+    process = start("dialogue", str(MODELS / "trolley.lp"), "--principle", "do-no-harm",
+                    "--save", str(saved))
+    wait_for_line(process, "next contrasts must satisfy")
+    process.stdin.write("why refrain rather than pull\n")
+    process.stdin.flush()
+    wait_for_line(process, "constraints:")
+    code, _, err = interrupt(process)
+    assert code == 130
+    assert_one_line(err, "dialogue saved to")
+    steps = json.loads(saved.read_text())["steps"]
+    assert [step["question"]["action"] for step in steps] == ["refrain"]
+
+
+def hard_gripper(tmp_path, balls: int = 14):
+    """A gripper task whose shortest plan (about 3 steps a ball) takes long to prove."""
+    names = " ".join(f"ball-{i}" for i in range(1, balls + 1))
+    at = " ".join(f"(ball-at ball-{i} a)" for i in range(1, balls + 1))
+    goal = " ".join(f"(ball-at ball-{i} b)" for i in range(1, balls + 1))
+    problem = tmp_path / "many-problem.pddl"
+    problem.write_text(f"""(define (problem many) (:domain gripper)
+  (:objects a b - room left right - gripper {names} - ball)
+  (:init (robot-at a) (free left) (free right) (occupied b) {at})
+  (:goal (and {goal})))
+""")
+    return [str(MODELS / "pddl" / "gripper-domain.pddl"), str(problem)]
+
+
+def test_long_plan_search_stops_at_once(tmp_path):
+    process = start("plan", *hard_gripper(tmp_path))
+    time.sleep(5)                      # loading done, deep in the search
+    assert process.poll() is None, "the search ended before the interrupt"
+    code, out, err = interrupt(process)
+    assert code == 130 and out == ""
+    assert_one_line(err, "ethasp: interrupted")
+
+
+def test_permissible_plan_search_stops_at_once(tmp_path):
+    process = start("plan", *hard_gripper(tmp_path, balls=40), "--principle", "utilitarianism")
+    time.sleep(5)
+    assert process.poll() is None, "the search ended before the interrupt"
+    code, out, err = interrupt(process)
+    assert code == 130 and out == ""
+    assert_one_line(err, "ethasp: interrupted")
