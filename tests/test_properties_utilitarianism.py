@@ -1,0 +1,102 @@
+"""Property tests: utilitarianism on random models of up to 7 variables and 8
+actions, against the explicit-state oracle (tests/oracle.py).
+
+Verdicts, best reachable states and shortest utilitarian HPlans must be right
+and proven (``proven`` / ``none``), never ``bounded``, within the default
+limits: exact reachability decides them, whatever the length of the paths.
+"""
+
+from __future__ import annotations
+
+import random
+
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from ethasp import Model, Plan
+from ethasp.planning.budget import Budget
+from ethasp.principles.judgement import judge
+from ethasp.principles.restriction import plan_with_principles
+from ethasp.principles.utilitarianism import best_reachable
+from oracle import RandomModel, plan_through, random_model
+
+SEEDS = st.integers(min_value=0, max_value=10**9)
+
+
+def dense_model(seed: int) -> RandomModel:
+    """Denser than the oracle's default models: 5 to 7 variables, 5 to 8 actions
+    with up to two preconditions and one to three effects, so that many states
+    are reachable and paths are long; a quarter with conditional effects."""
+    if seed % 4 == 0:
+        return random_model(seed, max_variables=7, max_actions=8, conditional=True,
+                            far_goal=True)
+    rng = random.Random(seed)
+    variables = [f"v{i}" for i in range(rng.randint(5, 7))]
+    actions = [f"a{i}" for i in range(rng.randint(5, 8))]
+    pre = {a: {v: rng.random() < 0.5 for v in rng.sample(variables, rng.randint(0, 2))}
+           for a in actions}
+    eff = {a: {v: rng.random() < 0.5 for v in rng.sample(variables, rng.randint(1, 3))}
+           for a in actions}
+    init = frozenset(v for v in variables if rng.random() < 0.4)
+    goal = {v: rng.random() < 0.5 for v in rng.sample(variables, rng.randint(1, 2))}
+    fact_utility = {(v, b): rng.randint(-3, 3) for v in variables for b in (True, False)
+                    if rng.random() < 0.5}
+    action_utility = {a: rng.randint(-2, 2) for a in actions if rng.random() < 0.5}
+    return RandomModel(variables, actions, pre, eff, init, goal, action_utility, fact_utility)
+
+
+@settings(max_examples=60, deadline=None)
+@given(SEEDS, st.integers(min_value=0, max_value=8))
+def test_utilitarian_verdicts_are_right_and_proven(seed, walk):
+    spec = dense_model(seed)
+    plan = plan_through(spec, random.Random(seed), walk)
+    if plan is None:
+        return
+    model = Model.from_string(spec.to_asp())
+    judgement = judge(model, Plan.parse(" ".join(plan)), ["utilitarianism"],
+                      budget=Budget(120)).judgements[0]
+    assert judgement.status == "proven", judgement
+    assert judgement.permissible == spec.permissible(plan, "utilitarianism"), judgement
+    if not judgement.permissible:
+        better = judgement.compared
+        state = frozenset(v for v in spec.variables if v in better.literals)
+        assert better.utility == spec.state_utility(state) > spec.state_utility(spec.run(plan))
+        assert spec.distances()[state] == better.distance   # found at its shortest distance
+    best = best_reachable(model.planner, Budget(120))
+    assert best.status == "proven" and best.utility == spec.best_reachable_utility()
+    assert frozenset(v for v in spec.variables if v in best.state) in spec.distances()
+
+
+@settings(max_examples=60, deadline=None)
+@given(SEEDS)
+def test_shortest_utilitarian_hplans_are_right_and_proven(seed):
+    spec = dense_model(seed)
+    result = plan_with_principles(Model.from_string(spec.to_asp()), ["utilitarianism"],
+                                  budget=Budget(120))
+    expected = spec.shortest_permissible_length(["utilitarianism"])
+    if expected is None:
+        assert result.status == "none", (result, spec)
+        return
+    assert result.status == "found", (result, spec)
+    plan = [str(action) for action in result.plan]
+    assert spec.is_plan(plan) and spec.permissible(plan, "utilitarianism"), (plan, spec)
+    assert len(plan) == expected, (plan, expected, spec)
+
+
+@settings(max_examples=30, deadline=None)
+@given(SEEDS, st.sampled_from([["utilitarianism", "deontology"],
+                               ["utilitarianism", "do-no-harm"]]))
+def test_utilitarian_hplans_with_other_principles_are_right(seed, principles):
+    spec = dense_model(seed)
+    result = plan_with_principles(Model.from_string(spec.to_asp()), principles,
+                                  max_horizon=24, budget=Budget(60))
+    expected = spec.shortest_permissible_length(principles)
+    if result.status == "bounded":        # the loop-free threshold may need long paths
+        assert expected is None or expected > result.horizon
+        return
+    if expected is None:
+        assert result.status == "none", (result, spec)
+        return
+    assert result.status == "found" and len(result.plan) == expected, (result, spec)
+    plan = [str(action) for action in result.plan]
+    assert all(spec.permissible(plan, p) for p in principles), (plan, spec)
