@@ -60,6 +60,7 @@ MODEL_VOCABULARY = (("variable", 1), ("action", 1), ("pre", 3), ("eff", 3), ("ce
                     ("agent_label", 2), ("action_label", 3), ("fact_label", 3))
 
 TRACE_ENCODINGS = ("planning/model.lp", "planning/trace.lp", "judgement/judge.lp")
+BOUND_ENCODINGS = ("planning/model.lp", "planning/relaxed.lp", "judgement/best.lp")
 
 LOOPFREE = "loopfree"
 SEARCH = "search"
@@ -239,6 +240,7 @@ class Planner:
         self._ground_model: GroundModel | None = None
         self._traces: dict = {}
         self._model_text: str | None = None
+        self._bound: Answer | None = None
         self.memo: dict = {}          # results of the layers above, by question asked
         try:
             with clingo.ast.ProgramBuilder(self.ctl) as builder:
@@ -270,12 +272,22 @@ class Planner:
 
     def get(self, name: str, arity: int) -> list[clingo.Symbol]:
         """The ground atoms of a predicate of the model's base part (model.lp's
-        too), sorted."""
+        too), in the grounder's order (the same for the same model)."""
         key = (name, arity)
         if key not in self._atoms:
-            self._atoms[key] = sorted(atom.symbol for atom in
-                                      self.ctl.symbolic_atoms.by_signature(name, arity))
+            self._atoms[key] = [atom.symbol for atom in
+                                self.ctl.symbolic_atoms.by_signature(name, arity)]
         return self._atoms[key]
+
+    @_locked
+    def bound(self) -> Answer:
+        """``upper_bound/1`` and ``best_fact/2`` of judgement/best.lp: no reachable
+        state is worth more than the upper bound (a small program of its own:
+        no search needs to be grounded for it)."""
+        if self._bound is None:
+            self._bound = self.solve_program(BOUND_ENCODINGS,
+                                             "#show upper_bound/1. #show best_fact/2.\n")
+        return self._bound
 
     def facts(self, predicates) -> "FactBase":
         """The base part's atoms of the given clorm predicates (the model's
@@ -322,6 +334,10 @@ class Planner:
                 [(a.arguments[0], a.arguments[1]) for a in self.get("axiom", 2)],
                 [a.arguments[0] for a in self.get("derived", 1)])
         return self._ground_model
+
+    def reachability_pending(self) -> bool:
+        """Whether the exact reachability engine of this model is still to be made."""
+        return self._reachability is None
 
     @_locked
     def reachability(self) -> Reachability:

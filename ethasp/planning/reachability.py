@@ -31,6 +31,7 @@ exceeds its node limit or the budget.
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, field
 from typing import Iterable, Sequence
 
@@ -51,9 +52,6 @@ CHECK_EVERY = 8
 # A cluster of actions shares one transition relation over the variables they
 # write: one relational product per cluster instead of one image per action.
 CLUSTER_VARIABLES = 16
-
-# Live nodes before the first reordering of the variables.
-REORDER_NODES = 200_000
 
 # Rounds of the FORCE heuristic for the initial variable order; variables that
 # more than one action in HUB_SHARE uses take no part in it.
@@ -250,10 +248,9 @@ class Reachability:
         for i in _order(model, self.index):
             names += [f"x{i}", f"y{i}"]  # a variable's value before and after an action
         self.bdd.declare(*names)
-        # Reordering is costly: the diagrams are reordered only when they have
-        # grown (see _reorder), not at CUDD's small default thresholds.
+        # The variables keep the order of _order: reordering them (sifting) cost
+        # far more than it saved on the planning models measured.
         self.bdd.configure(reordering=False)
-        self._next_reordering = REORDER_NODES
         self._derived: dict = {}
         self._derive()
         self._images = [self._cluster(group) for group in _clusters(model, self.index)]
@@ -261,6 +258,7 @@ class Reachability:
         self.layers = [init]
         self._prefixes: list = []
         self._relations: dict = {}
+        self._level_table = None
         self.reached = init
         self.complete = False
         self.stopped = ""
@@ -357,17 +355,12 @@ class Reachability:
         return self.bdd.let(rename, moved)
 
     def nodes(self) -> int:
+        """Live diagram nodes (of every diagram of the manager)."""
+        if self._compiled:
+            with warnings.catch_warnings():   # dd warns of a changed unit of 'mem'
+                warnings.simplefilter("ignore")
+                return int(self.bdd.statistics()["n_nodes"])
         return len(self.bdd)
-
-    def _reorder(self) -> None:
-        """Reorder the variables (sifting) when the diagrams have doubled since
-        the last reordering (and have at least REORDER_NODES nodes)."""
-        if not self._compiled:
-            return
-        nodes = self.nodes()
-        if nodes >= self._next_reordering:
-            self._module.reorder(self.bdd)
-            self._next_reordering = max(REORDER_NODES, 2 * self.nodes())
 
     def expand(self, budget: Budget | None = None) -> bool:
         """Compute the next layer; False (and :attr:`stopped` says why) if the
@@ -375,13 +368,6 @@ class Reachability:
         if self.complete:
             return True
         frontier = self.layers[-1]
-        if self._compiled and len(self.layers) > 1:
-            # States reached before the frontier may be added or left out of it
-            # (their successors were reached already): a smaller diagram.
-            earlier = self.reached & ~frontier
-            smaller = self._module.restrict(frontier, ~earlier)
-            if len(smaller) < len(frontier):
-                frontier = smaller
         new = self.bdd.false
         for count, parts in enumerate(self._images, start=1):
             new |= self._image(frontier, parts)
@@ -389,7 +375,6 @@ class Reachability:
                 if budget is not None and budget.expired():
                     self.stopped = budget.why_stopped()
                     return False
-                self._reorder()
         if self.nodes() > self.node_limit:
             self.stopped = f"more than {self.node_limit} diagram nodes"
             return False
@@ -505,32 +490,40 @@ class Reachability:
         utility, true = self._max_utility(states)
         return Best(utility, true, k)
 
+    def _levels(self):
+        """Per level of the diagrams: (variable index, w(false), w(true)) or None
+        for an after-variable; and free[l], the best utility of the variables at
+        levels l and below, unconstrained.  (The order never changes: no
+        reordering.)"""
+        if self._level_table is None:
+            bdd, variables, weights = self.bdd, self.model.variables, self.model.weights
+            by_level: list[tuple[int, int, int] | None] = []
+            for level in range(len(bdd.vars)):
+                name = bdd.var_at_level(level)
+                if name.startswith("x"):
+                    i = int(name[1:])
+                    v = variables[i]
+                    by_level.append((i, weights.get((v, False), 0), weights.get((v, True), 0)))
+                else:
+                    by_level.append(None)
+            free = [0] * (len(by_level) + 1)
+            for level in range(len(by_level) - 1, -1, -1):
+                entry = by_level[level]
+                free[level] = free[level + 1] + (max(entry[1], entry[2]) if entry else 0)
+            self._level_table = (by_level, free)
+        return self._level_table
+
     def _max_utility(self, states) -> tuple[int, frozenset[clingo.Symbol]]:
         """A state of the (non-empty) set with maximal utility, by dynamic
         programming over the diagram (iterative: diagrams may be deep)."""
         bdd = self.bdd
-        variables = self.model.variables
-        weights = self.model.weights
-        by_level: list[tuple[int, int, int] | None] = []  # (index, w(false), w(true))
-        for level in range(len(bdd.vars)):
-            name = bdd.var_at_level(level)
-            if name.startswith("x"):
-                i = int(name[1:])
-                v = variables[i]
-                by_level.append((i, weights.get((v, False), 0), weights.get((v, True), 0)))
-            else:
-                by_level.append(None)
+        by_level, free = self._levels()
         levels = len(by_level)
-        # free[l]: the best utility of the state variables at levels >= l, unconstrained.
-        free = [0] * (levels + 1)
-        for level in range(levels - 1, -1, -1):
-            entry = by_level[level]
-            free[level] = free[level + 1] + (max(entry[1], entry[2]) if entry else 0)
-
-        def level_of(node) -> int:
-            return levels if node in (bdd.true, bdd.false) else node.level
-
-        memo: dict[int, tuple[float, object, object]] = {}
+        true_key, false_key = int(bdd.true), int(bdd.false)
+        minus = float("-inf")
+        # memo: node key -> (value, chosen value, child, child's level)
+        memo: dict[int, tuple[float, bool, object, int]] = {true_key: (0.0, False, None, levels),
+                                                            false_key: (minus, False, None, levels)}
         stack = [states]
         while stack:
             node = stack[-1]
@@ -538,49 +531,47 @@ class Reachability:
             if key in memo:
                 stack.pop()
                 continue
-            if node == bdd.false:
-                memo[key] = (float("-inf"), None, None)
-                stack.pop()
-                continue
-            if node == bdd.true:
-                memo[key] = (0.0, None, None)
-                stack.pop()
-                continue
             low, high = node.low, node.high
             if node.negated:
                 low, high = ~low, ~high
-            pending = [child for child in (low, high) if int(child) not in memo]
-            if pending:
-                stack.extend(pending)
+            low_key, high_key = int(low), int(high)
+            if low_key not in memo or high_key not in memo:
+                if low_key not in memo:
+                    stack.append(low)
+                if high_key not in memo:
+                    stack.append(high)
                 continue
             stack.pop()
             level = node.level
             entry = by_level[level]
-            options = []
-            for value, child in ((False, low), (True, high)):
-                below = memo[int(child)][0]
-                gap = free[level + 1] - free[level_of(child)]
-                weight = 0 if entry is None else (entry[2] if value else entry[1])
-                options.append((below + gap + weight, value, child))
-            best = max(options, key=lambda option: option[0])
-            memo[key] = best
-        total = memo[int(states)][0] + free[0] - free[level_of(states)]
+            low_level = levels if low_key in (true_key, false_key) else low.level
+            high_level = levels if high_key in (true_key, false_key) else high.level
+            w_false, w_true = (entry[1], entry[2]) if entry is not None else (0, 0)
+            on_low = memo[low_key][0] + free[level + 1] - free[low_level] + w_false
+            on_high = memo[high_key][0] + free[level + 1] - free[high_level] + w_true
+            if on_high >= on_low:
+                memo[key] = (on_high, True, high, high_level)
+            else:
+                memo[key] = (on_low, False, low, low_level)
+        key = int(states)
+        start_level = levels if key in (true_key, false_key) else states.level
+        total = memo[key][0] + free[0] - free[start_level]
         # Read the state back: chosen values on the path, the better value elsewhere.
         chosen: dict[int, bool] = {}
         node = states
-        while node not in (bdd.true, bdd.false):
-            _, value, child = memo[int(node)]
+        while int(node) not in (true_key, false_key):
+            _, value, child, _ = memo[int(node)]
             entry = by_level[node.level]
             if entry is not None:
                 chosen[entry[0]] = value
             node = child
+        variables = self.model.variables
         true = set()
         for entry in by_level:
             if entry is None:
                 continue
             i, w_false, w_true = entry
-            value = chosen.get(i, w_true > w_false)
-            if value:
+            if chosen.get(i, w_true > w_false):
                 true.add(variables[i])
         return int(total), frozenset(true)
 

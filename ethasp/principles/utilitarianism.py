@@ -133,13 +133,13 @@ def _state(model_variables, best: Best) -> ReachableState:
 def upper_bound(planner: Planner) -> int:
     """No reachable state has a higher utility (per variable, the best utility of
     a value reachable ignoring delete effects: ``upper_bound/1`` of best.lp)."""
-    atoms = unify([UpperBound], planner.search_atoms("upper_bound", 1)).query(UpperBound).all()
+    atoms = unify([UpperBound], planner.bound().get("upper_bound", 1)).query(UpperBound).all()
     return next(iter(atoms)).bound
 
 
 # Models with more variables than this are first probed by short searches for a
 # better state (horizons, seconds each) before exact reachability.
-PROBE_VARIABLES = 64
+PROBE_VARIABLES = 300
 PROBE_HORIZONS = (1, 2, 4, 8)
 PROBE_SECONDS = 1.0
 
@@ -205,7 +205,7 @@ def _restriction(r: Reachability, within: str, other_than):
 def _bound_states(planner: Planner, r: Reachability):
     """The reachable states that attain the upper bound are those with every
     ``best_fact/2`` of best.lp: a cube, cheap to test a layer against."""
-    atoms = unify([BestFact], planner.search_atoms("best_fact", 2)).query(BestFact).all()
+    atoms = unify([BestFact], planner.bound().get("best_fact", 2)).query(BestFact).all()
     facts = [(atom.variable.symbol, atom.value == "true") for atom in atoms]
     return r.condition(facts)
 
@@ -274,7 +274,15 @@ def _better_state_unlocked(planner: Planner, utility: int, budget: Budget,
     bound = upper_bound(planner)
     if bound <= utility:
         return Comparison(PROVEN, f"no reachable state is better: {UB_PROOF.format(u=bound)}")
-    if len(planner.get("variable", 1)) > PROBE_VARIABLES:
+    known = planner.memo.get(("best_reachable", "all", frozenset(), max_horizon))
+    if known is not None and known.found is not None:
+        # A best reachable state is known (proven): it decides.
+        if known.utility > utility:
+            return Comparison(PROVEN, f"a state of utility {known.utility} is reachable in "
+                                      f"{_steps(known.found.distance)} (a best one)",
+                              better=known.found, best=known)
+        return Comparison(PROVEN, f"no reachable state is better: {known.proof}", best=known)
+    if len(planner.get("variable", 1)) > PROBE_VARIABLES and planner.reachability_pending():
         # Large models: a few short searches first, each with a share of the time;
         # a better state near the initial one decides before any diagram is built.
         for horizon in PROBE_HORIZONS:
@@ -409,28 +417,41 @@ def _goal_distance_unlocked(planner: Planner, utility: int, budget: Budget,
                             max_horizon: int = DEFAULT_MAX_HORIZON) -> tuple[int | None, str, str]:
     r = planner.reachability()
     goal = r.goal()
+
+    def found(k: int) -> str:
+        return (f"exact reachability: no goal state of utility {utility} or more is reachable "
+                f"in fewer than {_steps(k)}")
+
     if utility >= upper_bound(planner):
-        wanted = goal & _bound_states(planner, r)   # a cube test per layer
+        # The states of that utility are a cube: a cheap test per layer.
+        wanted = goal & _bound_states(planner, r)
+        hit: list[int] = []
 
-        def decided(r: Reachability, k: int) -> bool:
-            return r.layers[k] & wanted != r.bdd.false
+        def first(r: Reachability, k: int) -> bool:
+            if r.layers[k] & wanted != r.bdd.false:
+                hit.append(k)
+                return True
+            return False
+
+        r, stopped = _expand(planner, budget, max_horizon, first, "a good goal state")
+        if hit:
+            return hit[0], PROVEN, found(hit[0])
     else:
-        def decided(r: Reachability, k: int) -> bool:
-            found = r.best_in_layer(k, goal)
-            return found is not None and found.utility >= utility
-
-    hit: list[int] = []
-
-    def first(r: Reachability, k: int) -> bool:
-        if decided(r, k):
-            hit.append(k)
-            return True
-        return False
-
-    r, stopped = _expand(planner, budget, max_horizon, first, "a good goal state")
-    if hit:
-        return hit[0], PROVEN, (f"exact reachability: no goal state of utility {utility} or "
-                                f"more is reachable in fewer than {_steps(hit[0])}")
+        r, stopped = _expand(planner, budget, max_horizon, lambda r, k: False,
+                             "a good goal state")
+        last = len(r.layers) - 1
+        best = r.best_of(r.prefix(last) & goal)
+        if best is not None and best.utility >= utility:
+            # The best goal state of the prefixes only grows: binary search.
+            low, high = 0, best.layer
+            while low < high:
+                middle = (low + high) // 2
+                candidate = r.best_of(r.prefix(middle) & goal)
+                if candidate is not None and candidate.utility >= utility:
+                    high = middle
+                else:
+                    low = middle + 1
+            return low, PROVEN, found(low)
     if not stopped:
         return None, PROVEN, (f"no goal state of utility {utility} or more is reachable "
                               "(exact reachability: every reachable state is known)")
