@@ -66,8 +66,16 @@ class Plan:
 
     @classmethod
     def parse(cls, text: str) -> "Plan":
-        """Read actions separated by spaces: ``"a1 push(man) a3"`` or ``"(a1) (push man)"``."""
-        return cls(tuple(parse_action(term) for term in split_terms(text)))
+        """Read actions separated by spaces: ``"a1 push(man) a3"`` or ``"(a1) (push man)"``.
+
+        Each distinct action text is read once (long plans repeat actions)."""
+        read: dict[str, clingo.Symbol] = {}
+        actions = []
+        for term in split_terms(text):
+            if term not in read:
+                read[term] = parse_action(term)
+            actions.append(read[term])
+        return cls(tuple(actions))
 
     @classmethod
     def from_occurs(cls, atoms: Iterable[Occurs]) -> "Plan":

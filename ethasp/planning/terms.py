@@ -22,6 +22,7 @@ a variable) this way: through ``clingo.parse_term``, never as rule text.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -92,12 +93,59 @@ def _number(text: str, start: int) -> tuple[int, int]:
     return int(text[start:end]), end
 
 
+# What the quick scan looks at: comments, strings and #script blocks (left
+# out), #include directives, long or based integer literals, and whatever
+# else it must count or refuse.
+_SKIPPED = re.compile(r'%\*.*?(?:\*%|\Z)|%[^\n]*|"(?:\\.|[^"\\])*"?|#script\b.*?(?:#end|\Z)',
+                      re.S)
+_INCLUDE = re.compile(r'%\*.*?(?:\*%|\Z)|%[^\n]*|#include\s*"([^"]*)"|"(?:\\.|[^"\\])*"?'
+                      r'|#script\b.*?(?:#end|\Z)', re.S)
+_RISKY_NUMBER = re.compile(r"\d{10,}|0[xob]", re.I)
+_CONTROL = re.compile(r"[\x00-\x08\x0e-\x1f]")
+_STATEMENT_END = re.compile(r"(?<!\.)\.(?!\.)")
+
+
 def scan_program(text: str, name: str) -> Scan:
     """Scan ASP text (a model file, a term) for clingo's limits; raise InputError.
 
     Comments, strings and ``#script`` blocks are skipped.  Returns the
     ``#include "file"`` directives found, for the caller to scan those too.
+    A quick pass with regular expressions clears ordinary texts; a text it
+    cannot clear is scanned character by character, which finds the place of
+    any problem.
     """
+    quick = _quick_scan(text)
+    return quick if quick is not None else _scan_exactly(text, name)
+
+
+def _quick_scan(text: str) -> Scan | None:
+    """The scan of a text that is clearly within the limits, else None."""
+    if not text.isascii() or _CONTROL.search(text):
+        return None
+    kept = _SKIPPED.sub(" ", text)
+    if _RISKY_NUMBER.search(kept):
+        return None
+    if kept.count("(") > MAX_NESTING or len(kept) > 100_000:
+        depth = deepest = 0
+        for match in re.finditer(r"[()]", kept):
+            depth = depth + 1 if match.group() == "(" else max(0, depth - 1)
+            deepest = max(deepest, depth)
+        if deepest > MAX_NESTING:
+            return None
+    if sum(kept.count(op) for op in _OPERATORS) > MAX_NESTING:
+        if any(sum(part.count(op) for op in _OPERATORS) > MAX_NESTING
+               for part in _STATEMENT_END.split(kept)):
+            return None
+    scan = Scan()
+    if "#include" in text:
+        for match in _INCLUDE.finditer(text):
+            if match.group(1) is not None:
+                scan.includes.append((match.group(1), text.count("\n", 0, match.start()) + 1))
+    return scan
+
+
+def _scan_exactly(text: str, name: str) -> Scan:
+    """The character by character scan of :func:`scan_program`."""
     scan = Scan()
     index, line, line_start, length = 0, 1, 0, len(text)
     depth, operators = 0, 0
