@@ -1,0 +1,103 @@
+"""The exact reachability engine (ethasp/planning/reachability.py) against
+explicit breadth-first search (tests/oracle.py): layers, best states, goal
+distances and paths, on random models with conditional effects and derived
+variables; and the ground model it reads from the planner."""
+
+from __future__ import annotations
+
+import clingo
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from ethasp import Model
+from ethasp.planning.reachability import Reachability, from_atoms
+from oracle import random_model
+
+S = clingo.Function
+
+
+def ground(spec):
+    """The engine's model of an oracle model, by hand (derived variables too)."""
+    derived = spec.derived
+    conditional = spec.ceff
+    ceff, cpre = [], []
+    for action, effects in conditional.items():
+        for key, conditions, sets in effects:
+            ceff += [(S(action), S(key), S(v), b) for v, b in sets.items()]
+            cpre += [(S(action), S(key), S(v), b) for v, b in conditions.items()]
+    axioms = [(S(d), clingo.Number(k)) for d, bodies in derived.items()
+              for k in range(len(bodies))]
+    axiom_pre = [(S(d), clingo.Number(k), S(v), b) for d, bodies in derived.items()
+                 for k, body in enumerate(bodies) for v, b in body.items()]
+    return from_atoms(
+        [S(v) for v in spec.variables], [S(a) for a in spec.actions],
+        [(S(a), S(v), b) for a in spec.actions for v, b in spec.pre[a].items()],
+        [(S(a), S(v), b) for a in spec.actions for v, b in spec.eff[a].items()],
+        ceff, cpre, [S(v) for v in spec.init], [(S(v), b) for v, b in spec.goal.items()],
+        {(S(v), b): u for (v, b), u in spec.fact_utility.items()},
+        axiom_pre, axioms, [S(d) for d in derived])
+
+
+def spec_of(seed: int):
+    return random_model(seed, max_variables=6, max_actions=6, conditional=seed % 2 == 0,
+                        derived=seed % 3 == 0)
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.integers(min_value=0, max_value=10**9))
+def test_layers_best_states_and_paths_agree_with_breadth_first_search(seed):
+    spec = spec_of(seed)
+    r = Reachability(ground(spec))
+    assert r.run()
+    distances = spec.distances()
+    for k, layer in enumerate(r.layers):
+        expected = {state for state, d in distances.items() if d == k}
+        found = {frozenset(str(v) for v in s) for s in _states(r, layer)}
+        assert found == expected, (k, spec)
+    best = r.best_of(r.reached)
+    assert best.utility == spec.best_reachable_utility()
+    state = frozenset(str(v) for v in best.state)
+    assert spec.state_utility(state) == best.utility and distances[state] == best.layer
+    first = r.first_layer(r.goal())
+    assert first == spec.shortest_plan_length()
+    if first is not None:
+        target = r.best_in_layer(first, r.goal())
+        plan = [str(a) for a in r.path_to(target.state, first)]
+        assert spec.is_plan(plan) and len(plan) == first
+
+
+def _states(r: Reachability, layer) -> list[frozenset]:
+    variables = r.model.variables
+    names = [f"x{r.index[v]}" for v in variables]
+    result = []
+    for values in r.bdd.pick_iter(layer, care_vars=names):
+        result.append(frozenset(v for v in variables if values[f"x{r.index[v]}"]))
+    return result
+
+
+def test_the_planner_reads_the_ground_model_from_the_encodings():
+    model = Model.from_string("""
+        variable(a;b). action(go). pre(go,a,false). eff(go,a,true).
+        ceff(go,k,b,true). cpre(go,k,a,false).
+        derived(d). axiom(d,1). axiom_pre(d,1,a,true).
+        init(b). goal(d,true). utility(b,true,2). utility(a,true,-1).""")
+    ground_model = model.planner.ground_model()
+    assert [str(v) for v in ground_model.variables] == ["a", "b"]
+    (action,) = ground_model.actions
+    assert {(str(e.variable), e.value, e.condition) for e in action.effects} == \
+        {("a", True, ()), ("b", True, ((S("a"), False),))}
+    assert ground_model.axioms == {S("d"): [((S("a"), True),)]}
+    assert {key: u for key, u in ground_model.weights.items() if u} == \
+        {(S("b"), True): 2, (S("a"), True): -1}
+    r = model.planner.reachability()
+    assert r.run() and len(r.layers) == 2 and r.first_layer(r.goal()) == 1
+
+
+def test_a_budget_stops_the_engine_without_a_claim():
+    from ethasp.planning.budget import Budget
+
+    spec = random_model(7, max_variables=6, max_actions=6)
+    r = Reachability(ground(spec))
+    cancelled = Budget()
+    cancelled.cancel()
+    assert not r.expand(cancelled) and not r.complete and r.stopped
