@@ -18,7 +18,7 @@ from ethasp.errors import InputError
 from ethasp.interfaces.progress import ProgressLine
 from ethasp.planning.budget import DEFAULT_TIME_LIMIT, Budget
 from ethasp.planning.model import Model
-from ethasp.planning.plan import Plan
+from ethasp.planning.plan import Plan, steps
 from ethasp.interfaces.version import package_version
 from ethasp.planning.terms import read_text
 from ethasp.resources import MODELS
@@ -121,10 +121,6 @@ def _port(text: str) -> int:
     return value
 
 
-def _steps(count: int) -> str:
-    return f"{count} step" if count == 1 else f"{count} steps"
-
-
 def emit(args: argparse.Namespace, data: dict, text: str) -> None:
     progress = getattr(args, "progress", None)
     if progress is not None:
@@ -159,12 +155,12 @@ def command_plan(args: argparse.Namespace) -> int:
     result = find_plan(model, args.max_horizon, all_plans=args.all, budget=budget(args))
     if result.status == FOUND:
         if args.all:
-            lines = [f"{len(result.plans)} shortest plans of {_steps(result.horizon)}:"]
+            lines = [f"{len(result.plans)} shortest plans of {steps(result.horizon)}:"]
             lines += [f"  {model.naming.actions(plan)}" if len(plan) else "  (empty plan)"
                       for plan in result.plans]
             text = "\n".join(lines)
         else:
-            text = (f"plan of {_steps(result.horizon)}: {model.naming.actions(result.plan)}"
+            text = (f"plan of {steps(result.horizon)}: {model.naming.actions(result.plan)}"
                     if len(result.plan)
                     else "plan of 0 steps: the goal holds initially")
     elif result.status == "none":
@@ -173,7 +169,7 @@ def command_plan(args: argparse.Namespace) -> int:
         text = f"bounded: {result.proof}; a plan may still exist"
     if result.status == FOUND:
         _draw(args, model, lambda pictures: pictures.plan(
-            result.plan, f"plan of {_steps(result.horizon)}: "
+            result.plan, f"plan of {steps(result.horizon)}: "
                          f"{model.naming.actions(result.plan) or '(empty plan)'}"))
     else:
         _no_picture(args)
@@ -194,8 +190,8 @@ def command_plan_permissible(args: argparse.Namespace, model: Model) -> int:
     if result.status == FOUND:
         shown = [model.naming.actions(plan) if len(plan) else "(empty plan)"
                  for plan in (result.plans if args.all else [result.plan])]
-        head = f"plan of {_steps(result.horizon)} permissible under {under}"
-        lines = ([f"{len(shown)} shortest plans of {_steps(result.horizon)} permissible under "
+        head = f"plan of {steps(result.horizon)} permissible under {under}"
+        lines = ([f"{len(shown)} shortest plans of {steps(result.horizon)} permissible under "
                   f"{under}:"] + [f"  {plan}" for plan in shown] if args.all
                  else [f"{head}: {shown[0]}"])
         # The judgement of the (first) HPlan, as ethasp judge prints it, minus its plan line.
@@ -222,7 +218,7 @@ def command_validate(args: argparse.Namespace) -> int:
     model = load_model(args)
     validation = validate(model, Plan.parse(args.plan))
     if validation.valid:
-        text = (f"valid plan of {_steps(len(validation.plan))}; "
+        text = (f"valid plan of {steps(len(validation.plan))}; "
                 f"final state: {model.naming.facts(validation.final_state)}")
     else:
         text = f"not a plan: {validation.message(model.naming)}"
@@ -248,10 +244,10 @@ def _judgement_text(report: "JudgementReport", model: Model) -> str:
         if compared is not None and (best is None or best.found is not compared):
             kind = "a better reachable state" if not judgement.permissible else "compared with"
             lines.append(f"  {kind}: {naming.facts(compared.literals)} (utility "
-                         f"{compared.utility}, {_steps(compared.distance)} away)")
+                         f"{compared.utility}, {steps(compared.distance)} away)")
         if best is not None and best.found is not None:
             lines.append(f"  best reachable state: {naming.facts(best.state)} "
-                         f"(utility {best.utility}, {_steps(best.horizon)} away; "
+                         f"(utility {best.utility}, {steps(best.horizon)} away; "
                          f"{best.status}: {best.proof})")
     return "\n".join(lines)
 

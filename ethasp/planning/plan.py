@@ -14,6 +14,11 @@ from ethasp.planning.terms import TermError, parse_symbol
 from ethasp.vocabulary import Occurs
 
 
+def steps(count: int) -> str:
+    """``1 step``, ``2 steps``."""
+    return f"{count} step" if count == 1 else f"{count} steps"
+
+
 def split_terms(text: str) -> list[str]:
     """Split "a1 push(man, bridge) a3" at spaces outside parentheses and strings."""
     terms, depth, current, quoted, escaped = [], 0, [], False, False

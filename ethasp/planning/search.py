@@ -25,7 +25,7 @@ from clorm import unify
 
 from ethasp.errors import InputError
 from ethasp.planning.budget import Budget
-from ethasp.planning.plan import Plan
+from ethasp.planning.plan import Plan, steps
 from ethasp.planning.planner import Planner, Setting
 from ethasp.vocabulary import Occurs
 
@@ -91,7 +91,7 @@ def shortest(planner: Planner, setting: Setting, budget: Budget,
     checkpoints = _checkpoints(max_horizon)
     if start > max_horizon:
         return SearchResult(BOUNDED, horizon=max_horizon,
-                            proof=f"every plan has more than {max_horizon} steps ({start_proof}), "
+                            proof=f"every plan has more than {steps(max_horizon)} ({start_proof}), "
                                   "the maximal horizon")
     for horizon in range(start, max_horizon + 1):
         budget.report(task, horizon=horizon)
@@ -104,9 +104,9 @@ def shortest(planner: Planner, setting: Setting, budget: Budget,
             if horizon == 0:
                 why = "the goal holds in the initial state"
             elif horizon == start:
-                why = f"no plan has fewer than {horizon} steps: {start_proof}"
+                why = f"no plan has fewer than {steps(horizon)}: {start_proof}"
             else:
-                why = f"no plan of fewer than {horizon} steps (every smaller horizon refuted)"
+                why = f"no plan has fewer than {steps(horizon)} (every smaller horizon refuted)"
             return SearchResult(FOUND, plan=plans[0], horizon=horizon, proof=why,
                                 plans=plans if all_plans else [])
         if horizon in checkpoints and horizon > 0:
@@ -117,7 +117,7 @@ def shortest(planner: Planner, setting: Setting, budget: Budget,
             if not exists:
                 return SearchResult(
                     NONE, horizon=horizon,
-                    proof=f"no plan up to horizon {horizon}, and no path of {horizon} steps "
+                    proof=f"no plan up to horizon {horizon}, and no path of {steps(horizon)} "
                           "without a repeated state: every reachable state was searched")
     return SearchResult(BOUNDED, horizon=max_horizon,
                         proof=f"no plan up to horizon {max_horizon} (the maximal horizon)")

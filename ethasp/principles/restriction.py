@@ -27,7 +27,7 @@ from typing import Sequence
 
 from ethasp.errors import InputError
 from ethasp.planning.model import Model
-from ethasp.planning.plan import Plan
+from ethasp.planning.plan import Plan, steps
 from ethasp.planning.budget import Budget
 from ethasp.planning.planner import Constraint, Setting
 from ethasp.planning.search import BOUNDED, DEFAULT_MAX_HORIZON, FOUND, NONE, shortest
@@ -132,7 +132,12 @@ def plan_with_principles(model: Model, principles: Sequence[str],
     best: BestReachable | None = None
     start, start_proof = 0, ""
     plans = "plan meeting the question" if constraints else "plan"
-    under = " and ".join(names) if names else "no principle"
+    under = " and ".join(names)
+    permissible = f" permissible under {under}" if names else ""
+    if not names:      # the question alone: "no plan meets the question"
+        plans_are = "plan meets the question" if constraints else "plan exists"
+    else:
+        plans_are = f"{plans} is{permissible}"
     if any(principle.reads_alternatives for principle in chosen):
         best = best_reachable(planner, budget, max_horizon)
         if best.utility is None:
@@ -151,31 +156,31 @@ def plan_with_principles(model: Model, principles: Sequence[str],
                 _check_plan(model, plan, best.utility)
                 return HPlanResult(FOUND, names, plan, len(plan),
                                    f"a shortest {plans} permissible under {under}: no plan has "
-                                   f"fewer than {len(plan)} steps: {why}", [], best)
+                                   f"fewer than {steps(len(plan))}: {why}", [], best)
         distance, status, why = goal_distance(planner, best.utility, budget, max_horizon)
         if distance is None and status == PROVEN:
             return HPlanResult(NONE, names, None, best.searched,
-                               f"no {plans} is permissible under {under}: no goal state is as "
+                               f"no {plans_are}: no goal state is as "
                                f"good as a best reachable state (utility {best.utility}); {why}",
                                best=best)
         if distance is not None:
             start, start_proof = distance, why
     result = shortest(planner, setting, budget, max_horizon, start, start_proof, all_plans,
-                      task=f"plan search under {under}")
+                      task=f"plan search under {under}" if names else "plan search")
     if result.status == FOUND and best is not None and best.status != PROVEN:
         # A plan reaching the best utility found is no proof: a better state may exist.
         return HPlanResult(
             BOUNDED, names, horizon=result.horizon, best=best,
-            proof=f"a plan of {result.horizon} steps reaches utility {best.utility}, but a "
+            proof=f"a plan of {steps(result.horizon)} reaches utility {best.utility}, but a "
                   f"better reachable state is not excluded ({best.proof})")
     if result.status == FOUND:
         return HPlanResult(FOUND, names, result.plan, result.horizon,
-                           f"a shortest {plans} permissible under {under}: {result.proof}",
+                           f"a shortest {plans}{permissible}: {result.proof}",
                            result.plans, best)
     if result.status == NONE:
         # With utilitarianism the search asked for utility >= best.utility, a lower
         # bound of the best reachable utility: no such goal state, no permissible plan.
         return HPlanResult(NONE, names, None, result.horizon,
-                           f"no {plans} is permissible under {under}: {result.proof}", best=best)
+                           f"no {plans_are}: {result.proof}", best=best)
     return HPlanResult(BOUNDED, names, None, result.horizon,
-                       f"no {plans} permissible under {under} found: {result.proof}", best=best)
+                       f"no {plans}{permissible} found: {result.proof}", best=best)

@@ -29,6 +29,7 @@ import clingo
 from clorm import Raw, unify
 
 from ethasp.planning.budget import Budget
+from ethasp.planning.plan import steps
 from ethasp.planning.planner import Planner, Setting
 from ethasp.planning.reachability import Best, Reachability
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
@@ -144,10 +145,6 @@ PROBE_HORIZONS = (1, 2, 4, 8)
 PROBE_SECONDS = 1.0
 
 
-def _steps(count: int) -> str:
-    return f"{count} step" if count == 1 else f"{count} steps"
-
-
 UB_PROOF = ("utility {u} is the upper bound (per variable, the best utility of a value "
             "reachable ignoring delete effects)")
 
@@ -168,7 +165,7 @@ def _expand(planner: Planner, budget: Budget, max_horizon: int,
         if r.complete:
             return r, ""
         if len(r.layers) > max_horizon:
-            return r, f"the layers of states reached within {max_horizon} steps (the maximal horizon)"
+            return r, f"the layers of states reached within {steps(max_horizon)} (the maximal horizon)"
         budget.report(task, horizon=len(r.layers))
         if not r.expand(budget):
             return r, r.stopped
@@ -241,13 +238,13 @@ def _best_exact(planner: Planner, budget: Budget, max_horizon: int, within: str,
         best = r.best_of(_goal_first(r, within_reached, best.utility)) or best
     if not stopped:
         proof = (f"every reachable state is known (exact reachability: no new state after "
-                 f"{_steps(searched)})")
+                 f"{steps(searched)})")
         if best is None:
             return BestReachable(PROVEN, proof + "; none is in the set asked for", None, searched)
         return BestReachable(PROVEN, proof, _state(variables, best), searched)
     if "diagram nodes" in stopped and not budget.expired():
         return None  # the exact engine gave up: optimisation takes over
-    return BestReachable(BOUNDED, f"searched the states reached within {_steps(searched)}; "
+    return BestReachable(BOUNDED, f"searched the states reached within {steps(searched)}; "
                                   f"stopped: {stopped}",
                          _state(variables, best) if best else None, searched)
 
@@ -279,7 +276,7 @@ def _better_state_unlocked(planner: Planner, utility: int, budget: Budget,
         # A best reachable state is known (proven): it decides.
         if known.utility > utility:
             return Comparison(PROVEN, f"a state of utility {known.utility} is reachable in "
-                                      f"{_steps(known.found.distance)} (a best one)",
+                                      f"{steps(known.found.distance)} (a best one)",
                               better=known.found, best=known)
         return Comparison(PROVEN, f"no reachable state is better: {known.proof}", best=known)
     if len(planner.get("variable", 1)) > PROBE_VARIABLES and planner.reachability_pending():
@@ -292,7 +289,7 @@ def _better_state_unlocked(planner: Planner, utility: int, budget: Budget,
                 facts = _read_state(outcome.symbols, horizon)
                 worth = planner.ground_model().utility(v for v, b in facts if b)
                 return Comparison(PROVEN, f"a state of utility {worth} is reachable within "
-                                          f"{_steps(horizon)}",
+                                          f"{steps(horizon)}",
                                   better=ReachableState(facts, worth, horizon))
             if outcome.satisfiable is None and budget.expired():
                 return Comparison(BOUNDED, f"{budget.why_stopped()} at horizon {horizon}")
@@ -312,19 +309,19 @@ def _better_state_unlocked(planner: Planner, utility: int, budget: Budget,
     if found:
         state = _state(variables, found[0])
         return Comparison(PROVEN, f"a state of utility {state.utility} is reachable in "
-                                  f"{_steps(state.distance)}", better=state)
+                                  f"{steps(state.distance)}", better=state)
     searched = len(r.layers) - 1
     if not stopped:
         reached = r.prefix(searched)
         best = r.best_of(reached)
         best = r.best_of(_goal_first(r, reached, best.utility)) or best
         result = BestReachable(PROVEN, f"every reachable state is known (exact reachability: "
-                                       f"no new state after {_steps(searched)})",
+                                       f"no new state after {steps(searched)})",
                                _state(variables, best), searched)
         return Comparison(PROVEN, f"no reachable state is better: {result.proof}", best=result)
     if "diagram nodes" in stopped and not budget.expired():
         return _better_by_search(planner, utility, budget, max_horizon)
-    return Comparison(BOUNDED, f"no better state among those reached within {searched} steps; "
+    return Comparison(BOUNDED, f"no better state among those reached within {steps(searched)}; "
                                f"stopped: {stopped}")
 
 
@@ -382,7 +379,7 @@ def _best_by_optimisation(planner: Planner, budget: Budget, max_horizon: int, wi
                                  best, horizon)
         if not exists:
             return BestReachable(PROVEN, f"every reachable state was searched (no path of "
-                                         f"{horizon + 1} steps without a repeated state)",
+                                         f"{steps(horizon + 1)} without a repeated state)",
                                  best, horizon)
     return BestReachable(BOUNDED, f"searched up to horizon {horizon} (the maximal horizon)",
                          best, horizon)
@@ -401,16 +398,16 @@ def _better_by_search(planner: Planner, utility: int, budget: Budget,
             facts = _read_state(outcome.symbols, horizon)
             worth = planner.ground_model().utility(v for v, b in facts if b)
             return Comparison(PROVEN, f"a state of utility {worth} is reachable within "
-                                      f"{horizon} steps",
+                                      f"{steps(horizon)}",
                               better=ReachableState(facts, worth, horizon))
         exists = planner.simple_path_exists(horizon + 1, Setting(), budget)
         if exists is None:
             return Comparison(BOUNDED, f"{budget.why_stopped()} at horizon {horizon}")
         if not exists:
             return Comparison(PROVEN, f"no reachable state is better: every reachable state "
-                                      f"was searched (no path of {horizon + 1} steps without "
+                                      f"was searched (no path of {steps(horizon + 1)} without "
                                       "a repeated state)")
-    return Comparison(BOUNDED, f"no better state within {horizon} steps (the maximal horizon)")
+    return Comparison(BOUNDED, f"no better state within {steps(horizon)} (the maximal horizon)")
 
 
 def _goal_distance_unlocked(planner: Planner, utility: int, budget: Budget,
@@ -420,7 +417,7 @@ def _goal_distance_unlocked(planner: Planner, utility: int, budget: Budget,
 
     def found(k: int) -> str:
         return (f"exact reachability: no goal state of utility {utility} or more is reachable "
-                f"in fewer than {_steps(k)}")
+                f"in fewer than {steps(k)}")
 
     if utility >= upper_bound(planner):
         # The states of that utility are a cube: a cheap test per layer.

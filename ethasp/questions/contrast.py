@@ -123,9 +123,13 @@ def contrast_plan(model: Model, constraints: Sequence[Constraint], under: str,
         return ContrastSearch(result, False)
     dropped = plan_with_principles(model, [], max_horizon, constraints=constraints,
                                    budget=budget)
+    if dropped.status == FOUND:
+        return ContrastSearch(dropped, True, [], result.proof)
+    # No plan meets the question at all (or none was found): the principle is not
+    # what stands in the way, and is not said to be dropped.
     conflict = (minimal_conflict(model, constraints, max_horizon, budget)
                 if dropped.status == NONE else [])
-    return ContrastSearch(dropped, True, conflict, result.proof)
+    return ContrastSearch(dropped, False, conflict, "")
 
 
 # -- answers -----------------------------------------------------------------------
@@ -222,9 +226,12 @@ def contrastive_text(original: Side, contrast: Side | None, conflict: Sequence[C
     if contrast is not None:
         return f"{text} {_side_sentences(contrast, 'could', 'Doing so is', alternatively=True)}"
     if status == NONE:
-        reason = ", ".join(map(str, conflict)) if conflict else "the goal"
-        return f"{text} There is no alternative plan: no plan meets {reason}."
-    return f"{text} No alternative plan was found within the search bounds."
+        if conflict:
+            return (f"{text} There is no alternative plan: no plan meets the question's "
+                    f"constraints {', '.join(map(str, conflict))}.")
+        return f"{text} There is no alternative plan: no plan reaches the goal."
+    return (f"{text} No alternative plan was found within the search bounds (one may "
+            "exist).")
 
 
 def _judge_side(model: Model, plan: Plan, principle: str, max_horizon: int,
