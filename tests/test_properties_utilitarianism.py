@@ -100,3 +100,40 @@ def test_utilitarian_hplans_with_other_principles_are_right(seed, principles):
     assert result.status == "found" and len(result.plan) == expected, (result, spec)
     plan = [str(action) for action in result.plan]
     assert all(spec.permissible(plan, p) for p in principles), (plan, spec)
+
+
+@settings(max_examples=40, deadline=None)
+@given(SEEDS, st.integers(min_value=0, max_value=6))
+def test_the_fallback_without_diagrams_is_right_when_it_claims(seed, walk):
+    """With a node limit of 1, exact reachability gives up at once and clingo
+    optimisation (upper bound, loop-free threshold) answers: right whenever it
+    claims a proof, else bounded."""
+    import ethasp.planning.reachability as reachability
+
+    spec = random_model(seed, max_variables=5, max_actions=5)
+    plan = plan_through(spec, random.Random(seed), walk)
+    saved = reachability.DEFAULT_NODE_LIMIT
+    reachability.DEFAULT_NODE_LIMIT = 1
+    try:
+        model = Model.from_string(spec.to_asp())
+        best = best_reachable(model.planner, Budget(30))
+        if best.status == "proven":
+            assert best.utility == spec.best_reachable_utility()
+        elif best.utility is not None:
+            assert best.utility <= spec.best_reachable_utility()
+        if plan is not None:
+            judgement = judge(model, Plan.parse(" ".join(plan)), ["utilitarianism"],
+                              budget=Budget(30)).judgements[0]
+            if judgement.status == "proven":
+                assert judgement.permissible == spec.permissible(plan, "utilitarianism")
+            else:
+                assert judgement.permissible       # bounded: no better state found
+        result = plan_with_principles(Model.from_string(spec.to_asp()), ["utilitarianism"],
+                                      max_horizon=16, budget=Budget(30))
+        expected = spec.shortest_permissible_length(["utilitarianism"])
+        if result.status == "found":
+            assert len(result.plan) == expected
+        elif result.status == "none":
+            assert expected is None
+    finally:
+        reachability.DEFAULT_NODE_LIMIT = saved

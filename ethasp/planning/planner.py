@@ -49,6 +49,7 @@ from ethasp.planning import incremental
 from ethasp.planning.budget import Budget
 from ethasp.planning.messages import Messages
 from ethasp.planning.incremental import CHECK, STEP, TIME_MARKER
+from ethasp.planning import reachability
 from ethasp.planning.reachability import GroundModel, Reachability, from_atoms
 from ethasp.resources import ENCODINGS, encoding
 
@@ -344,7 +345,8 @@ class Planner:
         """The exact reachability engine over this model (created once, expanded
         by whoever needs more layers)."""
         if self._reachability is None:
-            self._reachability = Reachability(self.ground_model())
+            self._reachability = Reachability(self.ground_model(),
+                                              reachability.DEFAULT_NODE_LIMIT)
         return self._reachability
 
     # -- grounding ------------------------------------------------------------------

@@ -171,15 +171,9 @@ def _expand(planner: Planner, budget: Budget, max_horizon: int,
             return r, r.stopped
 
 
-def _best_reachable_unlocked(planner: Planner, budget: Budget, max_horizon: int = DEFAULT_MAX_HORIZON,
-                   within: str = "all", other_than: list[tuple[clingo.Symbol, bool]] | None = None
-                   ) -> BestReachable:
-    """A best state reachable from the initial state (``within="goal"``: a best
-    goal state), other than the state ``other_than`` if given; among equally
-    good states, goal states first, then the nearest.
-
-    Results are kept by the planner: a question is searched once per model.
-    """
+def _best_reachable(planner: Planner, budget: Budget, max_horizon: int, within: str,
+                    other_than: list[tuple[clingo.Symbol, bool]] | None) -> BestReachable:
+    """:func:`best_reachable`, under the planner's lock; proven results are kept."""
     key = ("best_reachable", within, frozenset(other_than or ()), max_horizon)
     if key in planner.memo:
         return planner.memo[key]
@@ -264,10 +258,9 @@ def _goal_first(r: Reachability, states, utility: int | None = None):
     return goal_states if best_goal is not None and best_goal.utility == utility else states
 
 
-def _better_state_unlocked(planner: Planner, utility: int, budget: Budget,
-                 max_horizon: int = DEFAULT_MAX_HORIZON) -> Comparison:
-    """Is a reachable state better than ``utility``?  Stops at the first layer
-    that has one (that state is then at its shortest distance)."""
+def _better_state(planner: Planner, utility: int, budget: Budget,
+                  max_horizon: int) -> Comparison:
+    """:func:`better_state`, under the planner's lock."""
     bound = upper_bound(planner)
     if bound <= utility:
         return Comparison(PROVEN, f"no reachable state is better: {UB_PROOF.format(u=bound)}")
@@ -410,8 +403,9 @@ def _better_by_search(planner: Planner, utility: int, budget: Budget,
     return Comparison(BOUNDED, f"no better state within {steps(horizon)} (the maximal horizon)")
 
 
-def _goal_distance_unlocked(planner: Planner, utility: int, budget: Budget,
-                            max_horizon: int = DEFAULT_MAX_HORIZON) -> tuple[int | None, str, str]:
+def _goal_distance(planner: Planner, utility: int, budget: Budget,
+                   max_horizon: int) -> tuple[int | None, str, str]:
+    """:func:`goal_distance`, under the planner's lock."""
     r = planner.reachability()
     goal = r.goal()
 
@@ -467,7 +461,7 @@ def best_reachable(planner: Planner, budget: Budget | None = None,
     """
     planner = getattr(planner, "planner", planner)
     with planner.lock:
-        return _best_reachable_unlocked(planner, budget or Budget(), max_horizon, within,
+        return _best_reachable(planner, budget or Budget(), max_horizon, within,
                                         other_than)
 
 
@@ -477,7 +471,7 @@ def better_state(planner: Planner, utility: int, budget: Budget | None = None,
     that has one (that state is then at its shortest distance)."""
     planner = getattr(planner, "planner", planner)
     with planner.lock:
-        return _better_state_unlocked(planner, utility, budget or Budget(), max_horizon)
+        return _better_state(planner, utility, budget or Budget(), max_horizon)
 
 
 def goal_plan(planner: Planner, utility: int, budget: Budget | None = None,
@@ -487,7 +481,7 @@ def goal_plan(planner: Planner, utility: int, budget: Budget | None = None,
     no such plan (status proven) or the engine stopped first (bounded)."""
     planner = getattr(planner, "planner", planner)
     with planner.lock:
-        distance, status, proof = _goal_distance_unlocked(planner, utility, budget or Budget(),
+        distance, status, proof = _goal_distance(planner, utility, budget or Budget(),
                                                           max_horizon)
         if distance is None:
             return None, status, proof
@@ -504,4 +498,4 @@ def goal_distance(planner: Planner, utility: int, budget: Budget | None = None,
     stopped first."""
     planner = getattr(planner, "planner", planner)
     with planner.lock:
-        return _goal_distance_unlocked(planner, utility, budget or Budget(), max_horizon)
+        return _goal_distance(planner, utility, budget or Budget(), max_horizon)
