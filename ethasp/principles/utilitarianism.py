@@ -268,7 +268,7 @@ def _better_state(planner: Planner, utility: int, budget: Budget,
     if known is not None and known.found is not None:
         # A best reachable state is known (proven): it decides.
         if known.utility > utility:
-            return Comparison(PROVEN, f"a state of utility {known.utility} is reachable in "
+            return Comparison(PROVEN, f"a state of utility {known.utility} is reachable within "
                                       f"{steps(known.found.distance)} (a best one)",
                               better=known.found, best=known)
         return Comparison(PROVEN, f"no reachable state is better: {known.proof}", best=known)
