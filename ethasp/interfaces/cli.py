@@ -241,15 +241,26 @@ def _judgement_text(report: "JudgementReport", model: Model) -> str:
             continue
         lines.append(f"{judgement.principle}: {verdict}: {judgement.proof}")
         compared, best = judgement.compared, judgement.best_reachable
+        final = set(report.final_state)
         if compared is not None and (best is None or best.found is not compared):
             kind = "a better reachable state" if not judgement.permissible else "compared with"
-            lines.append(f"  {kind}: {naming.facts(compared.literals)} (utility "
-                         f"{compared.utility}, {steps(compared.distance)} away)")
+            lines.append(f"  {kind}: {_state_words(compared.literals, final, naming)} "
+                         f"(utility {compared.utility}, {steps(compared.distance)} away)")
         if best is not None and best.found is not None:
-            lines.append(f"  best reachable state: {naming.facts(best.state)} "
+            lines.append(f"  best reachable state: {_state_words(best.state, final, naming)} "
                          f"(utility {best.utility}, {steps(best.horizon)} away; "
                          f"{best.status}: {best.proof})")
     return "\n".join(lines)
+
+
+def _state_words(literals: list[str], final: set[str], naming) -> str:
+    """A state, as its difference from the final state when that is shorter."""
+    if set(literals) == final:
+        return "the final state"
+    differing = [literal for literal in literals if literal not in final]
+    if len(differing) * 2 < len(literals):
+        return f"the final state but {naming.facts(differing)}"
+    return naming.facts(literals)
 
 
 def _given_plan(args: argparse.Namespace) -> Plan:

@@ -188,7 +188,7 @@ def _best_reachable(planner: Planner, budget: Budget, max_horizon: int, within: 
 def _restriction(r: Reachability, within: str, other_than):
     states = r.goal() if within == "goal" else None
     if other_than is not None:
-        avoid = ~r.state([v for v, b in other_than if b])
+        avoid = ~r.condition(other_than)
         states = avoid if states is None else states & avoid
     return states
 

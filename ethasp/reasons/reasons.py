@@ -137,12 +137,21 @@ def _labels_of(model: Model) -> Labels:
 
 def other_state(model: Model, plan: Plan, budget: Budget,
                 max_horizon: int = DEFAULT_MAX_HORIZON) -> ReachableState | None:
-    """A best reachable state other than the plan's final state (goal states
-    first among equally good ones); None if there is none or none was found."""
-    final = model.planner.trace(plan).get("final", 2)
-    other_than = [(s.arguments[0], s.arguments[1].name == "true") for s in final]
-    best = best_reachable(model.planner, budget, max_horizon, other_than=other_than)
-    return best.found
+    """A best reachable state that differs from the plan's final state in a
+    morally valued variable (one whose two values are worth differently), so
+    that the comparison speaks of what matters; else a best state that differs
+    at all.  Goal states first among equally good ones; None if there is none
+    or none was found."""
+    planner = model.planner
+    final = [(s.arguments[0], s.arguments[1].name == "true")
+             for s in planner.trace(plan).get("final", 2)]
+    weights = planner.ground_model().weights
+    valued = [(v, b) for v, b in final if weights.get((v, True), 0) != weights.get((v, False), 0)]
+    if valued:
+        best = best_reachable(planner, budget, max_horizon, other_than=valued)
+        if best.found is not None:
+            return best.found
+    return best_reachable(planner, budget, max_horizon, other_than=final).found
 
 
 def explain(model: Model, plan: Plan, principle: str | Principle, limit: int = DEFAULT_LIMIT,
