@@ -270,3 +270,15 @@ def test_comparison_words_fall_back_to_counterparts():
     result = explain(model, Plan.parse("scout steal give_jewels"), "utilitarianism")
     assert result.text.endswith("impermissible because the owner's loss of the jewels is "
                                 "worse than the owner keeping the jewels.")
+
+
+def test_utilitarian_explanations_compare_with_a_state_that_differs_in_what_matters():
+    from ethasp.principles.restriction import plan_with_principles
+
+    model = Model.load([MODELS / "rescue.lp"])
+    hplan = plan_with_principles(model, ["utilitarianism"])
+    why = explain(model, hplan.plan, "utilitarianism")
+    # Another best state differs only in where the robot stands (worth nothing):
+    # the explanation compares with a state that differs in a valued fact.
+    assert why.permissible and why.text.endswith(
+        "is permissible because the intact door is better than the broken door.")
