@@ -276,14 +276,10 @@ def _better_state(planner: Planner, utility: int, budget: Budget,
         # Large models: a few short searches first, each with a share of the time;
         # a better state near the initial one decides before any diagram is built.
         for horizon in PROBE_HORIZONS:
-            part = budget.share(PROBE_SECONDS)
-            outcome = planner.solve(horizon, Setting(goal=False, at_least=utility + 1), part)
+            outcome = planner.solve(horizon, Setting(goal=False, at_least=utility + 1),
+                                    budget.share(PROBE_SECONDS))
             if outcome.satisfiable:
-                facts = _read_state(outcome.symbols, horizon)
-                worth = planner.ground_model().utility(v for v, b in facts if b)
-                return Comparison(PROVEN, f"a state of utility {worth} is reachable within "
-                                          f"{steps(horizon)}",
-                                  better=ReachableState(facts, worth, horizon))
+                return _found_better(planner, outcome, horizon)
             if outcome.satisfiable is None and budget.expired():
                 return Comparison(BOUNDED, f"{budget.why_stopped()} at horizon {horizon}")
     found: list[Best] = []
@@ -378,6 +374,14 @@ def _best_by_optimisation(planner: Planner, budget: Budget, max_horizon: int, wi
                          best, horizon)
 
 
+def _found_better(planner: Planner, outcome, horizon: int) -> Comparison:
+    """The better state of a satisfiable search for one, at ``horizon``."""
+    facts = _read_state(outcome.symbols, horizon)
+    worth = planner.ground_model().utility(v for v, b in facts if b)
+    return Comparison(PROVEN, f"a state of utility {worth} is reachable within {steps(horizon)}",
+                      better=ReachableState(facts, worth, horizon))
+
+
 def _better_by_search(planner: Planner, utility: int, budget: Budget,
                       max_horizon: int) -> Comparison:
     setting = Setting(goal=False, at_least=utility + 1)
@@ -388,11 +392,7 @@ def _better_by_search(planner: Planner, utility: int, budget: Budget,
         if outcome.satisfiable is None:
             return Comparison(BOUNDED, f"{budget.why_stopped()} at horizon {horizon}")
         if outcome.satisfiable:
-            facts = _read_state(outcome.symbols, horizon)
-            worth = planner.ground_model().utility(v for v, b in facts if b)
-            return Comparison(PROVEN, f"a state of utility {worth} is reachable within "
-                                      f"{steps(horizon)}",
-                              better=ReachableState(facts, worth, horizon))
+            return _found_better(planner, outcome, horizon)
         exists = planner.simple_path_exists(horizon + 1, Setting(), budget)
         if exists is None:
             return Comparison(BOUNDED, f"{budget.why_stopped()} at horizon {horizon}")
