@@ -206,3 +206,17 @@ def test_time_limit_gives_bounded(tmp_path):
                    budget=cancelled)
     assert report.judgements[0].status == "bounded"
     assert "cancelled" in report.judgements[0].proof
+
+
+def test_large_models_are_probed_by_short_searches_first():
+    """More than 300 variables: a better state one step away is found by a short
+    search before any diagram is built (and the verdict is proven)."""
+    lines = ["variable(done). action(finish). eff(finish,done,true). goal(done,true)."]
+    for i in range(320):
+        lines.append(f"variable(on({i})). action(switch({i})). eff(switch({i}),on({i}),true).")
+    lines.append("utility(on(7),true,3).")
+    model = Model.from_string("\n".join(lines))
+    judgement = judge(model, Plan.parse("finish"), ["utilitarianism"]).judgements[0]
+    assert not judgement.permissible and judgement.status == "proven"
+    assert judgement.proof.startswith("a state of utility 3 is reachable within 1 step")
+    assert model.planner.reachability_pending()          # no diagram was needed
