@@ -40,7 +40,7 @@ from __future__ import annotations
 import functools
 import threading
 from dataclasses import dataclass, field
-from typing import Iterable, Sequence
+from typing import TYPE_CHECKING, Iterable, Sequence
 
 import clingo
 
@@ -49,8 +49,10 @@ from ethasp.planning import incremental
 from ethasp.planning.budget import Budget
 from ethasp.planning.messages import Messages
 from ethasp.planning.incremental import CHECK, STEP, TIME_MARKER
-from ethasp.planning.reachability import GroundModel, Reachability, from_atoms
 from ethasp.resources import ENCODINGS, encoding
+
+if TYPE_CHECKING:   # imported when used: plain plan search starts without them
+    from ethasp.planning.reachability import GroundModel, Reachability
 
 # What a model defines (encodings/planning/model.lp and reasons/labels.lp):
 # programs about a plan or a formula read these atoms of the ground model.
@@ -295,6 +297,8 @@ class Planner:
     def ground_model(self) -> GroundModel:
         """The model for the reachability engine, from the ground vocabulary."""
         if self._ground_model is None:
+            from ethasp.planning.reachability import from_atoms
+
             def value(symbol: clingo.Symbol) -> bool:
                 return symbol.name == "true"
 
@@ -328,6 +332,8 @@ class Planner:
         """The exact reachability engine over this model (created once, expanded
         by whoever needs more layers)."""
         if self._reachability is None:
+            from ethasp.planning.reachability import Reachability
+
             self._reachability = Reachability(self.ground_model())
         return self._reachability
 

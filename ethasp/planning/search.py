@@ -19,12 +19,14 @@ goal, restrictions, question constraints, utility thresholds) and a
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field
 
 from clorm import unify
 
 from ethasp.errors import InputError
 from ethasp.planning.budget import Budget
+from ethasp.planning.layers import Layers, Status
 from ethasp.planning.plan import Plan
 from ethasp.planning.planner import Planner, Setting
 from ethasp.vocabulary import Occurs
@@ -33,15 +35,21 @@ FOUND, NONE, BOUNDED = "found", "none", "bounded"
 
 DEFAULT_MAX_HORIZON = 64
 
+# Seconds of solving after which exact layers start beside the encodings (the
+# smallest tasks are solved before, without the cost of starting them).
+LAYERS_AFTER = 0.03
+
 
 @dataclass
 class SearchResult:
     """The outcome of a plan search.
 
-    ``plan`` is a shortest plan (or None), ``plans`` all shortest plans when
-    they were asked for, ``horizon`` the last horizon searched, and ``proof``
-    says why there is no plan (status ``none``), why the plan is a shortest
-    one (status ``found``) or what cut the search short (status ``bounded``).
+    ``plan`` is a plan (or None): a shortest one when ``optimal``, else (an
+    any-plan search, ``satisficing``) just a plan; ``plans`` all shortest
+    plans when they were asked for, ``horizon`` the last horizon searched,
+    and ``proof`` says why there is no plan (status ``none``), why the plan
+    is a shortest one or how it was found (status ``found``) or what cut the
+    search short (status ``bounded``).
     """
 
     status: str
@@ -49,11 +57,13 @@ class SearchResult:
     horizon: int = 0
     proof: str = ""
     plans: list[Plan] = field(default_factory=list)
+    optimal: bool = True
 
     def to_json(self) -> dict:
         return {
             "status": self.status,
             "plan": self.plan.to_list() if self.plan is not None else None,
+            "optimal": self.optimal if self.plan is not None else None,
             "horizon": self.horizon,
             "proof": self.proof,
             **({"plans": [plan.to_list() for plan in self.plans]} if self.plans else {}),
@@ -75,6 +85,79 @@ def plans_of(models: list) -> list[Plan]:
     return list(dict.fromkeys(plans))
 
 
+class _Exact:
+    """Exact layers (:mod:`ethasp.planning.layers`) beside a search, started once
+    the solver has worked :data:`LAYERS_AFTER` seconds, for searches with the
+    goal and without utility thresholds or states to avoid (the layers know
+    the model's plans, and every plan a setting allows is one of them)."""
+
+    def __init__(self, planner: Planner, setting: Setting, budget: Budget, read_plan: bool):
+        self.planner = planner
+        self.budget = budget
+        self.read_plan = read_plan
+        self.usable = (setting.goal and setting.best_utility is None
+                       and setting.at_least is None and setting.other_state is None)
+        self.layers: Layers | None = None
+        self.solving = 0.0            # seconds spent in solves so far
+
+    def status(self) -> Status | None:
+        return self.layers.status if self.layers is not None else None
+
+    def start(self) -> None:
+        if self.layers is None and self.usable:
+            self.layers = Layers(self.planner, self.budget, read_plan=self.read_plan).start()
+
+    def moot(self, horizon: int) -> bool:
+        """Is a solve at this horizon made pointless by what the layers proved?"""
+        status = self.status()
+        if status is None:
+            return False
+        return (status.plan is not None or status.complete or status.bound > horizon)
+
+    def watch(self, horizon: int) -> Budget:
+        """The budget of a solve at this horizon: it also stops when the layers
+        make it moot (and starts them once the solver has worked long enough)."""
+        started = time.monotonic()
+
+        def moot() -> bool:
+            if self.layers is None and self.solving + time.monotonic() - started > LAYERS_AFTER:
+                self.start()
+            return self.moot(horizon)
+
+        return self.budget.until(moot)
+
+    def solved(self, seconds: float) -> None:
+        self.solving += seconds
+        if self.solving > LAYERS_AFTER:
+            self.start()
+
+    def stop(self) -> None:
+        if self.layers is not None:
+            self.layers.stop()
+
+
+def _bound_proof(bound: int, why: str, horizon: int) -> str:
+    """Why no plan has fewer than ``horizon`` steps, horizons below ``bound``
+    refuted by ``why`` and the others by solves."""
+    if horizon == 0:
+        return "the goal holds in the initial state"
+    if bound <= 0:
+        return f"no plan of fewer than {horizon} steps (every smaller horizon refuted)"
+    if bound >= horizon:
+        return f"no plan has fewer than {horizon} steps: {why}"
+    return (f"no plan of fewer than {horizon} steps: none of fewer than {bound} ({why}), "
+            f"and the horizons {bound} to {horizon - 1} refuted")
+
+
+def _layers_plan(planner: Planner, status: Status) -> Plan:
+    """A plan read off the exact layers, checked by its trace (the encodings)."""
+    plan = Plan(tuple(status.plan))
+    answer = planner.trace(plan)
+    if not answer.get("plan", 0):
+        raise RuntimeError(f"exact reachability proposed {plan}, which the encodings refute")
+    return plan
+
+
 def shortest(planner: Planner, setting: Setting, budget: Budget,
              max_horizon: int = DEFAULT_MAX_HORIZON, start: int = 0, start_proof: str = "",
              all_plans: bool = False, task: str = "plan search") -> SearchResult:
@@ -82,45 +165,89 @@ def shortest(planner: Planner, setting: Setting, budget: Budget,
 
     ``start`` must be a proven lower bound on the length of every plan under
     the setting (``start_proof`` says why); horizons below it are not solved.
+    Exact layers run beside the solver (see :class:`_Exact`): their lower
+    bounds skip horizons, and for plain plan search (no restriction, no
+    question constraint, one plan) a shortest plan read off them, checked by
+    its trace, ends the search.
     """
     if max_horizon < 0:
         raise InputError("the maximal horizon must be at least 0")
     if setting.goal and planner.is_fact("unreachable_goal"):
         return SearchResult(NONE, horizon=0,
                             proof="the goal is unreachable even ignoring delete effects")
-    checkpoints = _checkpoints(max_horizon)
     if start > max_horizon:
         return SearchResult(BOUNDED, horizon=max_horizon,
                             proof=f"every plan has more than {max_horizon} steps ({start_proof}), "
                                   "the maximal horizon")
-    for horizon in range(start, max_horizon + 1):
+    plain = not setting.restrictions and not setting.constraints and not all_plans
+    exact = _Exact(planner, setting, budget, read_plan=plain)
+    try:
+        return _shortest(planner, setting, budget, max_horizon, start, start_proof, all_plans,
+                         task, exact)
+    finally:
+        exact.stop()
+
+
+def _shortest(planner: Planner, setting: Setting, budget: Budget, max_horizon: int,
+              start: int, start_proof: str, all_plans: bool, task: str,
+              exact: _Exact) -> SearchResult:
+    checkpoints = _checkpoints(max_horizon)
+    bound, why = start, start_proof          # every plan has at least `bound` steps
+    horizon = start
+    while True:
+        status = exact.status()
+        if status is not None:
+            if status.plan is not None:
+                plan = _layers_plan(planner, status)
+                return SearchResult(FOUND, plan=plan, horizon=len(plan), proof=(
+                    f"no plan has fewer than {len(plan)} steps: exact reachability found no "
+                    f"goal state within {len(plan) - 1} steps" if len(plan) else
+                    "the goal holds in the initial state"))
+            if status.complete:
+                return SearchResult(NONE, horizon=horizon, proof=(
+                    "exact reachability computed every reachable state, and none is a goal "
+                    "state"))
+            if status.bound > bound:
+                bound = status.bound
+                why = f"exact reachability found no goal state within {bound - 1} steps"
+        if bound > horizon:
+            horizon = bound
+        if horizon > max_horizon:
+            return SearchResult(BOUNDED, horizon=max_horizon,
+                                proof=f"every plan has more than {max_horizon} steps ({why}), "
+                                      "the maximal horizon")
         budget.report(task, horizon=horizon)
-        outcome = planner.solve(horizon, setting, budget, models=0 if all_plans else 1)
+        began = time.monotonic()
+        outcome = planner.solve(horizon, setting, exact.watch(horizon),
+                                models=0 if all_plans else 1)
+        exact.solved(time.monotonic() - began)
         if outcome.satisfiable is None:
-            return SearchResult(BOUNDED, horizon=horizon,
-                                proof=f"{budget.why_stopped()} at horizon {horizon}")
-        if outcome.satisfiable:
-            plans = plans_of(outcome.models if all_plans else [outcome.symbols])
-            if horizon == 0:
-                why = "the goal holds in the initial state"
-            elif horizon == start:
-                why = f"no plan has fewer than {horizon} steps: {start_proof}"
-            else:
-                why = f"no plan of fewer than {horizon} steps (every smaller horizon refuted)"
-            return SearchResult(FOUND, plan=plans[0], horizon=horizon, proof=why,
-                                plans=plans if all_plans else [])
-        if horizon in checkpoints and horizon > 0:
-            exists = planner.simple_path_exists(horizon, setting, budget)
-            if exists is None:
+            if budget.expired():
                 return SearchResult(BOUNDED, horizon=horizon,
                                     proof=f"{budget.why_stopped()} at horizon {horizon}")
-            if not exists:
+            continue                       # the layers proved more: look again
+        if outcome.satisfiable:
+            plans = plans_of(outcome.models if all_plans else [outcome.symbols])
+            return SearchResult(FOUND, plan=plans[0], horizon=horizon,
+                                proof=_bound_proof(bound, why, horizon),
+                                plans=plans if all_plans else [])
+        if horizon in checkpoints and horizon > 0:
+            began = time.monotonic()
+            exists = planner.simple_path_exists(horizon, setting, exact.watch(horizon))
+            exact.solved(time.monotonic() - began)
+            if exists is None:
+                if budget.expired():
+                    return SearchResult(BOUNDED, horizon=horizon,
+                                        proof=f"{budget.why_stopped()} at horizon {horizon}")
+            elif not exists:
                 return SearchResult(
                     NONE, horizon=horizon,
                     proof=f"no plan up to horizon {horizon}, and no path of {horizon} steps "
                           "without a repeated state: every reachable state was searched")
-    return SearchResult(BOUNDED, horizon=max_horizon,
-                        proof=f"no plan up to horizon {max_horizon} (the maximal horizon)")
+        if horizon >= max_horizon:
+            return SearchResult(BOUNDED, horizon=max_horizon,
+                                proof=f"no plan up to horizon {max_horizon} (the maximal horizon)")
+        horizon += 1
 
 
 def find_plan(model, max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
