@@ -154,7 +154,7 @@ class _Until(Budget):
         self.condition = condition
 
     def expired(self) -> bool:
-        return self.condition() or super().expired()
+        return self.condition() or self.parent.expired()
 
 
 def unlimited() -> Budget:

@@ -85,7 +85,8 @@ def _switch_literal(location, switch: clingo.Symbol):
 def _place(statement, step_part: str, switch: clingo.Symbol | None, where: str,
            base_part: str = "base"):
     """The part of a statement, the part's parameters, and the statement to add there."""
-    if statement.ast_type not in (ast.ASTType.Rule, ast.ASTType.Minimize):
+    if statement.ast_type not in (ast.ASTType.Rule, ast.ASTType.Minimize,
+                                  ast.ASTType.Heuristic):
         return base_part, (), statement
     body = list(statement.body)
     time_kind, input_name, mapping, drop = None, None, {}, None

@@ -25,6 +25,8 @@ trace (``encodings/planning/trace.lp``) before anyone sees it.
 
 from __future__ import annotations
 
+import os
+import signal
 import sys
 import threading
 from dataclasses import dataclass
@@ -163,12 +165,24 @@ class Status:
         return not (self.plan is not None or self.complete or self.stopped)
 
 
-class Layers:
-    """Exact layers of a planner's search model, computed in a thread.
+def _can_fork() -> bool:
+    """Whether the layers may run in a child process (a fork of this one)."""
+    return hasattr(os, "fork") and sys.platform.startswith("linux")
 
-    :meth:`start` starts the thread, :attr:`status` tells what is proven so
-    far, :meth:`stop` ends the work (at the next check, soon).  ``read_plan``:
-    read a shortest plan off the layers once the goal layer is found.
+
+class Layers:
+    """Exact layers of a planner's search model, computed beside the search.
+
+    :meth:`start` starts the work, :attr:`status` tells what is proven so
+    far (:attr:`news` is set whenever it changes), :meth:`stop` ends the work.
+    ``read_plan``: read a shortest plan off the layers once the goal layer is
+    found.
+
+    On Linux the layers are computed in a child process (a fork of this
+    one, which ends it when the search ends): the diagram library holds
+    Python's interpreter lock for every operation, which a thread of this
+    process would have to share with the solver's driver.  The child reports
+    through a pipe, one line a finding.  Elsewhere they run in a thread.
     """
 
     def __init__(self, planner, budget: Budget, read_plan: bool = True,
@@ -181,26 +195,75 @@ class Layers:
         self.news = threading.Event()       # set whenever the status changes
         self._stop = threading.Event()
         self._budget = budget.until(self._stop.is_set)
-        self._thread = threading.Thread(target=self._run, name="ethasp-layers", daemon=True)
+        self._child: int | None = None
+        self._lock = threading.Lock()
 
     def start(self) -> "Layers":
-        self._thread.start()
+        if _can_fork():
+            self._start_child()
+        else:
+            threading.Thread(target=self._run, args=(self._publish,), name="ethasp-layers",
+                             daemon=True).start()
         return self
 
     def stop(self) -> None:
+        """End the work: the child process at once, the thread at its next check."""
         self._stop.set()
+        with self._lock:
+            child, self._child = self._child, None
+        if child is not None:
+            try:
+                os.kill(child, signal.SIGKILL)
+                os.waitpid(child, 0)
+            except (ProcessLookupError, ChildProcessError):
+                pass
 
     def _publish(self, **changes) -> None:
         self.status = Status(**{**self.status.__dict__, **changes})
         self.news.set()
 
-    def _run(self) -> None:
-        try:
-            self._work()
-        except Exception as error:  # noqa: BLE001 (the search goes on without the layers)
-            self._publish(stopped=f"exact reachability failed: {type(error).__name__}: {error}")
+    # -- in a child process --------------------------------------------------------
 
-    def _work(self) -> None:
+    def _start_child(self) -> None:
+        read, write = os.pipe()
+        parent = os.getpid()
+        child = os.fork()
+        if child == 0:                       # the child: compute, report, end
+            code = 0
+            try:
+                os.close(read)
+                signal.signal(signal.SIGINT, signal.SIG_IGN)   # the parent ends it
+                self._budget = self._budget.until(lambda: os.getppid() != parent)
+                with os.fdopen(write, "w", buffering=1) as pipe:
+                    self._run(lambda **changes: _report(pipe, changes))
+            except BaseException:  # noqa: BLE001 (nothing may escape a forked child)
+                code = 1
+            finally:
+                os._exit(code)
+        os.close(write)
+        self._child = child
+        threading.Thread(target=self._listen, args=(read,), name="ethasp-layers",
+                         daemon=True).start()
+
+    def _listen(self, read: int) -> None:
+        """Read the child's reports into :attr:`status` (until the pipe closes)."""
+        with os.fdopen(read, "r") as pipe:
+            for line in pipe:
+                changes = _parse_report(line)
+                if changes:
+                    self._publish(**changes)
+        if self.status.working:
+            self._publish(stopped="exact reachability ended")
+
+    # -- the work --------------------------------------------------------------------
+
+    def _run(self, publish) -> None:
+        try:
+            self._work(publish)
+        except Exception as error:  # noqa: BLE001 (the search goes on without the layers)
+            publish(stopped=f"exact reachability failed: {type(error).__name__}: {error}")
+
+    def _work(self, publish) -> None:
         self.model = search_model(self._atoms)
         _import_diagrams()
         from ethasp.planning.reachability import Reachability
@@ -210,19 +273,19 @@ class Layers:
         layer = 0
         while True:
             if self._stop.is_set():
-                self._publish(stopped="stopped")
+                publish(stopped="stopped")
                 return
             if engine.layers[layer] & goal != engine.bdd.false:
-                self._publish(goal_layer=layer, bound=layer)
+                publish(goal_layer=layer, bound=layer)
                 if self.read_plan:
-                    self._publish(plan=tuple(self._path(engine, goal, layer)))
+                    publish(plan=tuple(self._path(engine, goal, layer)))
                 return
-            self._publish(bound=layer + 1)
+            publish(bound=layer + 1)
             if not engine.expand(self._budget):
-                self._publish(stopped=engine.stopped)
+                publish(stopped=engine.stopped)
                 return
             if engine.complete:
-                self._publish(complete=True)
+                publish(complete=True)
                 return
             layer += 1
 
@@ -232,3 +295,24 @@ class Layers:
         values = engine.bdd.pick(engine.layers[layer] & goal, care_vars=names)
         state = frozenset(v for v in self.model.variables if values[f"x{engine.index[v]}"])
         return engine.path_to(state, layer)
+
+
+def _report(pipe, changes: dict) -> None:
+    """One line for the parent per finding (actions of a plan as terms, tab-separated)."""
+    for key, value in changes.items():
+        if key == "plan":
+            value = "\t".join(str(action) for action in value)
+        pipe.write(f"{key} {' '.join(str(value).split()) if key == 'stopped' else value}\n")
+
+
+def _parse_report(line: str) -> dict:
+    key, _, value = line.rstrip("\n").partition(" ")
+    if key in ("bound", "goal_layer"):
+        return {key: int(value)}
+    if key == "complete":
+        return {"complete": value == "True"}
+    if key == "stopped":
+        return {"stopped": value or "stopped"}
+    if key == "plan":
+        return {"plan": tuple(clingo.parse_term(term) for term in value.split("\t") if term)}
+    return {}

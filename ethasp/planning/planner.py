@@ -81,9 +81,12 @@ LOOPFREE_ENCODING = "planning/loopfree.lp"
 RESTRICTIONS = "restrictions"
 
 # The solver configuration of every search (it did best on the planning benchmarks).
-OPTIONS = ("--configuration=trendy",)
+OPTIONS = ("--configuration=trendy", "--heuristic=Domain")
 
 GOAL_SWITCH = clingo.Function("require", [clingo.Function("goal")])
+# The decision heuristic of any-plan searches (planning/satisficing.lp).
+SATISFICING_ENCODING = "planning/satisficing.lp"
+SATISFICING_SWITCH = clingo.Function("require", [clingo.Function("satisficing")])
 
 # past(t): step t comes after the end of the plan or path searched (it idles).
 PAST = "past"
@@ -94,9 +97,20 @@ def restriction_switch(principle: str) -> clingo.Symbol:
     return clingo.Function("restriction", [clingo.Function(principle)])
 
 
+@functools.cache
+def _restrictions() -> tuple[str, ...]:
+    return tuple(sorted(path.stem for path in (ENCODINGS / RESTRICTIONS).glob("*.lp")))
+
+
+@functools.cache
+def _time_atom(name: str, t: int) -> clingo.Symbol:
+    """``horizon(t)`` or ``past(t)`` (made once)."""
+    return clingo.Function(name, [clingo.Number(t)])
+
+
 def available_restrictions() -> list[str]:
     """The principles (ASP names) with a restriction encoding."""
-    return sorted(path.stem for path in (ENCODINGS / RESTRICTIONS).glob("*.lp"))
+    return list(_restrictions())
 
 
 def add_facts(ctl: clingo.Control, facts: Iterable) -> None:
@@ -179,7 +193,10 @@ class Setting:
     threshold; ``at_least``: the state at the horizon must be worth at least
     this much; ``other_state``: a state (:meth:`Planner.avoid`) the state at
     the horizon must differ from; ``optimize``: find an optimal model of the
-    objective (the utility of the state at the horizon, then goal states).
+    objective (the utility of the state at the horizon, then goal states);
+    ``satisficing``: the solver's decision heuristic for any-plan searches
+    (``planning/satisficing.lp``; it changes which plan is found first, not
+    which plans exist).
     """
 
     goal: bool = True
@@ -189,6 +206,7 @@ class Setting:
     at_least: int | None = None
     other_state: int | None = None
     optimize: bool = False
+    satisficing: bool = False
 
 
 @dataclass
@@ -240,6 +258,7 @@ class Planner:
         self._reachability: Reachability | None = None
         self._ground_model: GroundModel | None = None
         self._traces: dict = {}
+        self._externals: dict[clingo.Symbol, bool] = {}   # values assigned so far
         self._model_text: str | None = None
         self.memo: dict = {}          # results of the layers above, by question asked
         try:
@@ -343,7 +362,8 @@ class Planner:
         """Add and ground the searches' encodings (once, on the first search)."""
         if self._searching:
             return
-        switches = [GOAL_SWITCH] + [restriction_switch(p) for p in available_restrictions()]
+        switches = [GOAL_SWITCH, SATISFICING_SWITCH] + [restriction_switch(p)
+                                                        for p in available_restrictions()]
         try:
             with clingo.ast.ProgramBuilder(self.ctl) as builder:
                 files = [(name, STEP, None, SEARCH) for name in SEARCH_ENCODINGS]
@@ -353,6 +373,7 @@ class Planner:
                     files.append((MUTEX_ENCODING, STEP, None, MUTEX))
                     self._mutex_pending = True
                 files.append((GOAL_ENCODING, STEP, GOAL_SWITCH, SEARCH))
+                files.append((SATISFICING_ENCODING, STEP, SATISFICING_SWITCH, SEARCH))
                 files += [(f"{RESTRICTIONS}/{principle}.lp", STEP, restriction_switch(principle),
                            SEARCH) for principle in available_restrictions()]
                 files.append((LOOPFREE_ENCODING, LOOPFREE, None, SEARCH))
@@ -457,14 +478,15 @@ class Planner:
         """Assign the externals of a setting (``horizon``: the time whose check
         part applies, None for none; ``end``: the steps after it idle); return
         the assumptions on the question constraints."""
-        ctl = self.ctl
+        assign = self._assign
         for t in range(0, self.grounded + 1):
-            ctl.assign_external(clingo.Function(TIME_MARKER, [clingo.Number(t)]), t == horizon)
+            assign(_time_atom(TIME_MARKER, t), t == horizon)
             if t > 0:
-                ctl.assign_external(clingo.Function(PAST, [clingo.Number(t)]), t > end)
-        ctl.assign_external(GOAL_SWITCH, setting.goal and horizon is not None)
+                assign(_time_atom(PAST, t), t > end)
+        assign(GOAL_SWITCH, setting.goal and horizon is not None)
+        assign(SATISFICING_SWITCH, setting.satisficing)
         for principle in available_restrictions():
-            ctl.assign_external(restriction_switch(principle), principle in setting.restrictions)
+            assign(restriction_switch(principle), principle in setting.restrictions)
         wanted = {
             "question": {c.question for c in setting.constraints},
             "best_utility": ({clingo.Number(setting.best_utility)}
@@ -477,13 +499,19 @@ class Planner:
         }
         for name, values in wanted.items():
             for value in self._inputs[name]:
-                ctl.assign_external(clingo.Function(name, [value]), value in values)
+                assign(clingo.Function(name, [value]), value in values)
         assumptions = []
         for question in sorted(wanted["question"], key=str):
             for constraint in self._questions[question]:
                 atom = clingo.Function("active", [question, constraint.term])
                 assumptions.append((atom, constraint in setting.constraints))
         return assumptions
+
+    def _assign(self, atom: clingo.Symbol, value: bool) -> None:
+        """Set an external atom, calling clingo only when its value changes."""
+        if self._externals.get(atom) is not value:
+            self.ctl.assign_external(atom, value)
+            self._externals[atom] = value
 
     def _prepare(self, setting: Setting) -> None:
         for constraint in setting.constraints:

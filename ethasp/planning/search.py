@@ -20,7 +20,7 @@ goal, restrictions, question constraints, utility thresholds) and a
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from clorm import unify
 
@@ -34,10 +34,17 @@ from ethasp.vocabulary import Occurs
 FOUND, NONE, BOUNDED = "found", "none", "bounded"
 
 DEFAULT_MAX_HORIZON = 64
+# Any-plan search looks further by default: it does not pay for every horizon.
+DEFAULT_SATISFICING_HORIZON = 256
 
 # Seconds of solving after which exact layers start beside the encodings (the
 # smallest tasks are solved before, without the cost of starting them).
 LAYERS_AFTER = 0.03
+
+# Any-plan search: seconds of solving a horizon gets before the search moves
+# on to a larger one, and the factor by which horizons (and slices) grow then.
+SLICE = 0.25
+GROWTH = 1.5
 
 
 @dataclass
@@ -250,8 +257,112 @@ def _shortest(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
         horizon += 1
 
 
-def find_plan(model, max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
-              all_plans: bool = False, budget: Budget | None = None) -> SearchResult:
-    """A shortest plan for the model (all shortest plans with ``all_plans``)."""
+def any_plan(planner: Planner, setting: Setting, budget: Budget,
+             max_horizon: int = DEFAULT_SATISFICING_HORIZON, start: int = 0,
+             start_proof: str = "", task: str = "plan search") -> SearchResult:
+    """Some plan under a setting, found fast and not proven shortest
+    (``optimal`` False).
+
+    The solver gets each horizon for a slice of time only: a horizon it
+    refutes in time is a lower bound (as in :func:`shortest`); one it cannot
+    decide in time is left for a larger one (a search to horizon h finds the
+    plans of at most h steps, so larger horizons leave it more room), the
+    horizon and the slice growing by :data:`GROWTH`.  Exact layers run beside
+    it as in :func:`shortest` and for plain plan search may deliver a plan
+    first.  ``none`` is proven as by :func:`shortest`: relaxed or exact
+    reachability, or a refuted horizon without a simple path of its length.
+    """
+    if max_horizon < 0:
+        raise InputError("the maximal horizon must be at least 0")
+    if setting.goal and planner.is_fact("unreachable_goal"):
+        return SearchResult(NONE, horizon=0, optimal=False,
+                            proof="the goal is unreachable even ignoring delete effects")
+    plain = not setting.restrictions and not setting.constraints
+    exact = _Exact(planner, setting, budget, read_plan=plain)
+    setting = replace(setting, satisficing=True)
+    try:
+        return _any_plan(planner, setting, budget, max_horizon, start, start_proof, task, exact)
+    finally:
+        exact.stop()
+
+
+def _any_plan(planner: Planner, setting: Setting, budget: Budget, max_horizon: int, start: int,
+              start_proof: str, task: str, exact: _Exact) -> SearchResult:
+    bound, why = start, start_proof          # every plan has at least `bound` steps
+    horizon, slice_, checked = start, SLICE, 0
+    while True:
+        status = exact.status()
+        if status is not None:
+            if status.plan is not None and len(status.plan) <= max_horizon:
+                plan = _layers_plan(planner, status)
+                return SearchResult(FOUND, plan=plan, horizon=len(plan), optimal=False,
+                                    proof="a plan read off exact reachability layers")
+            if status.complete:
+                return SearchResult(NONE, horizon=horizon, optimal=False, proof=(
+                    "exact reachability computed every reachable state, and none is a goal "
+                    "state"))
+            if status.bound > bound:
+                bound = status.bound
+                why = f"exact reachability found no goal state within {bound - 1} steps"
+        horizon = max(horizon, bound)
+        if horizon > max_horizon:
+            return SearchResult(BOUNDED, horizon=max_horizon, optimal=False,
+                                proof=f"no plan found up to horizon {max_horizon} (the maximal "
+                                      f"horizon; every plan has at least {bound} steps)")
+        budget.report(task, horizon=horizon)
+        began = time.monotonic()
+        end = began + slice_
+        watch = exact.watch(horizon)
+        outcome = planner.solve(horizon, setting,
+                                watch.until(lambda: time.monotonic() > end), models=1)
+        exact.solved(time.monotonic() - began)
+        if outcome.satisfiable is None:
+            if budget.expired():
+                return SearchResult(BOUNDED, horizon=horizon, optimal=False,
+                                    proof=f"{budget.why_stopped()} at horizon {horizon}")
+            if exact.moot(horizon):
+                continue                   # the layers proved more: look again
+            # The slice ran out: more room, and more time for it.
+            horizon = min(max_horizon, max(horizon + 1, int(horizon * GROWTH) + 1))
+            slice_ *= GROWTH
+            continue
+        if outcome.satisfiable:
+            plan = plans_of([outcome.symbols])[0]
+            return SearchResult(FOUND, plan=plan, horizon=horizon, optimal=False,
+                                proof=f"a plan found at horizon {horizon} (not proven shortest)")
+        bound, why = horizon + 1, f"horizon {horizon} refuted"
+        if horizon >= 2 * checked or horizon == max_horizon:
+            checked = max(horizon, 1)
+            exists = planner.simple_path_exists(horizon, setting, exact.watch(horizon)) \
+                if horizon > 0 else True
+            if exists is False:
+                return SearchResult(
+                    NONE, horizon=horizon, optimal=False,
+                    proof=f"no plan up to horizon {horizon}, and no path of {horizon} steps "
+                          "without a repeated state: every reachable state was searched")
+            if exists is None and budget.expired():
+                return SearchResult(BOUNDED, horizon=horizon, optimal=False,
+                                    proof=f"{budget.why_stopped()} at horizon {horizon}")
+        if horizon >= max_horizon:
+            return SearchResult(BOUNDED, horizon=max_horizon, optimal=False,
+                                proof=f"no plan up to horizon {max_horizon} (the maximal horizon)")
+        horizon += 1
+
+
+def find_plan(model, max_horizon: int | None = None, time_limit: float | None = None,
+              all_plans: bool = False, budget: Budget | None = None,
+              satisficing: bool = False) -> SearchResult:
+    """A shortest plan for the model (all shortest plans with ``all_plans``);
+    with ``satisficing``, some plan, found fast and not proven shortest.
+    ``max_horizon`` defaults to :data:`DEFAULT_MAX_HORIZON` (shortest plans)
+    or :data:`DEFAULT_SATISFICING_HORIZON` (any plan)."""
     budget = budget or Budget(time_limit)
-    return shortest(model.planner, Setting(), budget, max_horizon, all_plans=all_plans)
+    if satisficing:
+        if all_plans:
+            raise InputError("all shortest plans cannot be listed by an any-plan search "
+                             "(satisficing)")
+        return any_plan(model.planner, Setting(), budget,
+                        DEFAULT_SATISFICING_HORIZON if max_horizon is None else max_horizon)
+    return shortest(model.planner, Setting(), budget,
+                    DEFAULT_MAX_HORIZON if max_horizon is None else max_horizon,
+                    all_plans=all_plans)
