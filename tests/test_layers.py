@@ -33,7 +33,7 @@ def finished(layers: Layers):
 
 
 def run_layers(model: Model, read_plan: bool = True):
-    layers = Layers(model.planner, Budget(None), read_plan=read_plan).start()
+    layers = Layers(Atoms(model.planner), Budget(None), read_plan=read_plan).start()
     try:
         return finished(layers)
     finally:

@@ -121,6 +121,7 @@ def search_model(atoms: Atoms) -> GroundModel:
             impossible.add((name, key))
     axioms = [(atom.arguments[0], atom.arguments[1]) for atom in atoms.get("axiom", 2)
               if (atom.arguments[0], atom.arguments[1]) not in impossible]
+    axiom_pre = [entry for entry in axiom_pre if (entry[0], entry[1]) not in impossible]
     goal = [(atom.arguments[0], _value(atom.arguments[1])) for atom in atoms.get("goal", 2)
             if keeps(atom.arguments[0], _value(atom.arguments[1])) is None]
     init = [atom.arguments[0] for atom in atoms.get("init", 1) if atom.arguments[0] in moving]
@@ -171,7 +172,8 @@ def _can_fork() -> bool:
 
 
 class Layers:
-    """Exact layers of a planner's search model, computed beside the search.
+    """Exact layers of a planner's search model (given by its :class:`Atoms`,
+    read between solves), computed beside the search.
 
     :meth:`start` starts the work, :attr:`status` tells what is proven so
     far (:attr:`news` is set whenever it changes), :meth:`stop` ends the work.
@@ -185,9 +187,9 @@ class Layers:
     through a pipe, one line a finding.  Elsewhere they run in a thread.
     """
 
-    def __init__(self, planner, budget: Budget, read_plan: bool = True,
+    def __init__(self, atoms: Atoms, budget: Budget, read_plan: bool = True,
                  node_limit: int = NODE_LIMIT):
-        self._atoms = Atoms(planner)
+        self._atoms = atoms
         self.model: GroundModel | None = None
         self.read_plan = read_plan
         self.node_limit = node_limit

@@ -16,12 +16,16 @@ Program parts of the control (``t`` a time, ``x`` an input value):
   the model's defects (``error/1``) and its ground vocabulary are read from
   it;
 * ``search``: what the searches need once (``planning/relaxed.lp``, the
-  mutexes of ``planning/mutex.lp``, the bound of ``judgement/best.lp``);
+  bound of ``judgement/best.lp``);
 * ``step(t)`` and ``check(t)``: the time-indexed rules of
   ``planning/transition.lp``, ``planning/goal.lp`` (switched by
-  ``require(goal)``), ``planning/mutex.lp``, ``judgement/best.lp``,
+  ``require(goal)``), ``planning/satisficing.lp`` (a decision heuristic,
+  switched by ``require(satisficing)``), ``judgement/best.lp``,
   ``reasons/other_state.lp`` and ``restrictions/P.lp`` (switched by
   ``restriction(P)``);
+* ``mutex`` and ``mutex_step(t)``: the h^2 mutexes of ``planning/mutex.lp``
+  and their constraints, grounded (for every step so far and from then on)
+  once a solve has been slow (:meth:`Planner.use_mutexes`);
 * ``question(x)``, ``question_step(x,t)``, ``question_check(x,t)``: one
   question of ``questions/questions.lp``, grounded when it is asked;
 * ``best_utility(x)``, ``at_least(x)``, ``other_state(x)`` and their ``_check``
@@ -39,6 +43,7 @@ from __future__ import annotations
 
 import functools
 import threading
+import time
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Iterable, Sequence
 
@@ -72,11 +77,15 @@ SEARCH_ENCODINGS = ("planning/relaxed.lp", "planning/transition.lp",
                     "judgement/best.lp", "reasons/other_state.lp",
                     "questions/questions.lp")
 GOAL_ENCODING = "planning/goal.lp"
-# The h^2 mutexes are redundant constraints: they speed up plan search, but their
-# fixpoint grows with the square of the facts, so larger models go without.
+# The h^2 mutexes are redundant constraints: they speed up hard horizons, but
+# their fixpoint grows with the square of the facts.  So they are grounded only
+# once a solve has taken MUTEX_AFTER seconds (easy searches end before), and
+# only for models of at most MUTEX_MAX_FLUENTS state variables that change.
 MUTEX_ENCODING = "planning/mutex.lp"
 MUTEX = "mutex"
-MUTEX_MAX_VARIABLES = 400
+MUTEX_STEP = "mutex_step"
+MUTEX_MAX_FLUENTS = 400
+MUTEX_AFTER = 0.05
 LOOPFREE_ENCODING = "planning/loopfree.lp"
 RESTRICTIONS = "restrictions"
 
@@ -247,7 +256,7 @@ class Planner:
         self.ctl = model.control(OPTIONS, self.messages)
         self._parts: dict[str, tuple[str, ...]] = {}
         self._searching = False
-        self._mutex_pending = False
+        self._mutexes: bool | None = False   # grounded (True), not yet, or never (None)
         self.grounded = -1            # step and check parts grounded up to this time
         self._loopfree = 0            # loopfree parts grounded up to this time
         self._inputs: dict[str, list[clingo.Symbol]] = {name: [] for name in incremental.INPUTS}
@@ -367,11 +376,8 @@ class Planner:
         try:
             with clingo.ast.ProgramBuilder(self.ctl) as builder:
                 files = [(name, STEP, None, SEARCH) for name in SEARCH_ENCODINGS]
-                if len(self.get("variable", 1)) <= MUTEX_MAX_VARIABLES:
-                    # Grounded with the first step (searches that need no step,
-                    # such as the upper bound, do without it).
-                    files.append((MUTEX_ENCODING, STEP, None, MUTEX))
-                    self._mutex_pending = True
+                # Grounded when a search is found hard (see use_mutexes).
+                files.append((MUTEX_ENCODING, MUTEX_STEP, None, MUTEX))
                 files.append((GOAL_ENCODING, STEP, GOAL_SWITCH, SEARCH))
                 files.append((SATISFICING_ENCODING, STEP, SATISFICING_SWITCH, SEARCH))
                 files += [(f"{RESTRICTIONS}/{principle}.lp", STEP, restriction_switch(principle),
@@ -411,11 +417,10 @@ class Planner:
         """Ground the step and check parts (and those of every input) up to ``horizon``."""
         self._start_search()
         parts = []
-        if self._mutex_pending and horizon > self.grounded:
-            parts.append((MUTEX, []))
-            self._mutex_pending = False
         for t in range(self.grounded + 1, horizon + 1):
             parts += [(STEP, [clingo.Number(t)]), (CHECK, [clingo.Number(t)])]
+            if self._mutexes:
+                parts.append((MUTEX_STEP, [clingo.Number(t)]))
             for name, values in self._inputs.items():
                 if name == "simple_path":
                     continue
@@ -424,6 +429,28 @@ class Planner:
         if parts:
             self._ground(parts)
         self.grounded = max(self.grounded, horizon)
+
+    @_locked
+    def use_mutexes(self) -> bool:
+        """Ground the h^2 mutexes (``planning/mutex.lp``) for every step so far
+        and from now on, unless the model has more than MUTEX_MAX_FLUENTS state
+        variables that may change; whether they are in use."""
+        self._start_search()
+        if self._mutexes:
+            return True
+        if self._mutexes is None:
+            return False
+        reachable = {}
+        for atom in self.search_atoms("reachable", 2):
+            reachable[atom.arguments[0]] = reachable.get(atom.arguments[0], 0) + 1
+        fluents = sum(1 for count in reachable.values() if count == 2)
+        if fluents > MUTEX_MAX_FLUENTS:
+            self._mutexes = None       # never
+            return False
+        self._ground([(MUTEX, [])] + [(MUTEX_STEP, [clingo.Number(t)])
+                                      for t in range(1, self.grounded + 1)])
+        self._mutexes = True
+        return True
 
     def _register(self, name: str, value: clingo.Symbol,
                   facts: Sequence[clingo.Symbol] = ()) -> None:
@@ -530,7 +557,11 @@ class Planner:
         self._prepare(setting)
         self.ground_to(horizon)
         assumptions = self._set(setting, horizon, horizon)
-        return self._solve(assumptions, budget, setting.optimize, models)
+        began = time.monotonic()
+        outcome = self._solve(assumptions, budget, setting.optimize, models)
+        if time.monotonic() - began > MUTEX_AFTER and self._mutexes is False:
+            self.use_mutexes()          # a hard search: the next solves get them
+        return outcome
 
     def _solve(self, assumptions, budget: Budget, optimize: bool, models: int) -> Outcome:
         config = self.ctl.configuration.solve

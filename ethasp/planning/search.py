@@ -22,14 +22,11 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass, field, replace
 
-from clorm import unify
-
 from ethasp.errors import InputError
 from ethasp.planning.budget import Budget
-from ethasp.planning.layers import Layers, Status
+from ethasp.planning.layers import Atoms, Layers, Status
 from ethasp.planning.plan import Plan
 from ethasp.planning.planner import Planner, Setting
-from ethasp.vocabulary import Occurs
 
 FOUND, NONE, BOUNDED = "found", "none", "bounded"
 
@@ -78,16 +75,21 @@ class SearchResult:
 
 
 def _checkpoints(limit: int) -> set[int]:
-    """The horizons after which the loop-free check runs: powers of two and the limit."""
+    """The horizons after which the loop-free check runs: powers of four and the
+    limit (each check costs a solve; they only prove that no plan exists)."""
     result, power = {limit}, 1
     while power <= limit:
         result.add(power)
-        power *= 2
+        power *= 4
     return result
 
 
 def plans_of(models: list) -> list[Plan]:
     """The plans of answer sets (their ``occurs/2`` atoms), without repeats."""
+    from clorm import unify
+
+    from ethasp.vocabulary import Occurs
+
     plans = [Plan.from_occurs(unify([Occurs], symbols).query(Occurs).all()) for symbols in models]
     return list(dict.fromkeys(plans))
 
@@ -106,13 +108,16 @@ class _Exact:
                        and setting.at_least is None and setting.other_state is None)
         self.layers: Layers | None = None
         self.solving = 0.0            # seconds spent in solves so far
+        # The ground atoms the layers need, read now: the planner's control
+        # cannot be read while it solves, which is when the layers start.
+        self.atoms = Atoms(planner) if self.usable else None
 
     def status(self) -> Status | None:
         return self.layers.status if self.layers is not None else None
 
     def start(self) -> None:
         if self.layers is None and self.usable:
-            self.layers = Layers(self.planner, self.budget, read_plan=self.read_plan).start()
+            self.layers = Layers(self.atoms, self.budget, read_plan=self.read_plan).start()
 
     def moot(self, horizon: int) -> bool:
         """Is a solve at this horizon made pointless by what the layers proved?"""
@@ -331,7 +336,7 @@ def _any_plan(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
             return SearchResult(FOUND, plan=plan, horizon=horizon, optimal=False,
                                 proof=f"a plan found at horizon {horizon} (not proven shortest)")
         bound, why = horizon + 1, f"horizon {horizon} refuted"
-        if horizon >= 2 * checked or horizon == max_horizon:
+        if horizon >= 4 * checked or horizon == max_horizon:
             checked = max(horizon, 1)
             exists = planner.simple_path_exists(horizon, setting, exact.watch(horizon)) \
                 if horizon > 0 else True
