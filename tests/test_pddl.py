@@ -363,3 +363,31 @@ def test_query_and_principled_plan_on_pddl():
     pddl = ethasp("plan", *TROLLEY_PDDL, "--principle", "do-no-harm", "--json")
     assert json.loads(asp.stdout) == json.loads(pddl.stdout)
     assert json.loads(pddl.stdout)["plan"] == ["refrain"]
+
+
+UNTYPED = """
+(define (domain hands)
+  (:predicates (ball ?b) (hand ?h) (free ?h) (holds ?h ?b) (on-floor ?b) (near ?b ?h))
+  (:action grab :parameters (?h ?b)
+    :precondition (and (hand ?h) (ball ?b) (free ?h) (on-floor ?b) (near ?b ?h))
+    :effect (and (holds ?h ?b) (not (free ?h)) (not (on-floor ?b)))))
+"""
+
+UNTYPED_PROBLEM = """
+(define (problem two) (:domain hands)
+  (:objects left b1 b2)
+  (:init (hand left) (ball b1) (ball b2) (free left) (on-floor b1) (on-floor b2) (near b1 left))
+  (:goal (holds left b1)))
+"""
+
+
+def test_type_like_predicates_decide_which_actions_exist():
+    """Unary predicates that no action changes are types in untyped domains: an
+    action whose positive precondition on one fails does not exist (as an action
+    of a wrong type); other static preconditions (near) stay preconditions."""
+    program = translated(UNTYPED, UNTYPED_PROBLEM)
+    assert ("action(grab(H,B)) :- has_type(H,object), has_type(B,object), "
+            "init(hand(H)), init(ball(B)).") in program
+    assert "pre(grab(H,B),near(B,H),true) :- action(grab(H,B))." in program
+    actions = ground_model(program)["action"]
+    assert actions == {"action(grab(left,b1))", "action(grab(left,b2))"}

@@ -22,7 +22,8 @@ from ethasp.planning.plan import Plan, steps
 from ethasp.interfaces.version import package_version
 from ethasp.planning.terms import read_text
 from ethasp.resources import MODELS
-from ethasp.planning.search import DEFAULT_MAX_HORIZON, FOUND, find_plan
+from ethasp.planning.search import (DEFAULT_MAX_HORIZON, DEFAULT_SATISFICING_HORIZON, FOUND,
+                                    find_plan)
 
 if TYPE_CHECKING:
     from ethasp.principles.judgement import JudgementReport
@@ -148,11 +149,19 @@ def _no_picture(args: argparse.Namespace) -> None:
 
 # -- commands -----------------------------------------------------------------
 
+def _unproven(optimal: bool) -> str:
+    """What a plan's text says when an any-plan search found it."""
+    return "" if optimal else " (not proven shortest)"
+
+
 def command_plan(args: argparse.Namespace) -> int:
     model = load_model(args)
     if args.principle:
         return command_plan_permissible(args, model)
-    result = find_plan(model, args.max_horizon, all_plans=args.all, budget=budget(args))
+    if args.all and args.satisficing:
+        raise InputError("--all lists all shortest plans; it cannot go with --satisficing")
+    result = find_plan(model, _max_horizon(args), all_plans=args.all, budget=budget(args),
+                       satisficing=args.satisficing)
     if result.status == FOUND:
         if args.all:
             lines = [f"{len(result.plans)} shortest plans of {steps(result.horizon)}:"]
@@ -160,8 +169,8 @@ def command_plan(args: argparse.Namespace) -> int:
                       for plan in result.plans]
             text = "\n".join(lines)
         else:
-            text = (f"plan of {steps(result.horizon)}: {model.naming.actions(result.plan)}"
-                    if len(result.plan)
+            text = (f"plan of {steps(len(result.plan))}{_unproven(result.optimal)}: "
+                    f"{model.naming.actions(result.plan)}" if len(result.plan)
                     else "plan of 0 steps: the goal holds initially")
     elif result.status == "none":
         text = f"no plan exists: {result.proof}"
@@ -169,7 +178,7 @@ def command_plan(args: argparse.Namespace) -> int:
         text = f"bounded: {result.proof}; a plan may still exist"
     if result.status == FOUND:
         _draw(args, model, lambda pictures: pictures.plan(
-            result.plan, f"plan of {steps(result.horizon)}: "
+            result.plan, f"plan of {steps(len(result.plan))}{_unproven(result.optimal)}: "
                          f"{model.naming.actions(result.plan) or '(empty plan)'}"))
     else:
         _no_picture(args)
@@ -183,19 +192,24 @@ def command_plan_permissible(args: argparse.Namespace, model: Model) -> int:
     from ethasp.principles.restriction import plan_with_principles
 
     limits = budget(args)
-    result = plan_with_principles(model, args.principle, args.max_horizon, all_plans=args.all,
-                                  budget=limits)
+    if args.all and args.satisficing:
+        raise InputError("--all lists all shortest plans; it cannot go with --satisficing")
+    result = plan_with_principles(model, args.principle, _max_horizon(args), all_plans=args.all,
+                                  budget=limits, satisficing=args.satisficing)
     under = " and ".join(result.principles)
     data = result.to_json()
     if result.status == FOUND:
         shown = [model.naming.actions(plan) if len(plan) else "(empty plan)"
                  for plan in (result.plans if args.all else [result.plan])]
-        head = f"plan of {steps(result.horizon)} permissible under {under}"
+        head = (f"plan of {steps(len(result.plan))}{_unproven(result.optimal)} permissible "
+                f"under {under}")
         lines = ([f"{len(shown)} shortest plans of {steps(result.horizon)} permissible under "
                   f"{under}:"] + [f"  {plan}" for plan in shown] if args.all
                  else [f"{head}: {shown[0]}"])
         # The judgement of the (first) HPlan, as ethasp judge prints it, minus its plan line.
-        report = judge(model, result.plan, result.principles, args.max_horizon, budget=limits)
+        report = judge(model, result.plan, result.principles,
+                       DEFAULT_MAX_HORIZON if args.max_horizon is None else args.max_horizon,
+                       budget=limits)
         data["judgements"] = report.to_json()["judgements"]
         lines += _explanation_text(report) + _judgement_text(report, model).split("\n")[1:]
         _draw(args, model, lambda pictures: pictures.report(report, f"{head}: {shown[0]}"))
@@ -310,7 +324,7 @@ def command_judge(args: argparse.Namespace) -> int:
     _reasons_limit(args)
     if args.reasons_limit < 0:
         raise InputError("--reasons-limit must be at least 0")
-    report = judge(model, _given_plan(args), args.principle, args.max_horizon,
+    report = judge(model, _given_plan(args), args.principle, _max_horizon(args),
                    reasons_limit=args.reasons_limit, budget=budget(args), best=args.best)
     lines = _explanation_text(report) + [_judgement_text(report, model)]
     _draw(args, model, lambda pictures: pictures.report(report))
@@ -325,8 +339,9 @@ def command_ask(args: argparse.Namespace) -> int:
     _reasons_limit(args)
     model = load_model(args)
     plan = _given_plan(args) if (args.plan or args.plan_file) else None
-    answer = ask(model, args.question, plan, args.principle, args.under, args.max_horizon,
-                 reasons_limit=args.reasons_limit, budget=budget(args))
+    answer = ask(model, args.question, plan, args.principle, args.under, _max_horizon(args),
+                 reasons_limit=args.reasons_limit, budget=budget(args),
+                 satisficing=args.satisficing)
     _draw(args, model, lambda pictures: pictures.answer(answer))
     emit(args, answer.to_json(), answer_text(answer, model.naming))
     return 0
@@ -358,8 +373,8 @@ def command_dialogue(args: argparse.Namespace) -> int:
     if save is not None:
         _writable(save, "--save")
     model = load_model(args)
-    options = dict(max_horizon=args.max_horizon, time_limit=args.time_limit,
-                   reasons_limit=args.reasons_limit)
+    options = dict(max_horizon=_max_horizon(args), time_limit=args.time_limit,
+                   reasons_limit=args.reasons_limit, satisficing=args.satisficing)
     progress = ProgressLine(enabled=False if args.quiet else None)
     files = [str(path.resolve()) for path in model_paths(args.model)]
     if args.load:
@@ -402,7 +417,7 @@ def command_serve(args: argparse.Namespace) -> int:
     model = load_model(args)
     files = [str(path) for path in model_paths(args.model)]
     workspace = Workspace(model, files, args.principle,
-                          Options(args.max_horizon, args.time_limit, args.reasons_limit))
+                          Options(_max_horizon(args), args.time_limit, args.reasons_limit))
     return serve(workspace, args.host, args.port, args.open)
 
 
@@ -437,25 +452,45 @@ def _add_limits(parser: argparse.ArgumentParser, per: str = "") -> None:
     parser.add_argument("--quiet", action="store_true", help=QUIET_HELP)
 
 
-def _add_search_arguments(parser: argparse.ArgumentParser, per: str = "") -> None:
-    parser.add_argument("--max-horizon", type=_horizon, default=DEFAULT_MAX_HORIZON, metavar="N",
-                        help=f"search plans of at most N steps (default {DEFAULT_MAX_HORIZON})")
+def _add_search_arguments(parser: argparse.ArgumentParser, per: str = "",
+                          satisficing: bool = False) -> None:
+    default = (f"{DEFAULT_MAX_HORIZON}; {DEFAULT_SATISFICING_HORIZON} with --satisficing"
+               if satisficing else f"{DEFAULT_MAX_HORIZON}")
+    parser.add_argument("--max-horizon", type=_horizon, default=None, metavar="N",
+                        help=f"search plans of at most N steps (default {default})")
     _add_limits(parser, per)
+
+
+def _add_satisficing_argument(parser: argparse.ArgumentParser, what: str = "a plan") -> None:
+    parser.add_argument("--satisficing", action="store_true",
+                        help=f"find {what} fast, without proving it shortest (status found, "
+                             '"optimal": false in JSON)')
+
+
+def _max_horizon(args: argparse.Namespace) -> int:
+    """--max-horizon, or its default (larger for any-plan searches)."""
+    if args.max_horizon is not None:
+        return args.max_horizon
+    return DEFAULT_SATISFICING_HORIZON if getattr(args, "satisficing", False) \
+        else DEFAULT_MAX_HORIZON
 
 
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="ethasp", description=DESCRIPTION,
                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--version", action="version", version=f"ethasp {package_version()}")
+    parser.add_argument("--version", action=_Version, nargs=0,
+                        help="show the program's version number and exit")
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
     plan = commands.add_parser(
-        "plan", help="find a shortest plan",
-        description="Find a shortest plan. Status: found, none (proven: no plan exists) "
+        "plan", help="find a shortest plan (or any plan, fast: --satisficing)",
+        description="Find a shortest plan (with --satisficing: some plan, found fast and not "
+                    "proven shortest). Status: found, none (proven: no plan exists) "
                     "or bounded (none up to the horizon or time limit; one may still exist).")
     _add_model_arguments(plan)
-    _add_search_arguments(plan)
+    _add_search_arguments(plan, satisficing=True)
     plan.add_argument("--all", action="store_true", help="list all shortest plans")
+    _add_satisficing_argument(plan)
     plan.add_argument("--principle", action="append", metavar="NAME",
                       help="find a plan permissible under the principle NAME (deontology, "
                            "utilitarianism or do-no-harm; repeat it to require several)")
@@ -520,7 +555,9 @@ def build_parser() -> argparse.ArgumentParser:
                                "(default deontology)")
     contrast.add_argument("--under", default=None, metavar="Q",
                           help="the principle the contrast plan must satisfy (default P)")
-    _add_search_arguments(contrast)
+    _add_search_arguments(contrast, satisficing=True)
+    _add_satisficing_argument(contrast, "the plans searched (the contrast plan, and the plan "
+                                        "asked about when --plan is not given)")
     contrast.add_argument("--reasons-limit", type=_reasons, default=None,
                           metavar="N", help="at most N reasons of each kind per judgement")
     _add_svg_argument(contrast, "the contrast plan aligned with the plan asked about")
@@ -541,7 +578,9 @@ def build_parser() -> argparse.ArgumentParser:
     talk.add_argument("--save", default="ethasp-dialogue.json", metavar="FILE",
                       help="where the dialogue is saved when it ends "
                            "(default ethasp-dialogue.json; - for nowhere)")
-    _add_search_arguments(talk, " per question")
+    _add_search_arguments(talk, " per question", satisficing=True)
+    _add_satisficing_argument(talk, "the plans searched (the first plan unless --plan is "
+                                    "given, and every contrast plan)")
     talk.add_argument("--reasons-limit", type=_reasons, default=None, metavar="N",
                       help="at most N reasons of each kind per judgement")
     talk.set_defaults(run=command_dialogue)
@@ -573,6 +612,14 @@ def build_parser() -> argparse.ArgumentParser:
                      help="at most N reasons of each kind per judgement")
     web.set_defaults(run=command_serve)
     return parser
+
+
+class _Version(argparse.Action):
+    """--version, read from the package's metadata only when asked for."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        print(f"ethasp {package_version()}")
+        parser.exit()
 
 
 class _Parser(argparse.ArgumentParser):
@@ -629,10 +676,11 @@ def _end(code: int, end_process: bool) -> int:
     """Leave with ``code`` while the command's thread may still be inside clingo
     (or reading input): the process ends at once when it is the command line's."""
     if end_process:
-        try:
-            sys.stdout.flush()
-        except (OSError, ValueError):
-            pass
+        for stream in (sys.stdout, sys.stderr):
+            try:
+                stream.flush()
+            except (OSError, ValueError):
+                pass
         os._exit(code)
     return code
 
@@ -703,7 +751,9 @@ def main(argv: Sequence[str] | None = None) -> int:
             _error(f"internal error: {type(error).__name__}: {error} (please report it; "
                    "ETHASP_DEBUG=1 shows where)")
             return 70
-        return outcome["code"]
+        # The command is done and its output written: the process ends at
+        # once, without tearing down clingo's grounding (tens of milliseconds).
+        return _end(outcome["code"], end_process)
     except KeyboardInterrupt:
         print("ethasp: interrupted", file=sys.stderr, flush=True)
         return 130

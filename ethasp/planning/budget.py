@@ -78,6 +78,12 @@ class Budget:
         part._share = True
         return part
 
+    def until(self, condition: Callable[[], bool]) -> "Budget":
+        """This budget, also expired as soon as ``condition()`` holds (for a
+        search that another one may make pointless; the condition is polled
+        while the search runs)."""
+        return _Until(self, condition)
+
     # -- limits -------------------------------------------------------------------
 
     def cancel(self) -> None:
@@ -132,6 +138,23 @@ class Budget:
                 handle.cancel()
                 handle.wait()
                 return False
+
+
+class _Until(Budget):
+    """A budget that also expires when a condition holds (see :meth:`Budget.until`)."""
+
+    def __init__(self, parent: Budget, condition: Callable[[], bool]):
+        super().__init__(None, parent.on_progress)
+        self.started = parent.started
+        self.deadline = parent.deadline
+        self.time_limit = parent.time_limit
+        self._cancelled = parent._cancelled
+        self._share = parent._share
+        self.parent = parent
+        self.condition = condition
+
+    def expired(self) -> bool:
+        return self.condition() or self.parent.expired()
 
 
 def unlimited() -> Budget:

@@ -28,6 +28,7 @@ Each part is grounded once per parameter value, never again.
 
 from __future__ import annotations
 
+import re
 from collections import defaultdict
 from pathlib import Path
 from typing import Callable
@@ -54,31 +55,26 @@ def part_name(kind: str, input_name: str | None = None) -> str:
     return input_name if kind == "base" else f"{input_name}_{kind}"
 
 
-class _Substitute(ast.Transformer):
-    """Replace variables by part parameters."""
+def _binding(location, variable: str, parameter: str):
+    """The body literal ``Variable = parameter``: it binds a time or input
+    variable to the part's parameter (cheaper than rewriting the statement)."""
+    guard = ast.Guard(ast.ComparisonOperator.Equal,
+                      ast.SymbolicTerm(location, clingo.Function(parameter)))
+    return ast.Literal(location, ast.Sign.NoSign,
+                       ast.Comparison(ast.Variable(location, variable), [guard]))
 
-    def __init__(self, mapping: dict[str, str]):
-        self.mapping = mapping
 
-    def visit_Variable(self, node):  # noqa: N802 (clingo's visitor naming)
-        if node.name in self.mapping:
-            return ast.SymbolicTerm(node.location, clingo.Function(self.mapping[node.name]))
-        return node
+# A positive body literal name(X) with a variable X, as clingo prints it.
+_MARKER = re.compile(r"([a-z_'][A-Za-z0-9_']*)\(([A-Z_'][A-Za-z0-9_']*)\)")
 
 
 def _marker(literal) -> tuple[str, str] | None:
-    """(name, variable) of a positive body literal ``name(X)``, else None."""
-    if literal.ast_type != ast.ASTType.Literal or literal.sign != ast.Sign.NoSign:
-        return None
-    atom = literal.atom
-    if atom.ast_type != ast.ASTType.SymbolicAtom:
-        return None
-    symbol = atom.symbol
-    if symbol.ast_type != ast.ASTType.Function or len(symbol.arguments) != 1:
-        return None
-    if symbol.arguments[0].ast_type != ast.ASTType.Variable:
-        return None
-    return symbol.name, symbol.arguments[0].name
+    """(name, variable) of a positive body literal ``name(X)``, else None.
+
+    Read from the literal's text: one call into clingo instead of one per
+    attribute of the syntax tree."""
+    found = _MARKER.fullmatch(str(literal))
+    return (found.group(1), found.group(2)) if found else None
 
 
 def _switch_literal(location, switch: clingo.Symbol):
@@ -89,7 +85,8 @@ def _switch_literal(location, switch: clingo.Symbol):
 def _place(statement, step_part: str, switch: clingo.Symbol | None, where: str,
            base_part: str = "base"):
     """The part of a statement, the part's parameters, and the statement to add there."""
-    if statement.ast_type not in (ast.ASTType.Rule, ast.ASTType.Minimize):
+    if statement.ast_type not in (ast.ASTType.Rule, ast.ASTType.Minimize,
+                                  ast.ASTType.Heuristic):
         return base_part, (), statement
     body = list(statement.body)
     time_kind, input_name, mapping, drop = None, None, {}, None
@@ -109,11 +106,11 @@ def _place(statement, step_part: str, switch: clingo.Symbol | None, where: str,
             mapping[variable] = VALUE
     if drop is not None:
         del body[drop]
+    for variable, parameter in mapping.items():
+        body.append(_binding(statement.location, variable, parameter))
     if switch is not None:
         body.append(_switch_literal(statement.location, switch))
     rewritten = statement.update(body=body)
-    if mapping:
-        rewritten = _Substitute(mapping)(rewritten)
     if input_name is None:
         if time_kind is None:
             return base_part, (), rewritten

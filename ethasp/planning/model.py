@@ -9,7 +9,6 @@ from typing import TYPE_CHECKING, Iterable, Sequence
 import clingo
 import clingo.script
 from clingo import ast
-from clorm import unify
 
 from ethasp.errors import InputError
 from ethasp.planning.messages import Messages
@@ -17,7 +16,6 @@ from ethasp.planning.namespace import NamespaceCheck, misused_vocabulary
 from ethasp.planning.naming import Naming, PddlNaming
 from ethasp.planning.terms import read_text, scan_file, scan_program
 from ethasp.resources import encoding
-from ethasp.vocabulary import Error
 
 if TYPE_CHECKING:
     from ethasp.planning.planner import Planner
@@ -203,6 +201,12 @@ class Model:
             or ", ".join(source.name for source in self.sources)
         answers = planner.base_answers()
         for symbols in answers[:1]:
+            if not symbols:
+                break               # check.lp shows error/1 only: no defect
+            from clorm import unify
+
+            from ethasp.vocabulary import Error
+
             errors = sorted(error.problem.symbol for error in
                             unify([Error], symbols).query(Error).all())
             if errors:

@@ -190,6 +190,14 @@ class _Translator:
         self.derived = {d.predicate for d in domain.derived}
         self.objects = {pddl_name_to_asp(p.name) for p in domain.constants + problem.objects}
         self.names = {*domain.predicates, *self.derived}
+        # Type-like predicates: unary, and no action changes them (untyped
+        # domains write types so: (ball ?b)).  A positive precondition on one
+        # decides which actions exist, as a type does.
+        changed = {predicate for action in domain.actions
+                   for predicate in effect_predicates(action.effect)}
+        self.types_as_predicates = {
+            pddl_name_to_asp(predicate) for predicate, params in domain.predicates.items()
+            if len(params) == 1 and predicate not in changed and predicate not in self.derived}
 
     def emit(self, line: str) -> None:
         self.lines.append(line)
@@ -372,7 +380,11 @@ class _Translator:
         anchor = f"action({head})"
         scope = Scope(scope.variables, (anchor,))
         precondition = self.conjunction(nnf(action.precondition), scope, file, lift=False)
-        self.emit(rule(anchor, typing + precondition.comparisons))
+        # Like a type: an action whose type-like precondition fails initially
+        # never occurs, so it does not exist (as an action of the wrong type).
+        types = [f"init({atom})" for atom, value in precondition.literals
+                 if value == "true" and atom.split("(")[0] in self.types_as_predicates]
+        self.emit(rule(anchor, typing + precondition.comparisons + types))
         for atom, value in precondition.literals:
             self.emit(rule(f"pre({head},{atom},{value})", [anchor]))
         number = 0
@@ -521,6 +533,17 @@ class _Translator:
         for line in self.warnings():
             print(line, file=sys.stderr)
         return "\n".join(self.lines) + "\n"
+
+
+def effect_predicates(effect: Effect) -> set[str]:
+    """The predicates that an effect may change."""
+    if isinstance(effect, Literal):
+        return {effect.atom.predicate}
+    if isinstance(effect, AllEffects):
+        return set().union(*(effect_predicates(part) for part in effect.parts))
+    if isinstance(effect, (ForallEffect, When)):
+        return effect_predicates(effect.effect)
+    return set()
 
 
 def closure(requirements: Iterable[str]) -> set[str]:

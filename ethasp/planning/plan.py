@@ -3,15 +3,16 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Iterable, Iterator
+from typing import TYPE_CHECKING, Iterable, Iterator
 
 import clingo
-from clorm import Raw
 
 from ethasp.errors import InputError
 from ethasp.planning.naming import pddl_atom_to_term
 from ethasp.planning.terms import TermError, parse_symbol
-from ethasp.vocabulary import Occurs
+
+if TYPE_CHECKING:   # the typed vocabulary is imported where it is used (start-up time)
+    from ethasp.vocabulary import Occurs
 
 
 def steps(count: int) -> str:
@@ -90,6 +91,10 @@ class Plan:
 
     def facts(self) -> list[Occurs]:
         """The plan as ``occurs(A,T)`` facts."""
+        from clorm import Raw
+
+        from ethasp.vocabulary import Occurs
+
         return [Occurs(action=Raw(action), step=index)
                 for index, action in enumerate(self.actions, start=1)]
 

@@ -16,12 +16,16 @@ Program parts of the control (``t`` a time, ``x`` an input value):
   the model's defects (``error/1``) and its ground vocabulary are read from
   it;
 * ``search``: what the searches need once (``planning/relaxed.lp``, the
-  mutexes of ``planning/mutex.lp``, the bound of ``judgement/best.lp``);
+  bound of ``judgement/best.lp``);
 * ``step(t)`` and ``check(t)``: the time-indexed rules of
   ``planning/transition.lp``, ``planning/goal.lp`` (switched by
-  ``require(goal)``), ``planning/mutex.lp``, ``judgement/best.lp``,
+  ``require(goal)``), ``planning/satisficing.lp`` (a decision heuristic,
+  switched by ``require(satisficing)``), ``judgement/best.lp``,
   ``reasons/other_state.lp`` and ``restrictions/P.lp`` (switched by
   ``restriction(P)``);
+* ``mutex`` and ``mutex_step(t)``: the h^2 mutexes of ``planning/mutex.lp``
+  and their constraints, grounded (for every step so far and from then on)
+  once a solve has been slow (:meth:`Planner.use_mutexes`);
 * ``question(x)``, ``question_step(x,t)``, ``question_check(x,t)``: one
   question of ``questions/questions.lp``, grounded when it is asked;
 * ``best_utility(x)``, ``at_least(x)``, ``other_state(x)`` and their ``_check``
@@ -39,8 +43,9 @@ from __future__ import annotations
 
 import functools
 import threading
+import time
 from dataclasses import dataclass, field
-from typing import Iterable, Sequence
+from typing import TYPE_CHECKING, Iterable, Sequence
 
 import clingo
 
@@ -49,9 +54,10 @@ from ethasp.planning import incremental
 from ethasp.planning.budget import Budget
 from ethasp.planning.messages import Messages
 from ethasp.planning.incremental import CHECK, STEP, TIME_MARKER
-from ethasp.planning import reachability
-from ethasp.planning.reachability import GroundModel, Reachability, from_atoms
 from ethasp.resources import ENCODINGS, encoding
+
+if TYPE_CHECKING:   # imported when used: plain plan search starts without them
+    from ethasp.planning.reachability import GroundModel, Reachability
 
 # What a model defines (encodings/planning/model.lp and reasons/labels.lp):
 # programs about a plan or a formula read these atoms of the ground model.
@@ -72,18 +78,25 @@ SEARCH_ENCODINGS = ("planning/relaxed.lp", "planning/transition.lp",
                     "judgement/best.lp", "reasons/other_state.lp",
                     "questions/questions.lp")
 GOAL_ENCODING = "planning/goal.lp"
-# The h^2 mutexes are redundant constraints: they speed up plan search, but their
-# fixpoint grows with the square of the facts, so larger models go without.
+# The h^2 mutexes are redundant constraints: they speed up hard horizons, but
+# their fixpoint grows with the square of the facts.  So they are grounded only
+# once a solve has taken MUTEX_AFTER seconds (easy searches end before), and
+# only for models of at most MUTEX_MAX_FLUENTS state variables that change.
 MUTEX_ENCODING = "planning/mutex.lp"
 MUTEX = "mutex"
-MUTEX_MAX_VARIABLES = 400
+MUTEX_STEP = "mutex_step"
+MUTEX_MAX_FLUENTS = 400
+MUTEX_AFTER = 0.05
 LOOPFREE_ENCODING = "planning/loopfree.lp"
 RESTRICTIONS = "restrictions"
 
 # The solver configuration of every search (it did best on the planning benchmarks).
-OPTIONS = ("--configuration=trendy",)
+OPTIONS = ("--configuration=trendy", "--heuristic=Domain")
 
 GOAL_SWITCH = clingo.Function("require", [clingo.Function("goal")])
+# The decision heuristic of any-plan searches (planning/satisficing.lp).
+SATISFICING_ENCODING = "planning/satisficing.lp"
+SATISFICING_SWITCH = clingo.Function("require", [clingo.Function("satisficing")])
 
 # past(t): step t comes after the end of the plan or path searched (it idles).
 PAST = "past"
@@ -94,9 +107,20 @@ def restriction_switch(principle: str) -> clingo.Symbol:
     return clingo.Function("restriction", [clingo.Function(principle)])
 
 
+@functools.cache
+def _restrictions() -> tuple[str, ...]:
+    return tuple(sorted(path.stem for path in (ENCODINGS / RESTRICTIONS).glob("*.lp")))
+
+
+@functools.cache
+def _time_atom(name: str, t: int) -> clingo.Symbol:
+    """``horizon(t)`` or ``past(t)`` (made once)."""
+    return clingo.Function(name, [clingo.Number(t)])
+
+
 def available_restrictions() -> list[str]:
     """The principles (ASP names) with a restriction encoding."""
-    return sorted(path.stem for path in (ENCODINGS / RESTRICTIONS).glob("*.lp"))
+    return list(_restrictions())
 
 
 def add_facts(ctl: clingo.Control, facts: Iterable) -> None:
@@ -179,7 +203,10 @@ class Setting:
     threshold; ``at_least``: the state at the horizon must be worth at least
     this much; ``other_state``: a state (:meth:`Planner.avoid`) the state at
     the horizon must differ from; ``optimize``: find an optimal model of the
-    objective (the utility of the state at the horizon, then goal states).
+    objective (the utility of the state at the horizon, then goal states);
+    ``satisficing``: the solver's decision heuristic for any-plan searches
+    (``planning/satisficing.lp``; it changes which plan is found first, not
+    which plans exist).
     """
 
     goal: bool = True
@@ -189,6 +216,7 @@ class Setting:
     at_least: int | None = None
     other_state: int | None = None
     optimize: bool = False
+    satisficing: bool = False
 
 
 @dataclass
@@ -229,7 +257,7 @@ class Planner:
         self.ctl = model.control(OPTIONS, self.messages)
         self._parts: dict[str, tuple[str, ...]] = {}
         self._searching = False
-        self._mutex_pending = False
+        self._mutexes: bool | None = False   # grounded (True), not yet, or never (None)
         self.grounded = -1            # step and check parts grounded up to this time
         self._loopfree = 0            # loopfree parts grounded up to this time
         self._inputs: dict[str, list[clingo.Symbol]] = {name: [] for name in incremental.INPUTS}
@@ -240,6 +268,7 @@ class Planner:
         self._reachability: Reachability | None = None
         self._ground_model: GroundModel | None = None
         self._traces: dict = {}
+        self._externals: dict[clingo.Symbol, bool] = {}   # values assigned so far
         self._model_text: str | None = None
         self._bound: Answer | None = None
         self.memo: dict = {}          # results of the layers above, by question asked
@@ -308,6 +337,8 @@ class Planner:
     def ground_model(self) -> GroundModel:
         """The model for the reachability engine, from the ground vocabulary."""
         if self._ground_model is None:
+            from ethasp.planning.reachability import from_atoms
+
             def value(symbol: clingo.Symbol) -> bool:
                 return symbol.name == "true"
 
@@ -345,8 +376,10 @@ class Planner:
         """The exact reachability engine over this model (created once, expanded
         by whoever needs more layers)."""
         if self._reachability is None:
-            self._reachability = Reachability(self.ground_model(),
-                                              reachability.DEFAULT_NODE_LIMIT)
+            from ethasp.planning import reachability
+
+            self._reachability = reachability.Reachability(self.ground_model(),
+                                                           reachability.DEFAULT_NODE_LIMIT)
         return self._reachability
 
     # -- grounding ------------------------------------------------------------------
@@ -355,16 +388,15 @@ class Planner:
         """Add and ground the searches' encodings (once, on the first search)."""
         if self._searching:
             return
-        switches = [GOAL_SWITCH] + [restriction_switch(p) for p in available_restrictions()]
+        switches = [GOAL_SWITCH, SATISFICING_SWITCH] + [restriction_switch(p)
+                                                        for p in available_restrictions()]
         try:
             with clingo.ast.ProgramBuilder(self.ctl) as builder:
                 files = [(name, STEP, None, SEARCH) for name in SEARCH_ENCODINGS]
-                if len(self.get("variable", 1)) <= MUTEX_MAX_VARIABLES:
-                    # Grounded with the first step (searches that need no step,
-                    # such as the upper bound, do without it).
-                    files.append((MUTEX_ENCODING, STEP, None, MUTEX))
-                    self._mutex_pending = True
+                # Grounded when a search is found hard (see use_mutexes).
+                files.append((MUTEX_ENCODING, MUTEX_STEP, None, MUTEX))
                 files.append((GOAL_ENCODING, STEP, GOAL_SWITCH, SEARCH))
+                files.append((SATISFICING_ENCODING, STEP, SATISFICING_SWITCH, SEARCH))
                 files += [(f"{RESTRICTIONS}/{principle}.lp", STEP, restriction_switch(principle),
                            SEARCH) for principle in available_restrictions()]
                 files.append((LOOPFREE_ENCODING, LOOPFREE, None, SEARCH))
@@ -402,11 +434,10 @@ class Planner:
         """Ground the step and check parts (and those of every input) up to ``horizon``."""
         self._start_search()
         parts = []
-        if self._mutex_pending and horizon > self.grounded:
-            parts.append((MUTEX, []))
-            self._mutex_pending = False
         for t in range(self.grounded + 1, horizon + 1):
             parts += [(STEP, [clingo.Number(t)]), (CHECK, [clingo.Number(t)])]
+            if self._mutexes:
+                parts.append((MUTEX_STEP, [clingo.Number(t)]))
             for name, values in self._inputs.items():
                 if name == "simple_path":
                     continue
@@ -415,6 +446,28 @@ class Planner:
         if parts:
             self._ground(parts)
         self.grounded = max(self.grounded, horizon)
+
+    @_locked
+    def use_mutexes(self) -> bool:
+        """Ground the h^2 mutexes (``planning/mutex.lp``) for every step so far
+        and from now on, unless the model has more than MUTEX_MAX_FLUENTS state
+        variables that may change; whether they are in use."""
+        self._start_search()
+        if self._mutexes:
+            return True
+        if self._mutexes is None:
+            return False
+        reachable = {}
+        for atom in self.search_atoms("reachable", 2):
+            reachable[atom.arguments[0]] = reachable.get(atom.arguments[0], 0) + 1
+        fluents = sum(1 for count in reachable.values() if count == 2)
+        if fluents > MUTEX_MAX_FLUENTS:
+            self._mutexes = None       # never
+            return False
+        self._ground([(MUTEX, [])] + [(MUTEX_STEP, [clingo.Number(t)])
+                                      for t in range(1, self.grounded + 1)])
+        self._mutexes = True
+        return True
 
     def _register(self, name: str, value: clingo.Symbol,
                   facts: Sequence[clingo.Symbol] = ()) -> None:
@@ -469,14 +522,15 @@ class Planner:
         """Assign the externals of a setting (``horizon``: the time whose check
         part applies, None for none; ``end``: the steps after it idle); return
         the assumptions on the question constraints."""
-        ctl = self.ctl
+        assign = self._assign
         for t in range(0, self.grounded + 1):
-            ctl.assign_external(clingo.Function(TIME_MARKER, [clingo.Number(t)]), t == horizon)
+            assign(_time_atom(TIME_MARKER, t), t == horizon)
             if t > 0:
-                ctl.assign_external(clingo.Function(PAST, [clingo.Number(t)]), t > end)
-        ctl.assign_external(GOAL_SWITCH, setting.goal and horizon is not None)
+                assign(_time_atom(PAST, t), t > end)
+        assign(GOAL_SWITCH, setting.goal and horizon is not None)
+        assign(SATISFICING_SWITCH, setting.satisficing)
         for principle in available_restrictions():
-            ctl.assign_external(restriction_switch(principle), principle in setting.restrictions)
+            assign(restriction_switch(principle), principle in setting.restrictions)
         wanted = {
             "question": {c.question for c in setting.constraints},
             "best_utility": ({clingo.Number(setting.best_utility)}
@@ -489,13 +543,19 @@ class Planner:
         }
         for name, values in wanted.items():
             for value in self._inputs[name]:
-                ctl.assign_external(clingo.Function(name, [value]), value in values)
+                assign(clingo.Function(name, [value]), value in values)
         assumptions = []
         for question in sorted(wanted["question"], key=str):
             for constraint in self._questions[question]:
                 atom = clingo.Function("active", [question, constraint.term])
                 assumptions.append((atom, constraint in setting.constraints))
         return assumptions
+
+    def _assign(self, atom: clingo.Symbol, value: bool) -> None:
+        """Set an external atom, calling clingo only when its value changes."""
+        if self._externals.get(atom) is not value:
+            self.ctl.assign_external(atom, value)
+            self._externals[atom] = value
 
     def _prepare(self, setting: Setting) -> None:
         for constraint in setting.constraints:
@@ -514,7 +574,11 @@ class Planner:
         self._prepare(setting)
         self.ground_to(horizon)
         assumptions = self._set(setting, horizon, horizon)
-        return self._solve(assumptions, budget, setting.optimize, models)
+        began = time.monotonic()
+        outcome = self._solve(assumptions, budget, setting.optimize, models)
+        if time.monotonic() - began > MUTEX_AFTER and self._mutexes is False:
+            self.use_mutexes()          # a hard search: the next solves get them
+        return outcome
 
     def _solve(self, assumptions, budget: Budget, optimize: bool, models: int) -> Outcome:
         config = self.ctl.configuration.solve

@@ -19,29 +19,41 @@ goal, restrictions, question constraints, utility thresholds) and a
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
-from clorm import unify
+import time
+from dataclasses import dataclass, field, replace
 
 from ethasp.errors import InputError
 from ethasp.planning.budget import Budget
+from ethasp.planning.layers import Atoms, Layers, Status
 from ethasp.planning.plan import Plan, steps
 from ethasp.planning.planner import Planner, Setting
-from ethasp.vocabulary import Occurs
 
 FOUND, NONE, BOUNDED = "found", "none", "bounded"
 
 DEFAULT_MAX_HORIZON = 64
+# Any-plan search looks further by default: it does not pay for every horizon.
+DEFAULT_SATISFICING_HORIZON = 256
+
+# Seconds of solving after which exact layers start beside the encodings (the
+# smallest tasks are solved before, without the cost of starting them).
+LAYERS_AFTER = 0.03
+
+# Any-plan search: seconds of solving a horizon gets before the search moves
+# on to a larger one, and the factor by which horizons (and slices) grow then.
+SLICE = 0.25
+GROWTH = 1.5
 
 
 @dataclass
 class SearchResult:
     """The outcome of a plan search.
 
-    ``plan`` is a shortest plan (or None), ``plans`` all shortest plans when
-    they were asked for, ``horizon`` the last horizon searched, and ``proof``
-    says why there is no plan (status ``none``), why the plan is a shortest
-    one (status ``found``) or what cut the search short (status ``bounded``).
+    ``plan`` is a plan (or None): a shortest one when ``optimal``, else (an
+    any-plan search, ``satisficing``) just a plan; ``plans`` all shortest
+    plans when they were asked for, ``horizon`` the last horizon searched,
+    and ``proof`` says why there is no plan (status ``none``), why the plan
+    is a shortest one or how it was found (status ``found``) or what cut the
+    search short (status ``bounded``).
     """
 
     status: str
@@ -49,11 +61,13 @@ class SearchResult:
     horizon: int = 0
     proof: str = ""
     plans: list[Plan] = field(default_factory=list)
+    optimal: bool = True
 
     def to_json(self) -> dict:
         return {
             "status": self.status,
             "plan": self.plan.to_list() if self.plan is not None else None,
+            "optimal": self.optimal if self.plan is not None else None,
             "horizon": self.horizon,
             "proof": self.proof,
             **({"plans": [plan.to_list() for plan in self.plans]} if self.plans else {}),
@@ -61,18 +75,99 @@ class SearchResult:
 
 
 def _checkpoints(limit: int) -> set[int]:
-    """The horizons after which the loop-free check runs: powers of two and the limit."""
+    """The horizons after which the loop-free check runs: powers of four and the
+    limit (each check costs a solve; they only prove that no plan exists)."""
     result, power = {limit}, 1
     while power <= limit:
         result.add(power)
-        power *= 2
+        power *= 4
     return result
 
 
 def plans_of(models: list) -> list[Plan]:
     """The plans of answer sets (their ``occurs/2`` atoms), without repeats."""
+    from clorm import unify
+
+    from ethasp.vocabulary import Occurs
+
     plans = [Plan.from_occurs(unify([Occurs], symbols).query(Occurs).all()) for symbols in models]
     return list(dict.fromkeys(plans))
+
+
+class _Exact:
+    """Exact layers (:mod:`ethasp.planning.layers`) beside a search, started once
+    the solver has worked :data:`LAYERS_AFTER` seconds, for searches with the
+    goal and without utility thresholds or states to avoid (the layers know
+    the model's plans, and every plan a setting allows is one of them)."""
+
+    def __init__(self, planner: Planner, setting: Setting, budget: Budget, read_plan: bool):
+        self.planner = planner
+        self.budget = budget
+        self.read_plan = read_plan
+        self.usable = (setting.goal and setting.best_utility is None
+                       and setting.at_least is None and setting.other_state is None)
+        self.layers: Layers | None = None
+        self.solving = 0.0            # seconds spent in solves so far
+        # The ground atoms the layers need, read now: the planner's control
+        # cannot be read while it solves, which is when the layers start.
+        self.atoms = Atoms(planner) if self.usable else None
+
+    def status(self) -> Status | None:
+        return self.layers.status if self.layers is not None else None
+
+    def start(self) -> None:
+        if self.layers is None and self.usable:
+            self.layers = Layers(self.atoms, self.budget, read_plan=self.read_plan).start()
+
+    def moot(self, horizon: int) -> bool:
+        """Is a solve at this horizon made pointless by what the layers proved?"""
+        status = self.status()
+        if status is None:
+            return False
+        return (status.plan is not None or status.complete or status.bound > horizon)
+
+    def watch(self, horizon: int) -> Budget:
+        """The budget of a solve at this horizon: it also stops when the layers
+        make it moot (and starts them once the solver has worked long enough)."""
+        started = time.monotonic()
+
+        def moot() -> bool:
+            if self.layers is None and self.solving + time.monotonic() - started > LAYERS_AFTER:
+                self.start()
+            return self.moot(horizon)
+
+        return self.budget.until(moot)
+
+    def solved(self, seconds: float) -> None:
+        self.solving += seconds
+        if self.solving > LAYERS_AFTER:
+            self.start()
+
+    def stop(self) -> None:
+        if self.layers is not None:
+            self.layers.stop()
+
+
+def _bound_proof(bound: int, why: str, horizon: int) -> str:
+    """Why no plan has fewer than ``horizon`` steps, horizons below ``bound``
+    refuted by ``why`` and the others by solves."""
+    if horizon == 0:
+        return "the goal holds in the initial state"
+    if bound <= 0:
+        return f"no plan has fewer than {steps(horizon)} (every smaller horizon refuted)"
+    if bound >= horizon:
+        return f"no plan has fewer than {steps(horizon)}: {why}"
+    return (f"no plan has fewer than {steps(horizon)}: none has fewer than {steps(bound)} ({why}), "
+            f"and the horizons {bound} to {horizon - 1} refuted")
+
+
+def _layers_plan(planner: Planner, status: Status) -> Plan:
+    """A plan read off the exact layers, checked by its trace (the encodings)."""
+    plan = Plan(tuple(status.plan))
+    answer = planner.trace(plan)
+    if not answer.get("plan", 0):
+        raise RuntimeError(f"exact reachability proposed {plan}, which the encodings refute")
+    return plan
 
 
 def shortest(planner: Planner, setting: Setting, budget: Budget,
@@ -82,49 +177,197 @@ def shortest(planner: Planner, setting: Setting, budget: Budget,
 
     ``start`` must be a proven lower bound on the length of every plan under
     the setting (``start_proof`` says why); horizons below it are not solved.
+    Exact layers run beside the solver (see :class:`_Exact`): their lower
+    bounds skip horizons, and for plain plan search (no restriction, no
+    question constraint, one plan) a shortest plan read off them, checked by
+    its trace, ends the search.
     """
     if max_horizon < 0:
         raise InputError("the maximal horizon must be at least 0")
     if setting.goal and planner.is_fact("unreachable_goal"):
         return SearchResult(NONE, horizon=0,
                             proof="the goal is unreachable even ignoring delete effects")
-    checkpoints = _checkpoints(max_horizon)
     if start > max_horizon:
         return SearchResult(BOUNDED, horizon=max_horizon,
                             proof=f"every plan has more than {steps(max_horizon)} ({start_proof}), "
                                   "the maximal horizon")
-    for horizon in range(start, max_horizon + 1):
+    plain = not setting.restrictions and not setting.constraints and not all_plans
+    exact = _Exact(planner, setting, budget, read_plan=plain)
+    try:
+        return _shortest(planner, setting, budget, max_horizon, start, start_proof, all_plans,
+                         task, exact)
+    finally:
+        exact.stop()
+
+
+def _shortest(planner: Planner, setting: Setting, budget: Budget, max_horizon: int,
+              start: int, start_proof: str, all_plans: bool, task: str,
+              exact: _Exact) -> SearchResult:
+    checkpoints = _checkpoints(max_horizon)
+    bound, why = start, start_proof          # every plan has at least `bound` steps
+    horizon = start
+    while True:
+        status = exact.status()
+        if status is not None:
+            if status.plan is not None:
+                plan = _layers_plan(planner, status)
+                return SearchResult(FOUND, plan=plan, horizon=len(plan), proof=(
+                    f"no plan has fewer than {steps(len(plan))}: exact reachability found no "
+                    f"goal state within {steps(len(plan) - 1)}" if len(plan) else
+                    "the goal holds in the initial state"))
+            if status.complete:
+                return SearchResult(NONE, horizon=horizon, proof=(
+                    "exact reachability computed every reachable state, and none is a goal "
+                    "state"))
+            if status.bound > bound:
+                bound = status.bound
+                why = f"exact reachability found no goal state within {steps(bound - 1)}"
+        if bound > horizon:
+            horizon = bound
+        if horizon > max_horizon:
+            return SearchResult(BOUNDED, horizon=max_horizon,
+                                proof=f"every plan has more than {steps(max_horizon)} ({why}), "
+                                      "the maximal horizon")
         budget.report(task, horizon=horizon)
-        outcome = planner.solve(horizon, setting, budget, models=0 if all_plans else 1)
+        began = time.monotonic()
+        outcome = planner.solve(horizon, setting, exact.watch(horizon),
+                                models=0 if all_plans else 1)
+        exact.solved(time.monotonic() - began)
         if outcome.satisfiable is None:
-            return SearchResult(BOUNDED, horizon=horizon,
-                                proof=f"{budget.why_stopped()} at horizon {horizon}")
-        if outcome.satisfiable:
-            plans = plans_of(outcome.models if all_plans else [outcome.symbols])
-            if horizon == 0:
-                why = "the goal holds in the initial state"
-            elif horizon == start:
-                why = f"no plan has fewer than {steps(horizon)}: {start_proof}"
-            else:
-                why = f"no plan has fewer than {steps(horizon)} (every smaller horizon refuted)"
-            return SearchResult(FOUND, plan=plans[0], horizon=horizon, proof=why,
-                                plans=plans if all_plans else [])
-        if horizon in checkpoints and horizon > 0:
-            exists = planner.simple_path_exists(horizon, setting, budget)
-            if exists is None:
+            if budget.expired():
                 return SearchResult(BOUNDED, horizon=horizon,
                                     proof=f"{budget.why_stopped()} at horizon {horizon}")
-            if not exists:
+            continue                       # the layers proved more: look again
+        if outcome.satisfiable:
+            plans = plans_of(outcome.models if all_plans else [outcome.symbols])
+            return SearchResult(FOUND, plan=plans[0], horizon=horizon,
+                                proof=_bound_proof(bound, why, horizon),
+                                plans=plans if all_plans else [])
+        if horizon in checkpoints and horizon > 0:
+            began = time.monotonic()
+            exists = planner.simple_path_exists(horizon, setting, exact.watch(horizon))
+            exact.solved(time.monotonic() - began)
+            if exists is None:
+                if budget.expired():
+                    return SearchResult(BOUNDED, horizon=horizon,
+                                        proof=f"{budget.why_stopped()} at horizon {horizon}")
+            elif not exists:
                 return SearchResult(
                     NONE, horizon=horizon,
                     proof=f"no plan up to horizon {horizon}, and no path of {steps(horizon)} "
                           "without a repeated state: every reachable state was searched")
-    return SearchResult(BOUNDED, horizon=max_horizon,
-                        proof=f"no plan up to horizon {max_horizon} (the maximal horizon)")
+        if horizon >= max_horizon:
+            return SearchResult(BOUNDED, horizon=max_horizon,
+                                proof=f"no plan up to horizon {max_horizon} (the maximal horizon)")
+        horizon += 1
 
 
-def find_plan(model, max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
-              all_plans: bool = False, budget: Budget | None = None) -> SearchResult:
-    """A shortest plan for the model (all shortest plans with ``all_plans``)."""
+def any_plan(planner: Planner, setting: Setting, budget: Budget,
+             max_horizon: int = DEFAULT_SATISFICING_HORIZON, start: int = 0,
+             start_proof: str = "", task: str = "plan search") -> SearchResult:
+    """Some plan under a setting, found fast and not proven shortest
+    (``optimal`` False).
+
+    The solver gets each horizon for a slice of time only: a horizon it
+    refutes in time is a lower bound (as in :func:`shortest`); one it cannot
+    decide in time is left for a larger one (a search to horizon h finds the
+    plans of at most h steps, so larger horizons leave it more room), the
+    horizon and the slice growing by :data:`GROWTH`.  Exact layers run beside
+    it as in :func:`shortest` and for plain plan search may deliver a plan
+    first.  ``none`` is proven as by :func:`shortest`: relaxed or exact
+    reachability, or a refuted horizon without a simple path of its length.
+    """
+    if max_horizon < 0:
+        raise InputError("the maximal horizon must be at least 0")
+    if setting.goal and planner.is_fact("unreachable_goal"):
+        return SearchResult(NONE, horizon=0, optimal=False,
+                            proof="the goal is unreachable even ignoring delete effects")
+    plain = not setting.restrictions and not setting.constraints
+    exact = _Exact(planner, setting, budget, read_plan=plain)
+    setting = replace(setting, satisficing=True)
+    try:
+        return _any_plan(planner, setting, budget, max_horizon, start, start_proof, task, exact)
+    finally:
+        exact.stop()
+
+
+def _any_plan(planner: Planner, setting: Setting, budget: Budget, max_horizon: int, start: int,
+              start_proof: str, task: str, exact: _Exact) -> SearchResult:
+    bound, why = start, start_proof          # every plan has at least `bound` steps
+    horizon, slice_, checked = start, SLICE, 0
+    while True:
+        status = exact.status()
+        if status is not None:
+            if status.plan is not None and len(status.plan) <= max_horizon:
+                plan = _layers_plan(planner, status)
+                return SearchResult(FOUND, plan=plan, horizon=len(plan), optimal=False,
+                                    proof="a plan read off exact reachability layers")
+            if status.complete:
+                return SearchResult(NONE, horizon=horizon, optimal=False, proof=(
+                    "exact reachability computed every reachable state, and none is a goal "
+                    "state"))
+            if status.bound > bound:
+                bound = status.bound
+                why = f"exact reachability found no goal state within {steps(bound - 1)}"
+        horizon = max(horizon, bound)
+        if horizon > max_horizon:
+            return SearchResult(BOUNDED, horizon=max_horizon, optimal=False,
+                                proof=f"no plan found up to horizon {max_horizon} (the maximal "
+                                      f"horizon; every plan has at least {steps(bound)})")
+        budget.report(task, horizon=horizon)
+        began = time.monotonic()
+        end = began + slice_
+        watch = exact.watch(horizon)
+        outcome = planner.solve(horizon, setting,
+                                watch.until(lambda: time.monotonic() > end), models=1)
+        exact.solved(time.monotonic() - began)
+        if outcome.satisfiable is None:
+            if budget.expired():
+                return SearchResult(BOUNDED, horizon=horizon, optimal=False,
+                                    proof=f"{budget.why_stopped()} at horizon {horizon}")
+            if exact.moot(horizon):
+                continue                   # the layers proved more: look again
+            # The slice ran out: more room, and more time for it.
+            horizon = min(max_horizon, max(horizon + 1, int(horizon * GROWTH) + 1))
+            slice_ *= GROWTH
+            continue
+        if outcome.satisfiable:
+            plan = plans_of([outcome.symbols])[0]
+            return SearchResult(FOUND, plan=plan, horizon=horizon, optimal=False,
+                                proof=f"a plan found at horizon {horizon} (not proven shortest)")
+        bound, why = horizon + 1, f"horizon {horizon} refuted"
+        if horizon >= 4 * checked or horizon == max_horizon:
+            checked = max(horizon, 1)
+            exists = planner.simple_path_exists(horizon, setting, exact.watch(horizon)) \
+                if horizon > 0 else True
+            if exists is False:
+                return SearchResult(
+                    NONE, horizon=horizon, optimal=False,
+                    proof=f"no plan up to horizon {horizon}, and no path of {steps(horizon)} "
+                          "without a repeated state: every reachable state was searched")
+            if exists is None and budget.expired():
+                return SearchResult(BOUNDED, horizon=horizon, optimal=False,
+                                    proof=f"{budget.why_stopped()} at horizon {horizon}")
+        if horizon >= max_horizon:
+            return SearchResult(BOUNDED, horizon=max_horizon, optimal=False,
+                                proof=f"no plan up to horizon {max_horizon} (the maximal horizon)")
+        horizon += 1
+
+
+def find_plan(model, max_horizon: int | None = None, time_limit: float | None = None,
+              all_plans: bool = False, budget: Budget | None = None,
+              satisficing: bool = False) -> SearchResult:
+    """A shortest plan for the model (all shortest plans with ``all_plans``);
+    with ``satisficing``, some plan, found fast and not proven shortest.
+    ``max_horizon`` defaults to :data:`DEFAULT_MAX_HORIZON` (shortest plans)
+    or :data:`DEFAULT_SATISFICING_HORIZON` (any plan)."""
     budget = budget or Budget(time_limit)
-    return shortest(model.planner, Setting(), budget, max_horizon, all_plans=all_plans)
+    if satisficing:
+        if all_plans:
+            raise InputError("all shortest plans cannot be listed by an any-plan search "
+                             "(satisficing)")
+        return any_plan(model.planner, Setting(), budget,
+                        DEFAULT_SATISFICING_HORIZON if max_horizon is None else max_horizon)
+    return shortest(model.planner, Setting(), budget,
+                    DEFAULT_MAX_HORIZON if max_horizon is None else max_horizon,
+                    all_plans=all_plans)

@@ -30,7 +30,8 @@ from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan, steps
 from ethasp.planning.budget import Budget
 from ethasp.planning.planner import Constraint, Setting
-from ethasp.planning.search import BOUNDED, DEFAULT_MAX_HORIZON, FOUND, NONE, shortest
+from ethasp.planning.search import (BOUNDED, DEFAULT_MAX_HORIZON, DEFAULT_SATISFICING_HORIZON,
+                                    FOUND, NONE, any_plan, shortest)
 from ethasp.principles.principle import Principle, select_principles
 from ethasp.resources import ENCODINGS
 from ethasp.principles.utilitarianism import (PROVEN, BestReachable, best_reachable,
@@ -71,9 +72,10 @@ class HPlanResult:
 
     ``plan`` is a shortest plan permissible under every principle in
     ``principles`` (status ``found``), or None; ``plans`` all shortest ones
-    when asked for.  ``status`` is ``found``, ``none`` (proven: no plan of the
-    model is permissible under all the principles) or ``bounded``; ``proof``
-    says why.  With utilitarianism, ``best`` is the best reachable state
+    when asked for.  ``optimal`` is False for a plan of an any-plan search
+    (``satisficing``): permissible, but not proven shortest.  ``status`` is
+    ``found``, ``none`` (proven: no plan of the model is permissible under all
+    the principles) or ``bounded``; ``proof`` says why.  With utilitarianism, ``best`` is the best reachable state
     found (the plans had to reach its utility), proven best or only bounded.
     """
 
@@ -84,11 +86,13 @@ class HPlanResult:
     proof: str = ""
     plans: list[Plan] = field(default_factory=list)
     best: BestReachable | None = None
+    optimal: bool = True
 
     def to_json(self) -> dict:
         data = {
             "status": self.status,
             "plan": self.plan.to_list() if self.plan is not None else None,
+            "optimal": self.optimal if self.plan is not None else None,
             "principles": list(self.principles),
             "horizon": self.horizon,
             "proof": self.proof,
@@ -113,16 +117,26 @@ def _check_plan(model: Model, plan: Plan, utility: int) -> None:
 
 
 def plan_with_principles(model: Model, principles: Sequence[str],
-                         max_horizon: int = DEFAULT_MAX_HORIZON,
+                         max_horizon: int | None = None,
                          time_limit: float | None = None,
                          all_plans: bool = False,
                          constraints: Sequence[Constraint] = (),
-                         budget: Budget | None = None) -> HPlanResult:
+                         budget: Budget | None = None,
+                         satisficing: bool = False) -> HPlanResult:
     """A shortest HPlan: a plan of the model permissible under all the principles.
 
     ``constraints`` (of contrastive questions) restrict the HModel further.
-    ``budget`` (or else ``time_limit``) bounds the searches.
+    ``budget`` (or else ``time_limit``) bounds the searches.  With
+    ``satisficing``, an HPlan found fast and not proven shortest (an any-plan
+    search, :func:`ethasp.planning.search.any_plan`): the restrictions apply
+    all the same, so it is permissible by construction.  ``max_horizon``
+    defaults to 64, or 256 with ``satisficing``.
     """
+    if satisficing and all_plans:
+        raise InputError("all shortest plans cannot be listed by an any-plan search "
+                         "(satisficing)")
+    if max_horizon is None:
+        max_horizon = DEFAULT_SATISFICING_HORIZON if satisficing else DEFAULT_MAX_HORIZON
     budget = budget or Budget(time_limit)
     planner = model.planner
     chosen = _principles(principles)
@@ -156,7 +170,8 @@ def plan_with_principles(model: Model, principles: Sequence[str],
                 _check_plan(model, plan, best.utility)
                 return HPlanResult(FOUND, names, plan, len(plan),
                                    f"a shortest {plans} permissible under {under}: no plan has "
-                                   f"fewer than {steps(len(plan))}: {why}", [], best)
+                                   f"fewer than {steps(len(plan))}: {why}", [], best,
+                                   optimal=not satisficing)
         distance, status, why = goal_distance(planner, best.utility, budget, max_horizon)
         if distance is None and status == PROVEN:
             return HPlanResult(NONE, names, None, best.searched,
@@ -165,8 +180,10 @@ def plan_with_principles(model: Model, principles: Sequence[str],
                                best=best)
         if distance is not None:
             start, start_proof = distance, why
-    result = shortest(planner, setting, budget, max_horizon, start, start_proof, all_plans,
-                      task=f"plan search under {under}" if names else "plan search")
+    task = f"plan search under {under}" if names else "plan search"
+    result = (any_plan(planner, setting, budget, max_horizon, start, start_proof, task)
+              if satisficing else
+              shortest(planner, setting, budget, max_horizon, start, start_proof, all_plans, task))
     if result.status == FOUND and best is not None and best.status != PROVEN:
         # A plan reaching the best utility found is no proof: a better state may exist.
         return HPlanResult(
@@ -174,9 +191,10 @@ def plan_with_principles(model: Model, principles: Sequence[str],
             proof=f"a plan of {steps(result.horizon)} reaches utility {best.utility}, but a "
                   f"better reachable state is not excluded ({best.proof})")
     if result.status == FOUND:
+        kind = f"a shortest {plans}" if result.optimal else f"a {plans}"
         return HPlanResult(FOUND, names, result.plan, result.horizon,
-                           f"a shortest {plans}{permissible}: {result.proof}",
-                           result.plans, best)
+                           f"{kind}{permissible}: {result.proof}",
+                           result.plans, best, optimal=result.optimal)
     if result.status == NONE:
         # With utilitarianism the search asked for utility >= best.utility, a lower
         # bound of the best reachable utility: no such goal state, no permissible plan.

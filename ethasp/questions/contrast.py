@@ -114,15 +114,16 @@ def minimal_conflict(model: Model, constraints: Sequence[Constraint], max_horizo
 
 def contrast_plan(model: Model, constraints: Sequence[Constraint], under: str,
                   max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
-                  budget: Budget | None = None) -> ContrastSearch:
-    """The HPlan of the constraints and the principle ``under`` (steps 2 and 3)."""
+                  budget: Budget | None = None, satisficing: bool = False) -> ContrastSearch:
+    """The HPlan of the constraints and the principle ``under`` (steps 2 and 3);
+    with ``satisficing`` any such plan, not proven shortest."""
     budget = budget or Budget(time_limit)
     result = plan_with_principles(model, [under], max_horizon, constraints=constraints,
-                                  budget=budget)
+                                  budget=budget, satisficing=satisficing)
     if result.status == FOUND:
         return ContrastSearch(result, False)
     dropped = plan_with_principles(model, [], max_horizon, constraints=constraints,
-                                   budget=budget)
+                                   budget=budget, satisficing=satisficing)
     if dropped.status == FOUND:
         return ContrastSearch(dropped, True, [], result.proof)
     # No plan meets the question at all (or none was found): the principle is not
@@ -167,7 +168,8 @@ class Answer:
     constraints and ``under`` together, so the principle was left out;
     ``conflict`` lists a minimal set of constraints that no plan meets.
     ``difference`` holds the literals of the chosen reasons that only one side
-    has.
+    has; ``optimal`` is False when the contrast plan comes from an any-plan
+    search (not proven shortest).
     """
 
     questions: list[Question]
@@ -183,6 +185,7 @@ class Answer:
     difference: dict[str, list[str]]
     explanation: str
     dropped_because: str = ""
+    optimal: bool = True
 
     def to_json(self) -> dict:
         return {
@@ -191,6 +194,7 @@ class Answer:
             "contrast": self.contrast.to_json() if self.contrast else None,
             "constraints": [str(c) for c in self.constraints],
             "status": self.status,
+            "optimal": self.optimal if self.contrast else None,
             "proof": self.proof,
             "principle_dropped": self.principle_dropped,
             "principle_dropped_because": self.dropped_because,
@@ -242,9 +246,11 @@ def _judge_side(model: Model, plan: Plan, principle: str, max_horizon: int,
 
 
 def original_plan(model: Model, principle: str, max_horizon: int = DEFAULT_MAX_HORIZON,
-                  time_limit: float | None = None, budget: Budget | None = None) -> Plan:
+                  time_limit: float | None = None, budget: Budget | None = None,
+                  satisficing: bool = False) -> Plan:
     """The plan that plan search under the principle makes (the plan asked about)."""
-    result = plan_with_principles(model, [principle], max_horizon, time_limit, budget=budget)
+    result = plan_with_principles(model, [principle], max_horizon, time_limit, budget=budget,
+                                  satisficing=satisficing)
     if result.plan is None:
         raise InputError(f"no plan to ask about: {result.proof}")
     return result.plan
@@ -253,9 +259,12 @@ def original_plan(model: Model, principle: str, max_horizon: int = DEFAULT_MAX_H
 def answer_questions(model: Model, questions: Sequence[Question], plan: Plan,
                      principle: str, under: str, previous: Sequence[Constraint] = (),
                      max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
-                     reasons_limit: int = DEFAULT_LIMIT, budget: Budget | None = None) -> Answer:
+                     reasons_limit: int = DEFAULT_LIMIT, budget: Budget | None = None,
+                     satisficing: bool = False) -> Answer:
     """Answer the questions about ``plan`` (judged under ``principle``) with a
-    contrast plan under ``under``; ``previous`` constraints stay imposed."""
+    contrast plan under ``under``; ``previous`` constraints stay imposed.
+    With ``satisficing`` the contrast plan is any such plan, not proven
+    shortest."""
     budget = budget or Budget(time_limit)
     principle = select_principles([principle])[0].name
     under = select_principles([under])[0].name
@@ -268,7 +277,8 @@ def answer_questions(model: Model, questions: Sequence[Question], plan: Plan,
         new += model.planner.question(terms)
     constraints = list(dict.fromkeys(list(previous) + new))
     original = _judge_side(model, plan, principle, max_horizon, budget, reasons_limit)
-    search = contrast_plan(model, constraints, under, max_horizon, budget=budget)
+    search = contrast_plan(model, constraints, under, max_horizon, budget=budget,
+                           satisficing=satisficing)
     contrast = None
     if search.result.plan is not None:
         contrast = _judge_side(model, search.result.plan, under, max_horizon, budget,
@@ -277,19 +287,23 @@ def answer_questions(model: Model, questions: Sequence[Question], plan: Plan,
                   search.result.proof, search.principle_dropped, constraints, search.conflict,
                   _difference(original, contrast),
                   contrastive_text(original, contrast, search.conflict, search.result.status),
-                  search.dropped_because)
+                  search.dropped_because, search.result.optimal)
 
 
 def ask(model: Model, question: str | Question | Sequence[str | Question],
         plan: Plan | None = None, principle: str = DEFAULT_PRINCIPLE, under: str | None = None,
         max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
-        reasons_limit: int = DEFAULT_LIMIT, budget: Budget | None = None) -> Answer:
+        reasons_limit: int = DEFAULT_LIMIT, budget: Budget | None = None,
+        satisficing: bool = False) -> Answer:
     """Ask "why A rather than B?" about a plan.
 
     The plan asked about is ``plan``, or else the plan that plan search under
     ``principle`` makes; it is judged under ``principle``.  The contrast plan
     must satisfy ``under`` (default: ``principle``).  Questions are text (see
-    :mod:`ethasp.questions.question`) or :class:`Question` objects.
+    :mod:`ethasp.questions.question`) or :class:`Question` objects.  With
+    ``satisficing``, both plans that are searched (the plan asked about when
+    none is given, and the contrast plan) come from any-plan searches: found
+    fast, permissible, not proven shortest.
     """
     items = [question] if isinstance(question, (str, Question)) else list(question)
     questions = [q if isinstance(q, Question) else Question.parse(q) for q in items]
@@ -297,6 +311,8 @@ def ask(model: Model, question: str | Question | Sequence[str | Question],
         raise InputError("no question given")
     budget = budget or Budget(time_limit)
     if plan is None:
-        plan = original_plan(model, principle, max_horizon, budget=budget)
+        plan = original_plan(model, principle, max_horizon, budget=budget,
+                             satisficing=satisficing)
     return answer_questions(model, questions, plan, principle, under or principle,
-                            max_horizon=max_horizon, reasons_limit=reasons_limit, budget=budget)
+                            max_horizon=max_horizon, reasons_limit=reasons_limit, budget=budget,
+                            satisficing=satisficing)

@@ -64,6 +64,7 @@ class Dialogue:
     time_limit: float | None = None
     reasons_limit: int = DEFAULT_LIMIT
     on_progress: Callable[[Progress], None] | None = None
+    satisficing: bool = False
 
     def budget(self) -> Budget:
         """A budget for one move: the dialogue's time limit, its progress callback."""
@@ -73,13 +74,16 @@ class Dialogue:
     def start(cls, model: Model, principle: str, plan: Plan | None = None,
               model_files: Sequence[str] = (), max_horizon: int = DEFAULT_MAX_HORIZON,
               time_limit: float | None = None, reasons_limit: int = DEFAULT_LIMIT,
-              budget: Budget | None = None) -> "Dialogue":
-        """A dialogue about ``plan``, or about the plan made under ``principle``."""
+              budget: Budget | None = None, satisficing: bool = False) -> "Dialogue":
+        """A dialogue about ``plan``, or about the plan made under ``principle``.
+        With ``satisficing``, the plans searched (that one, and every contrast
+        plan) come from any-plan searches, not proven shortest."""
         principle = select_principles([principle])[0].name
         if plan is None:
-            plan = original_plan(model, principle, max_horizon, time_limit, budget=budget)
+            plan = original_plan(model, principle, max_horizon, time_limit, budget=budget,
+                                 satisficing=satisficing)
         return cls(model, principle, plan, principle, [], list(model_files), max_horizon,
-                   time_limit, reasons_limit)
+                   time_limit, reasons_limit, satisficing=satisficing)
 
     # -- state --------------------------------------------------------------------
 
@@ -122,7 +126,8 @@ class Dialogue:
         answer = answer_questions(self.model, [question], self.current_plan,
                                   self.current_principle, self.under, self.constraints,
                                   self.max_horizon, reasons_limit=self.reasons_limit,
-                                  budget=budget or self.budget())
+                                  budget=budget or self.budget(),
+                                  satisficing=self.satisficing)
         self.steps.append(Step(question, self.under, answer))
         return answer
 
@@ -164,7 +169,7 @@ class Dialogue:
     def from_json(cls, data: dict, model: Model | None = None,
                   max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
                   reasons_limit: int = DEFAULT_LIMIT, source: str = "saved dialogue",
-                  budget: Budget | None = None) -> "Dialogue":
+                  budget: Budget | None = None, satisficing: bool = False) -> "Dialogue":
         """Rebuild a saved dialogue, asking its questions again in order (under
         ``budget`` if given, else each under the dialogue's time limit).
 
@@ -184,7 +189,7 @@ class Dialogue:
             plan = Plan(tuple(parse_action(action) for action in data["plan"]))
             dialogue = cls(model, select_principles([data["principle"]])[0].name, plan,
                            data["principle"], [], list(data.get("model", [])), max_horizon,
-                           time_limit, reasons_limit)
+                           time_limit, reasons_limit, satisficing=satisficing)
             for step in data.get("steps", []):
                 dialogue.switch_principle(step["under"])
                 dialogue.ask(Question.from_json(step["question"]), budget)

@@ -1,0 +1,243 @@
+"""Plan search on IPC domains: ethasp next to Fast Downward, in one run.
+
+For every domain folder (a ``domain.pddl`` and problem files ``*.pddl``) under
+the given folder (default ``/work/shared/ipc``) and every problem, four whole
+processes are timed from outside, each capped (``--time-limit``, default 60 s):
+
+* ``ethasp plan DOMAIN PROBLEM --json`` (a shortest plan, proven);
+* ``ethasp plan DOMAIN PROBLEM --satisficing --json`` (some plan);
+* Fast Downward ``astar(lmcut())`` (optimal) and
+* Fast Downward ``lazy_greedy([ff()])`` (satisficing), both from the PyPI
+  package ``up-fast-downward`` (``pip install '.[benchmark]'``), through its
+  driver script.
+
+It prints per instance and mode the plan length, the seconds and ethasp's
+status, and the ratios ethasp/Fast Downward (optimal against astar,
+satisficing against greedy); then how many instances meet the targets: an
+optimal plan of Fast Downward's length within 2x its time, and a satisficing
+plan within 3x its time, on every instance Fast Downward solves within 10 s.
+``--repeat N`` runs each process N times and keeps the fastest (the machine
+may be shared).  Without ``up-fast-downward`` it prints ethasp's figures alone.
+
+Usage: python benchmarks/ipc.py [FOLDER] [--time-limit S] [--repeat N] [--only TEXT]
+                                [--modes opt,sat,fd-opt,fd-sat]
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib.util
+import json
+import os
+import re
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+DEFAULT_FOLDER = Path("/work/shared/ipc")
+FD_SEARCH = {"fd-opt": "astar(lmcut())", "fd-sat": "lazy_greedy([ff()])"}
+MODES = ("opt", "sat", "fd-opt", "fd-sat")
+# Targets: Fast Downward solves within this many seconds, ethasp within a factor.
+TARGET_SECONDS = 10.0
+TARGET_FACTOR = {"opt": 2.0, "sat": 3.0}
+
+
+@dataclass
+class Instance:
+    domain_name: str
+    name: str
+    domain: Path
+    problem: Path
+
+
+@dataclass
+class Run:
+    length: int | None
+    seconds: float
+    status: str
+
+
+def instances(folder: Path, only: str | None) -> list[Instance]:
+    """Every problem of every domain folder (sorted, p2 before p10)."""
+    def natural(path: Path):
+        return [int(part) if part.isdigit() else part for part in re.split(r"(\d+)", path.name)]
+
+    result = []
+    for domain in sorted(folder.glob("*/domain.pddl")):
+        for problem in sorted(domain.parent.glob("*.pddl"), key=natural):
+            if problem.name == "domain.pddl":
+                continue
+            instance = Instance(domain.parent.name, problem.stem, domain, problem)
+            if only is None or only in f"{instance.domain_name}/{instance.name}":
+                result.append(instance)
+    return result
+
+
+def timed(command: list[str], cap: float, cwd: Path) -> tuple[subprocess.CompletedProcess | None,
+                                                              float]:
+    """Run a command (in a session of its own), at most ``cap`` seconds; its
+    result (None on timeout, its processes then killed) and the seconds taken."""
+    start = time.perf_counter()
+    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                               text=True, cwd=cwd, start_new_session=True)
+    try:
+        stdout, stderr = process.communicate(timeout=cap)
+    except subprocess.TimeoutExpired:
+        os.killpg(process.pid, signal.SIGKILL)    # the planner's children too
+        process.communicate()
+        return None, time.perf_counter() - start
+    seconds = time.perf_counter() - start
+    return subprocess.CompletedProcess(command, process.returncode, stdout, stderr), seconds
+
+
+def run_ethasp(instance: Instance, satisficing: bool, cap: float) -> Run:
+    command = [sys.executable, "-m", "ethasp.interfaces.cli", "plan", str(instance.domain),
+               str(instance.problem), "--json", "--time-limit", "0"]
+    if satisficing:
+        command.append("--satisficing")
+    done, seconds = timed(command, cap, ROOT)
+    if done is None:
+        return Run(None, seconds, "timeout")
+    if done.returncode != 0:
+        return Run(None, seconds, f"error {done.returncode}")
+    data = json.loads(done.stdout)
+    length = len(data["plan"]) if data.get("plan") is not None else None
+    return Run(length, seconds, data["status"])
+
+
+def fast_downward_driver() -> Path | None:
+    """The driver script of the up-fast-downward package, if it is installed."""
+    spec = importlib.util.find_spec("up_fast_downward")
+    if spec is None or not spec.submodule_search_locations:
+        return None
+    for location in spec.submodule_search_locations:
+        driver = Path(location) / "downward" / "fast-downward.py"
+        if driver.is_file():
+            return driver
+    return None
+
+
+def run_fast_downward(driver: Path, instance: Instance, search: str, cap: float) -> Run:
+    with tempfile.TemporaryDirectory() as work:
+        plan_file = Path(work) / "plan"
+        command = [sys.executable, str(driver), "--plan-file", str(plan_file),
+                   str(instance.domain), str(instance.problem), "--search", search]
+        done, seconds = timed(command, cap, Path(work))
+        if done is None:
+            return Run(None, seconds, "timeout")
+        if not plan_file.is_file():
+            return Run(None, seconds, "no plan")
+        steps = [line for line in plan_file.read_text().splitlines()
+                 if line.strip() and not line.startswith(";")]
+        return Run(len(steps), seconds, "found")
+
+
+def best_of(runs: list[Run]) -> Run:
+    """The fastest of repeated runs (a run that found a plan beats one that did not)."""
+    return min(runs, key=lambda run: (run.length is None, run.seconds))
+
+
+def cell(run: Run | None) -> str:
+    if run is None:
+        return f"{'-':>4} {'-':>6}"
+    length = str(run.length) if run.length is not None else run.status[:7]
+    return f"{length:>4} {run.seconds:6.2f}"
+
+
+def ratio(ours: Run | None, theirs: Run | None) -> float | None:
+    if ours is None or theirs is None or ours.length is None or theirs.length is None:
+        return None
+    return ours.seconds / theirs.seconds
+
+
+def meets(mode: str, ours: Run | None, theirs: Run | None) -> bool | None:
+    """Whether a target applies (None if not) and is met."""
+    if theirs is None or theirs.length is None or theirs.seconds > TARGET_SECONDS:
+        return None
+    if ours is None or ours.length is None or ours.status != "found":
+        return False
+    if mode == "opt" and ours.length != theirs.length:
+        return False
+    return ours.seconds <= TARGET_FACTOR[mode] * theirs.seconds
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("folder", nargs="?", type=Path, default=DEFAULT_FOLDER,
+                        help=f"a folder of domain folders (default {DEFAULT_FOLDER})")
+    parser.add_argument("--time-limit", type=float, default=60.0,
+                        help="seconds per process (default 60)")
+    parser.add_argument("--repeat", type=int, default=1,
+                        help="runs per process, the fastest kept (default 1)")
+    parser.add_argument("--only", help="instances whose DOMAIN/PROBLEM contains this text")
+    parser.add_argument("--modes", default=",".join(MODES),
+                        help=f"comma-separated, of {','.join(MODES)} (default all)")
+    args = parser.parse_args()
+    modes = [mode for mode in args.modes.split(",") if mode]
+    unknown = set(modes) - set(MODES)
+    if unknown:
+        parser.error(f"unknown modes: {', '.join(sorted(unknown))}")
+    driver = fast_downward_driver()
+    if driver is None:
+        print("Fast Downward unavailable (pip install up-fast-downward); ethasp figures only")
+        modes = [mode for mode in modes if not mode.startswith("fd-")]
+    chosen = instances(args.folder, args.only)
+    if not chosen:
+        print(f"no instances in {args.folder} (domain folders with domain.pddl)")
+        return 1
+    try:
+        load = os.getloadavg()[0]
+        print(f"load average at start: {load:.2f}")
+    except OSError:
+        pass
+    print(f"{'instance':24} {'ethasp':>11} {'FD astar':>11} {'ratio':>5}   "
+          f"{'ethasp sat':>11} {'FD greedy':>11} {'ratio':>5}")
+    print(f"{'':24} {'len':>4} {'s':>6} {'len':>4} {'s':>6} {'':>5}   "
+          f"{'len':>4} {'s':>6} {'len':>4} {'s':>6}")
+    results = {mode: [] for mode in ("opt", "sat")}
+    for instance in chosen:
+        runs: dict[str, Run | None] = {}
+        for mode in MODES:
+            if mode not in modes:
+                runs[mode] = None
+                continue
+            attempts = []
+            for _ in range(max(1, args.repeat)):
+                if mode.startswith("fd-"):
+                    attempts.append(run_fast_downward(driver, instance, FD_SEARCH[mode],
+                                                      args.time_limit))
+                else:
+                    attempts.append(run_ethasp(instance, mode == "sat", args.time_limit))
+            runs[mode] = best_of(attempts)
+        line = f"{instance.domain_name[:18] + '/' + instance.name:24}"
+        for mode, theirs in (("opt", "fd-opt"), ("sat", "fd-sat")):
+            found = ratio(runs[mode], runs[theirs])
+            status = runs[mode].status if runs[mode] is not None else ""
+            mark = {True: "", False: "*", None: ""}[meets(mode, runs[mode], runs[theirs])]
+            line += (f" {cell(runs[mode])} {cell(runs[theirs])} "
+                     f"{(f'{found:.1f}' if found is not None else '-'):>5}{mark:1}"
+                     f"{'' if status in ('found', '') else ' ' + status:>2} ")
+            results[mode].append((instance, runs[mode], runs[theirs]))
+        print(line.rstrip(), flush=True)
+    print("* a target missed (Fast Downward within 10 s; ethasp not within "
+          "2x for optimal plans of the same length, 3x for satisficing)")
+    for mode in ("opt", "sat"):
+        verdicts = [meets(mode, ours, theirs) for _, ours, theirs in results[mode]]
+        applicable = [verdict for verdict in verdicts if verdict is not None]
+        ratios = sorted(r for r in (ratio(ours, theirs) for _, ours, theirs in results[mode])
+                        if r is not None)
+        if not applicable:
+            continue
+        median = f", median ratio {ratios[len(ratios) // 2]:.1f}" if ratios else ""
+        print(f"{'optimal' if mode == 'opt' else 'satisficing'}: target met on "
+              f"{sum(applicable)} of {len(applicable)} instances{median}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,320 @@
+"""Exact layers beside a plan search: lower bounds on the length, and plans.
+
+A plan search over the encodings (:mod:`ethasp.planning.search`) refutes
+one horizon after the other; near the length of a shortest plan each
+refutation costs more than the one before.  Exact breadth-first layers of
+the reachable states (:class:`ethasp.planning.reachability.Reachability`)
+prove the same bounds symbolically: no goal state in layers 0..k proves that
+every plan has more than k steps, and the first layer with a goal state is
+the length of a shortest plan, with a shortest path to read off.  Diagrams
+do well where the encodings do badly (many interchangeable objects, many
+independent actions) and badly where they do well, so :class:`Layers`
+computes them in a thread of its own while the solver works on the
+horizons, and the search takes whichever proof comes first.
+
+The layers are computed over the *search model*: the actions that relaxed
+reachability finds usable (``usable/1`` of ``encodings/planning/
+relaxed.lp``) and the state variables that may take both values
+(``reachable/2``).  Every other state variable keeps its initial value in
+every reachable state, so conditions on it are decided once: preconditions
+of usable actions on them hold (that is what usable means), and an effect
+on one sets the value it has.  The engine reads the ground atoms; it does
+not decide what a plan is: a plan read off the layers is checked by its
+trace (``encodings/planning/trace.lp``) before anyone sees it.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import sys
+import threading
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import clingo
+
+from ethasp.planning.budget import Budget
+
+if TYPE_CHECKING:   # imported in the thread that computes the layers
+    from ethasp.planning.reachability import GroundModel
+
+# Live diagram nodes beyond which the layers give up (the search goes on
+# without them).
+NODE_LIMIT = 2_000_000
+
+
+def _value(symbol: clingo.Symbol) -> bool:
+    return symbol.name == "true"
+
+
+# The ground atoms the search model is made of.
+MODEL_ATOMS = (("variable", 1), ("action", 1), ("pre", 3), ("eff", 3), ("ceff", 4), ("cpre", 4),
+               ("derived", 1), ("axiom", 2), ("axiom_pre", 4), ("init", 1), ("goal", 2))
+
+
+class Atoms:
+    """The ground atoms of a planner that the search model needs, read at once
+    (the planner's control serves one thread at a time)."""
+
+    def __init__(self, planner):
+        self.usable = planner.search_atoms("usable", 1)
+        self.reachable = planner.search_atoms("reachable", 2)
+        self.model = {name: planner.get(name, arity) for name, arity in MODEL_ATOMS}
+
+    def get(self, name: str, arity: int) -> list[clingo.Symbol]:
+        return self.model[name]
+
+
+def search_model(atoms: Atoms) -> GroundModel:
+    """The search model of a planner's ground atoms (see the module docstring)."""
+    from ethasp.planning.reachability import from_atoms
+
+    usable = {atom.arguments[0] for atom in atoms.usable}
+    reachable = {(atom.arguments[0], _value(atom.arguments[1])) for atom in atoms.reachable}
+    derived = [atom.arguments[0] for atom in atoms.get("derived", 1)]
+    fluents = [atom.arguments[0] for atom in atoms.get("variable", 1)
+               if (atom.arguments[0], True) in reachable
+               and (atom.arguments[0], False) in reachable]
+    moving = set(fluents) | set(derived)
+    # The value every other state variable has in every reachable state.
+    fixed = {atom.arguments[0]: value for atom in atoms.get("variable", 1)
+             for value in (True, False)
+             if atom.arguments[0] not in moving and (atom.arguments[0], value) in reachable}
+
+    def keeps(variable, value) -> bool | None:
+        """True: the literal holds everywhere; False: nowhere; None: it depends."""
+        if variable in moving:
+            return None
+        return fixed.get(variable) == value
+
+    pre, eff, ceff, cpre, axiom_pre = [], [], [], [], []
+    for atom in atoms.get("pre", 3):
+        action, variable, value = atom.arguments
+        if action in usable and keeps(variable, _value(value)) is None:
+            pre.append((action, variable, _value(value)))
+    for atom in atoms.get("eff", 3):
+        action, variable, value = atom.arguments
+        if action in usable and variable in moving:
+            eff.append((action, variable, _value(value)))
+    never: set = set()          # conditional effects whose condition never holds
+    for atom in atoms.get("cpre", 4):
+        action, key, variable, value = atom.arguments
+        if action not in usable:
+            continue
+        holds = keeps(variable, _value(value))
+        if holds is None:
+            cpre.append((action, key, variable, _value(value)))
+        elif not holds:
+            never.add((action, key))
+    for atom in atoms.get("ceff", 4):
+        action, key, variable, value = atom.arguments
+        if action in usable and variable in moving and (action, key) not in never:
+            ceff.append((action, key, variable, _value(value)))
+    impossible: set = set()     # axioms with a condition that never holds
+    for atom in atoms.get("axiom_pre", 4):
+        name, key, variable, value = atom.arguments
+        holds = keeps(variable, _value(value))
+        if holds is None:
+            axiom_pre.append((name, key, variable, _value(value)))
+        elif not holds:
+            impossible.add((name, key))
+    axioms = [(atom.arguments[0], atom.arguments[1]) for atom in atoms.get("axiom", 2)
+              if (atom.arguments[0], atom.arguments[1]) not in impossible]
+    axiom_pre = [entry for entry in axiom_pre if (entry[0], entry[1]) not in impossible]
+    goal = [(atom.arguments[0], _value(atom.arguments[1])) for atom in atoms.get("goal", 2)
+            if keeps(atom.arguments[0], _value(atom.arguments[1])) is None]
+    init = [atom.arguments[0] for atom in atoms.get("init", 1) if atom.arguments[0] in moving]
+    actions = [atom.arguments[0] for atom in atoms.get("action", 1)
+               if atom.arguments[0] in usable]
+    return from_atoms(fluents, actions, pre, eff, ceff, cpre, init, goal, {},
+                      axiom_pre, axioms, derived)
+
+
+def _import_diagrams() -> None:
+    """Import the diagram package without the optional graph library it would
+    load on the way (a fifth of a second that plan search does not need)."""
+    if "dd" in sys.modules or "networkx" in sys.modules:
+        return
+    sys.modules["networkx"] = None      # makes `import networkx` fail: dd goes without
+    try:
+        import dd.cudd  # noqa: F401
+    except ImportError:
+        pass
+    finally:
+        del sys.modules["networkx"]
+
+
+@dataclass(frozen=True)
+class Status:
+    """What the layers have proven so far.
+
+    ``bound``: every plan has at least this many steps; ``goal_layer``: the
+    length of a shortest plan, once known; ``plan``: the actions of a
+    shortest plan, once read off; ``complete``: every reachable state is
+    known and none is a goal state; ``stopped``: why the layers gave up
+    (empty while they work or after they finished)."""
+
+    bound: int = 0
+    goal_layer: int | None = None
+    plan: tuple[clingo.Symbol, ...] | None = None
+    complete: bool = False
+    stopped: str = ""
+
+    @property
+    def working(self) -> bool:
+        return not (self.plan is not None or self.complete or self.stopped)
+
+
+def _can_fork() -> bool:
+    """Whether the layers may run in a child process (a fork of this one)."""
+    return hasattr(os, "fork") and sys.platform.startswith("linux")
+
+
+class Layers:
+    """Exact layers of a planner's search model (given by its :class:`Atoms`,
+    read between solves), computed beside the search.
+
+    :meth:`start` starts the work, :attr:`status` tells what is proven so
+    far (:attr:`news` is set whenever it changes), :meth:`stop` ends the work.
+    ``read_plan``: read a shortest plan off the layers once the goal layer is
+    found.
+
+    On Linux the layers are computed in a child process (a fork of this
+    one, which ends it when the search ends): the diagram library holds
+    Python's interpreter lock for every operation, which a thread of this
+    process would have to share with the solver's driver.  The child reports
+    through a pipe, one line a finding.  Elsewhere they run in a thread.
+    """
+
+    def __init__(self, atoms: Atoms, budget: Budget, read_plan: bool = True,
+                 node_limit: int = NODE_LIMIT):
+        self._atoms = atoms
+        self.model: GroundModel | None = None
+        self.read_plan = read_plan
+        self.node_limit = node_limit
+        self.status = Status()
+        self.news = threading.Event()       # set whenever the status changes
+        self._stop = threading.Event()
+        self._budget = budget.until(self._stop.is_set)
+        self._child: int | None = None
+        self._lock = threading.Lock()
+
+    def start(self) -> "Layers":
+        if _can_fork():
+            self._start_child()
+        else:
+            threading.Thread(target=self._run, args=(self._publish,), name="ethasp-layers",
+                             daemon=True).start()
+        return self
+
+    def stop(self) -> None:
+        """End the work: the child process at once, the thread at its next check."""
+        self._stop.set()
+        with self._lock:
+            child, self._child = self._child, None
+        if child is not None:
+            try:
+                os.kill(child, signal.SIGKILL)
+                os.waitpid(child, 0)
+            except (ProcessLookupError, ChildProcessError):
+                pass
+
+    def _publish(self, **changes) -> None:
+        self.status = Status(**{**self.status.__dict__, **changes})
+        self.news.set()
+
+    # -- in a child process --------------------------------------------------------
+
+    def _start_child(self) -> None:
+        read, write = os.pipe()
+        parent = os.getpid()
+        child = os.fork()
+        if child == 0:                       # the child: compute, report, end
+            code = 0
+            try:
+                os.close(read)
+                signal.signal(signal.SIGINT, signal.SIG_IGN)   # the parent ends it
+                self._budget = self._budget.until(lambda: os.getppid() != parent)
+                with os.fdopen(write, "w", buffering=1) as pipe:
+                    self._run(lambda **changes: _report(pipe, changes))
+            except BaseException:  # noqa: BLE001 (nothing may escape a forked child)
+                code = 1
+            finally:
+                os._exit(code)
+        os.close(write)
+        self._child = child
+        threading.Thread(target=self._listen, args=(read,), name="ethasp-layers",
+                         daemon=True).start()
+
+    def _listen(self, read: int) -> None:
+        """Read the child's reports into :attr:`status` (until the pipe closes)."""
+        with os.fdopen(read, "r") as pipe:
+            for line in pipe:
+                changes = _parse_report(line)
+                if changes:
+                    self._publish(**changes)
+        if self.status.working:
+            self._publish(stopped="exact reachability ended")
+
+    # -- the work --------------------------------------------------------------------
+
+    def _run(self, publish) -> None:
+        try:
+            self._work(publish)
+        except Exception as error:  # noqa: BLE001 (the search goes on without the layers)
+            publish(stopped=f"exact reachability failed: {type(error).__name__}: {error}")
+
+    def _work(self, publish) -> None:
+        self.model = search_model(self._atoms)
+        _import_diagrams()
+        from ethasp.planning.reachability import Reachability
+
+        engine = Reachability(self.model, node_limit=self.node_limit)
+        goal = engine.goal()
+        layer = 0
+        while True:
+            if self._stop.is_set():
+                publish(stopped="stopped")
+                return
+            if engine.layers[layer] & goal != engine.bdd.false:
+                publish(goal_layer=layer, bound=layer)
+                if self.read_plan:
+                    publish(plan=tuple(self._path(engine, goal, layer)))
+                return
+            publish(bound=layer + 1)
+            if not engine.expand(self._budget):
+                publish(stopped=engine.stopped)
+                return
+            if engine.complete:
+                publish(complete=True)
+                return
+            layer += 1
+
+    def _path(self, engine, goal, layer: int) -> list[clingo.Symbol]:
+        """A shortest path to a goal state of the goal layer."""
+        names = [f"x{engine.index[v]}" for v in self.model.variables]
+        values = engine.bdd.pick(engine.layers[layer] & goal, care_vars=names)
+        state = frozenset(v for v in self.model.variables if values[f"x{engine.index[v]}"])
+        return engine.path_to(state, layer)
+
+
+def _report(pipe, changes: dict) -> None:
+    """One line for the parent per finding (actions of a plan as terms, tab-separated)."""
+    for key, value in changes.items():
+        if key == "plan":
+            value = "\t".join(str(action) for action in value)
+        pipe.write(f"{key} {' '.join(str(value).split()) if key == 'stopped' else value}\n")
+
+
+def _parse_report(line: str) -> dict:
+    key, _, value = line.rstrip("\n").partition(" ")
+    if key in ("bound", "goal_layer"):
+        return {key: int(value)}
+    if key == "complete":
+        return {"complete": value == "True"}
+    if key == "stopped":
+        return {"stopped": value or "stopped"}
+    if key == "plan":
+        return {"plan": tuple(clingo.parse_term(term) for term in value.split("\t") if term)}
+    return {}

@@ -1,0 +1,154 @@
+"""Exact layers beside plan search (ethasp.planning.layers) against the oracle.
+
+The layers must only prove what is true: a lower bound on the length of every
+plan, the length of a shortest plan, a shortest plan (valid), or that no goal
+state is reachable.  Plan search with the layers started at once must find
+plans of the oracle's lengths, in a child process and in a thread.
+"""
+
+import time
+
+import clingo
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import ethasp.planning.layers as layers_module
+import ethasp.planning.search as search_module
+from ethasp import Model, find_plan, validate
+from ethasp.planning.budget import Budget
+from ethasp.planning.layers import Atoms, Layers, search_model
+from oracle import random_model
+
+WAIT = 60.0   # seconds a test waits for the layers at most (they take milliseconds)
+
+
+def finished(layers: Layers):
+    """The layers' final status (waiting for them)."""
+    end = time.monotonic() + WAIT
+    while layers.status.working and time.monotonic() < end:
+        layers.news.wait(0.05)
+        layers.news.clear()
+    return layers.status
+
+
+def run_layers(model: Model, read_plan: bool = True):
+    layers = Layers(Atoms(model.planner), Budget(None), read_plan=read_plan).start()
+    try:
+        return finished(layers)
+    finally:
+        layers.stop()
+
+
+@pytest.fixture(params=["process", "thread"])
+def mode(request, monkeypatch):
+    if request.param == "thread":
+        monkeypatch.setattr(layers_module, "_can_fork", lambda: False)
+    elif not layers_module._can_fork():
+        pytest.skip("no child processes here")
+    return request.param
+
+
+def check_against_oracle(spec, status, model):
+    expected = spec.shortest_plan_length()
+    assert not status.stopped, status
+    if expected is None:
+        assert status.complete and status.plan is None
+        assert status.bound >= 0
+    else:
+        assert status.goal_layer == expected and status.bound == expected
+        plan = [str(action) for action in status.plan]
+        assert len(plan) == expected and spec.is_plan(plan)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(min_value=0, max_value=10**9), st.booleans(), st.booleans())
+def test_layers_prove_the_shortest_length_and_read_a_shortest_plan(seed, conditional, derived):
+    spec = random_model(seed, conditional=conditional, derived=derived, far_goal=seed % 2 == 0)
+    model = Model.from_string(spec.to_asp())
+    if model.planner.is_fact("unreachable_goal"):
+        return          # plan search answers this before any layer is computed
+    check_against_oracle(spec, run_layers(model), model)
+
+
+@pytest.mark.parametrize("seed", [3, 17, 2024])
+def test_layers_in_a_process_and_in_a_thread_agree(seed, mode):
+    spec = random_model(seed, max_variables=5, max_actions=5, far_goal=True)
+    model = Model.from_string(spec.to_asp())
+    if model.planner.is_fact("unreachable_goal"):
+        pytest.skip("relaxed reachability answers this one")
+    check_against_oracle(spec, run_layers(model), model)
+
+
+def test_search_model_drops_what_never_changes():
+    model = Model.from_string("""
+        variable(lit;door;far;stuck). init(lit). action(open;go;fly).
+        pre(open,lit,true). eff(open,door,true).
+        pre(go,door,true). eff(go,far,true). eff(go,lit,true).
+        pre(fly,stuck,true). eff(fly,far,true).
+        goal(far,true). goal(lit,true).""")
+    ground = search_model(Atoms(model.planner))
+    assert sorted(map(str, ground.variables)) == ["door", "far"]   # lit and stuck never change
+    assert sorted(str(a.name) for a in ground.actions) == ["go", "open"]   # fly is never usable
+    go = next(a for a in ground.actions if str(a.name) == "go")
+    assert [(str(v), b) for v, b in go.pre] == [("door", True)]
+    assert [str(e.variable) for e in go.effects] == ["far"]            # lit stays true
+    assert [(str(v), b) for v, b in ground.goal] == [("far", True)]
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(min_value=0, max_value=10**9), st.booleans())
+def test_plan_search_with_layers_at_once_finds_shortest_plans(seed, conditional):
+    """The layers start with the search: their bounds and plans must agree with
+    the solver's, whichever proves first."""
+    spec = random_model(seed, conditional=conditional, far_goal=seed % 3 == 0)
+    model = Model.from_string(spec.to_asp())
+    saved = search_module.LAYERS_AFTER
+    search_module.LAYERS_AFTER = 0.0
+    try:
+        result = find_plan(model, max_horizon=20)
+    finally:
+        search_module.LAYERS_AFTER = saved
+    expected = spec.shortest_plan_length()
+    if expected is None:
+        assert result.status == "none", result
+    else:
+        assert result.status == "found", result
+        assert len(result.plan) == expected and result.optimal
+        assert spec.is_plan([str(a) for a in result.plan])
+
+
+def test_layers_bound_restricted_searches_without_reading_plans():
+    """With a restriction, the layers only give lower bounds (read_plan off)."""
+    spec = random_model(11, max_variables=5, max_actions=5, far_goal=True)
+    model = Model.from_string(spec.to_asp())
+    if model.planner.is_fact("unreachable_goal"):
+        pytest.skip("relaxed reachability answers this one")
+    status = run_layers(model, read_plan=False)
+    assert status.plan is None
+    expected = spec.shortest_plan_length()
+    if expected is not None:
+        assert status.goal_layer == expected
+
+
+def test_a_plan_from_the_layers_is_checked_by_its_trace():
+    model = Model.from_string("variable(a). action(x). eff(x,a,true). goal(a,true).")
+    status = layers_module.Status(bound=1, goal_layer=1,
+                                  plan=(clingo.parse_term("x"), clingo.parse_term("x")))
+    plan = search_module._layers_plan(model.planner, status)     # valid: x x reaches a
+    assert validate(model, plan).valid
+    bad = layers_module.Status(bound=1, goal_layer=1, plan=(clingo.parse_term("y"),))
+    with pytest.raises(RuntimeError):
+        search_module._layers_plan(model.planner, bad)
+
+
+def test_budget_until_stops_on_its_condition():
+    flag = []
+    budget = Budget(None).until(lambda: bool(flag))
+    assert not budget.expired()
+    flag.append(1)
+    assert budget.expired()
+    parent = Budget(None)
+    child = parent.until(lambda: False).until(lambda: False)
+    parent.cancel()
+    assert child.expired()
