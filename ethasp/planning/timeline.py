@@ -26,7 +26,8 @@ from ethasp.vocabulary import (Action, ActionLabel, AgentLabel, Caused, Causing,
                                FactLabel, Final, Goal, Init, Initially, SetAt, UtilityOfFinal,
                                Variable, Weight)
 
-STEPS = ("planning/model.lp", "planning/trace.lp", "planning/steps.lp", "judgement/judge.lp")
+STEPS = ("planning/model.lp", "planning/trace.lp", "planning/trace_events.lp",
+         "planning/steps.lp", "judgement/judge.lp")
 
 # Every state of a plan is computed for its picture: longer plans are refused.
 MAX_STEPS = 200

@@ -212,6 +212,8 @@ def _bound_states(planner: Planner, r: Reachability):
 
 def _best_exact(planner: Planner, budget: Budget, max_horizon: int, within: str,
                 other_than) -> BestReachable | None:
+    if not planner.exact_reachability:
+        return None  # exogenous events: optimisation in ASP
     bound = upper_bound(planner)
     r = planner.reachability()
     restriction = _restriction(r, within, other_than)
@@ -288,6 +290,8 @@ def _better_state_unlocked(planner: Planner, utility: int, budget: Budget,
                                   better=ReachableState(facts, worth, horizon))
             if outcome.satisfiable is None and budget.expired():
                 return Comparison(BOUNDED, f"{budget.why_stopped()} at horizon {horizon}")
+    if not planner.exact_reachability:
+        return _better_by_search(planner, utility, budget, max_horizon)
     found: list[Best] = []
 
     def decided(r: Reachability, k: int) -> bool:
@@ -334,8 +338,10 @@ def _horizons(max_horizon: int) -> list[int]:
 
 
 def _read_state(symbols, horizon: int) -> list[tuple[clingo.Symbol, bool]]:
+    # The state at the time checked: the horizon, or the last event's step when
+    # it is later (Planner.solve); at_horizon/3 holds at that one time only.
     atoms = unify([AtHorizon], symbols).query(AtHorizon).all()
-    return sorted(((a.variable.symbol, a.value == "true") for a in atoms if a.time == horizon),
+    return sorted(((a.variable.symbol, a.value == "true") for a in atoms),
                   key=lambda pair: str(pair[0]))
 
 
@@ -407,6 +413,8 @@ def _better_by_search(planner: Planner, utility: int, budget: Budget,
 
 def _goal_distance_unlocked(planner: Planner, utility: int, budget: Budget,
                             max_horizon: int = DEFAULT_MAX_HORIZON) -> tuple[int | None, str, str]:
+    if not planner.exact_reachability:
+        return None, BOUNDED, "exact reachability does not model exogenous events"
     r = planner.reachability()
     goal = r.goal()
     if utility >= upper_bound(planner):
