@@ -251,6 +251,17 @@ class Model:
                              "choice, a disjunction or a loop through negation); a model must "
                              "describe one planning task")
 
+    def own_plan(self):
+        """The plan the model comes with (``plan_length/1``, ``plan_step/2``: a
+        HERA situation's), or None."""
+        from ethasp.planning.plan import Plan
+
+        if not self.planner.get("plan_length", 1):
+            return None
+        steps = sorted((atom.arguments[0].number, atom.arguments[1])
+                       for atom in self.planner.get("plan_step", 2))
+        return Plan(tuple(action for _, action in steps))
+
     def facts(self, predicates):
         """The model's atoms of the given clorm predicates (its rules grounded
         once, by its planner), as a clorm FactBase."""

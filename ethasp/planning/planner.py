@@ -65,6 +65,7 @@ SEARCH = "search"
 # Parts of the model's own base part and of the searches (relative to encodings/).
 MODEL_ENCODINGS = ("planning/model.lp", "planning/check.lp")
 SEARCH_ENCODINGS = ("planning/relaxed.lp", "planning/transition.lp", "planning/events.lp",
+                    "judgement/runs.lp",
                     "judgement/best.lp", "reasons/other_state.lp",
                     "questions/questions.lp")
 GOAL_ENCODING = "planning/goal.lp"
