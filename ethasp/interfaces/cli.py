@@ -161,10 +161,6 @@ def command_plan(args: argparse.Namespace) -> int:
     model = load_model(args)
     if args.principle:
         return command_plan_permissible(args, model)
-    if not model.planner.get("goal", 2):
-        raise InputError("the model has no goal, so plan search has nothing to reach (with "
-                         "--principle NAME it finds a shortest action sequence permissible "
-                         "under NAME)")
     result = find_plan(model, args.max_horizon, all_plans=args.all, budget=budget(args))
     if result.status == FOUND:
         if args.all:

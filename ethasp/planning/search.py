@@ -125,6 +125,15 @@ def shortest(planner: Planner, setting: Setting, budget: Budget,
 
 def find_plan(model, max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
               all_plans: bool = False, budget: Budget | None = None) -> SearchResult:
-    """A shortest plan for the model (all shortest plans with ``all_plans``)."""
+    """A shortest plan for the model (all shortest plans with ``all_plans``).
+
+    A model without a goal has nothing to plan for: InputError (under a
+    principle, :func:`ethasp.principles.restriction.plan_with_principles`
+    finds a shortest permissible action sequence instead).
+    """
+    if not model.planner.get("goal", 2):
+        raise InputError("the model has no goal, so plan search has nothing to reach (with "
+                         "--principle NAME it finds a shortest action sequence permissible "
+                         "under NAME)")
     budget = budget or Budget(time_limit)
     return shortest(model.planner, Setting(), budget, max_horizon, all_plans=all_plans)

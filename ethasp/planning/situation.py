@@ -50,7 +50,8 @@ that set v to false, gets conditions that at least one literal of each such
 j's condition fails (one copy of the effect per choice), marked with
 ``override/4``: deleting v = false from the action (HERA's instrumentality
 test) lifts them.  An effect that a later one always overrides is kept with
-the impossible override condition v and not v.
+an impossible override condition (a literal contradicting its condition, or
+v and not v).
 
 What cannot be mapped gets one line (exit code 2): a variable that
 ``initialState`` leaves undefined (HERA's states may lack a variable, so that
@@ -259,11 +260,16 @@ class _Reader:
     def emit_effect(self, action: clingo.Symbol, index: int, variable: str, value: bool,
                     condition: dict[str, bool], overriders: list[list[Literal]]) -> None:
         term = name_term(variable)
+        # The impossible override condition of an effect that a later one always
+        # overrides: a literal contradicting its condition (or, without one, both
+        # values of its variable); never one of its genuine conditions.
+        dormant = ([(w, not c) for w, c in sorted(condition.items())][:1]
+                   or [(variable, True), (variable, False)])
         if not overriders:
             copies: list[list[Literal]] = [[]]
         elif any(not choices for choices in overriders):
             # A later effect always fires with this one and overrides it.
-            copies = [[(variable, True), (variable, False)]]
+            copies = [dormant]
         else:
             count = 1
             for choices in overriders:
@@ -277,7 +283,7 @@ class _Reader:
                 if len(guard) == len(set(choice)) and sorted(set(choice)) not in copies:
                     copies.append(sorted(set(choice)))
             if not copies:
-                copies = [[(variable, True), (variable, False)]]
+                copies = [dormant]
         for number, guard in enumerate(copies, 1):
             key = clingo.Tuple_([clingo.Number(index), term, clingo.Number(number)])
             self.add("ceff", action, key, term, value)

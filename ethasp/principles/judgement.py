@@ -187,6 +187,8 @@ def goal_reachable(model: Model, budget: Budget, max_horizon: int) -> tuple[bool
     key = ("goal_reachable", max_horizon)
     if key in memo:
         return memo[key]
+    if not model.planner.get("goal", 2):
+        return True, "the model has no goal: every state meets it"
     result = find_plan(model, max_horizon, budget=budget)
     if result.status == FOUND:
         answer = (True, f"a plan of {result.horizon} steps reaches the goal")

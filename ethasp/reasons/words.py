@@ -25,7 +25,8 @@ Templates, by literal (``X`` a gerund or fact phrase, ``P`` a possessive):
   "X is worse than Y", where X and Y name the facts mentioned for each side;
 * HERA's operators: ``Goal(p)`` "X is (not) one of P goals", ``Finally(p)``
   "X holds (does not hold) in the end", ``ButFor(p)`` "but for P action, X
-  would not hold" / "X would hold even without P action", ``Instrumental(p)``
+  would not come about" / "X would come about even without P action",
+  ``Instrumental(p)``
   "X is (not) a means to P goal", ``Avoidable(p)`` "X could (not) be
   avoided", ``Means(x)`` "x is (not) used as a means", ``Means2(x)`` "x is
   (not) affected by P action", ``End(x)`` "x is (not) treated as an end",
@@ -185,8 +186,8 @@ _HERA_FACTS = {
     "finally": lambda fact, poss, noun, value:
         f"{fact} {'holds' if value else 'does not hold'} in the end",
     "but_for": lambda fact, poss, noun, value:
-        (f"but for {poss} {noun}, {fact} would not hold" if value
-         else f"{fact} would hold even without {poss} {noun}"),
+        (f"but for {poss} {noun}, {fact} would not come about" if value
+         else f"{fact} would come about even without {poss} {noun}"),
     "instrumental": lambda fact, poss, noun, value:
         f"{fact} is {'' if value else 'not '}a means to {poss} goal",
     "avoidable": lambda fact, poss, noun, value:
