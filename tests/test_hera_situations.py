@@ -325,17 +325,29 @@ BAD = [
                                                                  "utility": 0.5}]},
      "must be an integer"),
     ({"actions": [], "initialState": {"a": True, "b": True},
-      "utilities": [{"fact": {"a": True, "b": True}, "utility": 1}]}, "a fact of one variable"),
+      "affects": {"p": {"pos": [{"a": True, "b": True}]}}}, "a fact of one variable"),
+    ({"actions": [], "initialState": {"a": True},
+      "events": [{"name": "e", "effects": [], "timepoints": [0]}]}, "e has no preconditions"),
     ({"actions": [{"name": "x"}, {"name": "x"}], "initialState": {"a": True}},
      "two actions are named x"),
     ({"actions": [{"name": "x"}], "initialState": {"a": True}, "plan": ["y"]},
      "names y, which is not an action"),
     ({"actions": []}, "has no initialState"),
     ([1, 2], "must be a mapping"),
-    ({"actions": [], "initialState": {"a": True}, "utilities": [
-        {"fact": {"a": True}, "utility": 1}, {"fact": {"a": True}, "utility": 2}]},
-     "a second utility"),
 ]
+
+
+def test_what_hera_ignores_is_ignored_with_a_warning(tmp_path):
+    data = {"actions": [], "initialState": {"a": True, "b": True}, "plan": [],
+            "utilities": [{"fact": {"a": True, "b": True}, "utility": 5},
+                          {"fact": {"a": True}, "utility": 1}, {"fact": {"a": True}, "utility": 2}]}
+    path = tmp_path / "case.json"
+    path.write_text(json.dumps(data))
+    run = ethasp("judge", str(path), "--principle", "hera-utilitarianism", "--json")
+    assert run.returncode == 0, run.stderr
+    assert json.loads(run.stdout)["utility"] == 1
+    assert "utility 1 is of a fact of 2 variables" in run.stderr
+    assert "utility 3 is a second utility" in run.stderr
 
 
 @pytest.mark.parametrize("data,message", BAD)

@@ -58,9 +58,12 @@ What cannot be mapped gets one line (exit code 2): a variable that
 neither of its values holds; ethasp's states give every variable a value), a
 truth value that is not a Boolean, an intrinsic value other than good, bad or
 neutral, a utility that is not an integer, a fact of several variables in
-``utilities`` or ``affects`` (HERA never matches one), two utilities for one
-fact, two actions or two events of one name, and a plan naming an unknown
-action (HERA would drop it silently).
+``affects``, two actions or two events of one name, an event without its
+``name``, ``preconditions``, ``effects`` or ``timepoints`` (HERA would then
+ignore every event of the situation), and a plan naming an unknown action
+(HERA would drop it silently).  What HERA ignores is ignored with a warning
+on standard error: a utility of a fact of several variables (HERA never
+matches one), and a second utility of a fact (HERA uses the first).
 """
 
 from __future__ import annotations
@@ -68,6 +71,7 @@ from __future__ import annotations
 import itertools
 import json
 import re
+import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Iterable
@@ -111,6 +115,10 @@ class _Reader:
     where: str
     facts: list[clingo.Symbol] = field(default_factory=list)
     variables: dict[str, bool] = field(default_factory=dict)
+    warnings: list[str] = field(default_factory=list)
+
+    def warn(self, message: str) -> None:
+        self.warnings.append(f"{self.where}: warning: {message}")
 
     # -- checking -------------------------------------------------------------------
 
@@ -300,6 +308,10 @@ class _Reader:
             event = self.mapping(event, f"event {index}")
             name = self.name(event.get("name"), f"the name of event {index}")
             what = f"event {name}"
+            for part in ("preconditions", "effects", "timepoints"):
+                if part not in event:
+                    self.fail(f"{what} has no {part} (HERA would then ignore every event of the "
+                              f"situation; write {part}: {'{}' if part == 'preconditions' else '[]'})")
             if name in names:
                 self.fail(f"two events are named {name}")
             names.add(name)
@@ -327,12 +339,18 @@ class _Reader:
         seen: dict[Literal, int] = {}
         for index, entry in enumerate(self.sequence(value, "utilities"), 1):
             entry = self.mapping(entry, f"utility {index}")
-            fact = self.fact(entry.get("fact"), f"the fact of utility {index}")
+            literals = self.partial(entry.get("fact"), f"the fact of utility {index}")
             utility = self.integer(entry.get("utility"), f"utility {index}")
+            if len(literals) != 1:
+                self.warn(f"utility {index} is of a fact of {len(literals)} variables, which HERA "
+                          "never matches: ignored")
+                continue
+            fact = literals[0]
             if fact in seen:
                 if seen[fact] != utility:
-                    self.fail(f"utility {index}: a second utility for the fact "
-                              f"{{{fact[0]}: {str(fact[1]).lower()}}}")
+                    self.warn(f"utility {index} is a second utility for the fact "
+                              f"{{{fact[0]}: {str(fact[1]).lower()}}}: ignored (HERA uses the "
+                              "first)")
                 continue
             seen[fact] = utility
             self.add("utility", name_term(fact[0]), fact[1], utility)
@@ -414,6 +432,8 @@ def translate(path: Path) -> str:
     text = read_text(path)
     reader = _Reader(str(path))
     reader.read(_load(path, text))
+    for line in reader.warnings:
+        print(line, file=sys.stderr)
     return "".join(f"{fact}.\n" for fact in reader.facts)
 
 

@@ -19,6 +19,7 @@ Without names, commands judge under the paper's three principles
 from __future__ import annotations
 
 import functools
+import re
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Iterable
@@ -61,11 +62,14 @@ GROUPS = {"paper": PAPER, "hera": HERA}
 DEFAULT = PAPER
 
 
+_COMMENTS = re.compile(r"%\*.*?\*%|%[^\n]*|\"(?:\\.|[^\"\\])*\"", re.S)
+
+
 def _scan(path: Path) -> tuple[bool, frozenset[str]]:
     """Does the encoding use the atom alternative/1 (outside #defined), and
-    which inputs do the operators in its terms need?"""
+    which inputs do the operators of its terms need (its text, comments and
+    strings left out)?"""
     found: list[bool] = []
-    needs: set[str] = set()
 
     class Finder(ast.Transformer):
         def visit_SymbolicAtom(self, node):  # noqa: N802 (clingo's visitor naming)
@@ -73,19 +77,12 @@ def _scan(path: Path) -> tuple[bool, frozenset[str]]:
             if (symbol.ast_type == ast.ASTType.Function and symbol.name == "alternative"
                     and len(symbol.arguments) == 1):
                 found.append(True)
-            self(symbol)
             return node
 
-        def visit_Function(self, node):  # noqa: N802
-            need = _NEEDS.get((node.name, len(node.arguments)))
-            if need:
-                needs.add(need)
-            for argument in node.arguments:
-                self(argument)
-            return node
-
-    finder = Finder()
-    ast.parse_files([str(path)], finder, logger=lambda code, message: None)
+    text = _COMMENTS.sub(" ", path.read_text())
+    if re.search(r"\balternative\(", text):      # parsed only where it may occur
+        ast.parse_files([str(path)], Finder(), logger=lambda code, message: None)
+    needs = {need for (name, _), need in _NEEDS.items() if re.search(rf"\b{name}\(", text)}
     return bool(found), frozenset(needs)
 
 
