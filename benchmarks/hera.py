@@ -93,9 +93,9 @@ def main() -> None:
     parser.add_argument("--cap", type=float, default=60.0, help="seconds per HERA run")
     parser.add_argument("--quick", action="store_true", help="the smallest sizes only")
     args = parser.parse_args()
-    series = [("plan length", [(n, 2, 2) for n in (2, 4, 6, 8, 10, 12)]),
-              ("events", [(4, e, 2) for e in (1, 3, 5, 7, 9)]),
-              ("patients", [(4, 2, p) for p in (1, 4, 8, 16)])]
+    series = [("plan length", [(n, 2, 2) for n in (2, 4, 5, 6, 8, 12, 16, 24)]),
+              ("events", [(4, e, 2) for e in (1, 4, 8, 12, 16)]),
+              ("patients", [(4, 2, p) for p in (1, 8, 16, 32, 64)])]
     if args.quick:
         series = [(name, sizes[:2]) for name, sizes in series]
     baseline = hera_available()
