@@ -145,3 +145,39 @@ def test_every_principle_agrees_with_hera(data):
 @given(with_alternatives(max_actions=2, max_events=4, max_plan=5))
 def test_longer_plans_and_more_events_agree_with_hera(data):
     agree(data)
+
+
+# Corner cases: an action and a variable of one name (HERA's Bad of the fact
+# is the action's), duplicate and negative time points, events after the plan,
+# an empty plan with events, a repeated action whose later effect overrides.
+CORNERS = [
+ # name clash: action a and variable a
+ {"actions": [{"name": "a", "intrinsicvalue": "neutral", "preconditions": {}, "effects": [{"condition": {}, "effect": {"a": True, "b": True}}]},
+              {"name": "b", "intrinsicvalue": "bad", "preconditions": {}, "effects": [{"condition": {}, "effect": {"b": False}}]}],
+  "utilities": [{"fact": {"a": True}, "utility": -2}, {"fact": {"b": True}, "utility": -1}],
+  "affects": {"p": {"pos": [{"b": False}], "neg": [{"a": True}]}},
+  "plan": ["a"], "goal": {"a": True, "b": True}, "initialState": {"a": False, "b": False}},
+ # duplicate and negative timepoints, events after the plan
+ {"actions": [{"name": "x", "preconditions": {}, "effects": [{"condition": {}, "effect": {"c": True}}]}],
+  "events": [{"name": "e", "preconditions": {"c": True}, "effects": [{"condition": {}, "effect": {"d": True}}], "timepoints": [-1, 1, 1, 3]},
+             {"name": "f", "preconditions": {}, "effects": [{"condition": {"d": True}, "effect": {"c": False}}], "timepoints": [3]}],
+  "utilities": [{"fact": {"d": True}, "utility": -1}, {"fact": {"c": False}, "utility": 2}],
+  "affects": {"q": {"pos": [{"c": False}], "neg": [{"d": True}]}},
+  "plan": ["x"], "goal": {"d": True}, "initialState": {"c": False, "d": False}},
+ # empty plan with events
+ {"actions": [{"name": "x", "preconditions": {}, "effects": []}],
+  "events": [{"name": "e", "preconditions": {}, "effects": [{"condition": {}, "effect": {"c": True}}], "timepoints": [0]}],
+  "utilities": [{"fact": {"c": True}, "utility": -1}], "affects": {"q": {"pos": [], "neg": [{"c": True}]}},
+  "plan": [], "goal": {"c": True}, "initialState": {"c": False}},
+ # the plan repeats an action; conflicting effects in one action (later false wins)
+ {"actions": [{"name": "x", "intrinsicvalue": "good", "preconditions": {}, "effects": [
+      {"condition": {}, "effect": {"c": True}}, {"condition": {"d": True}, "effect": {"c": False}}, {"condition": {}, "effect": {"d": True}}]}],
+  "utilities": [{"fact": {"c": False}, "utility": -1}, {"fact": {"d": True}, "utility": 1}],
+  "affects": {"q": {"pos": [{"d": True}], "neg": [{"c": False}]}},
+  "plan": ["x", "x"], "goal": {"c": False}, "initialState": {"c": False, "d": False}},
+]
+
+
+@pytest.mark.parametrize("data", CORNERS)
+def test_corner_cases_agree_with_hera(data):
+    agree(data)
