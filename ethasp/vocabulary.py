@@ -210,3 +210,14 @@ class Causing(Predicate, name="causing"):
 class Caused(Predicate, name="caused"):
     variable: Raw
     value: ConstantStr
+
+
+class EventChanged(Predicate, name="event_changed"):
+    step: int
+    variable: Raw
+    value: ConstantStr
+
+
+class Happened(Predicate, name="happened"):
+    step: int
+    event: Raw

@@ -94,7 +94,7 @@ def test_unknown_action_in_plan_is_an_input_error():
     ("variable(a). goal(a,true). pre(x,a,true).", "unknown action x"),
     ("variable(a). goal(a,true). action(x). utility(x,high).", "must be an integer"),
     ("variable(a). goal(a,true). action(x). eff(x,a,true). eff(x,a,false).", "both to true and to false"),
-    ("variable(a).", "no goal"),
+    ("% nothing", "the model is empty"),
     ("variable(a). goal(a,true) p.", "syntax error"),
 ])
 def test_bad_models_are_input_errors(text, message):

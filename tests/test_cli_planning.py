@@ -76,14 +76,14 @@ def test_installed_package_holds_every_encoding_and_model(tmp_path):
     code = ("import ethasp.resources as r, json; "
             "print(json.dumps([sorted(str(p.relative_to(r.ENCODINGS)) for p in r.ENCODINGS.rglob('*.lp')),"
             " sorted(str(p.relative_to(r.MODELS)) for p in r.MODELS.rglob('*') if p.is_file()"
-            " and p.suffix in ('.lp', '.pddl'))]))")
+            " and p.suffix in ('.lp', '.pddl', '.yaml', '.json'))]))")
     run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path)
     assert run.returncode == 0, run.stderr
     encodings, models = json.loads(run.stdout)
     assert encodings == sorted(str(p.relative_to(ROOT / "encodings"))
                                for p in (ROOT / "encodings").rglob("*.lp"))
     assert models == sorted(str(p.relative_to(MODELS)) for p in MODELS.rglob("*")
-                            if p.is_file() and p.suffix in (".lp", ".pddl"))
+                            if p.is_file() and p.suffix in (".lp", ".pddl", ".yaml", ".json"))
 
 
 def test_time_limit_zero_means_none_and_negative_is_refused():

@@ -102,7 +102,10 @@ def test_check_reports_each_defect():
         "error(bad_value(utility(x,maybe,1)))",
         "error(ambiguous_utility(utility(x,true,1)))",
     }
-    assert "error(no_goal)" in only_answer(CHECK, "variable(x).")
+    # A model without a goal has the empty goal; a model without variables and
+    # actions is empty.
+    assert only_answer(CHECK, "variable(x).") == set()
+    assert "error(empty)" in only_answer(CHECK, "#defined variable/1.")
     assert only_answer(CHECK, (MODELS / "trolley.lp").read_text()) == set()
 
 

@@ -35,9 +35,11 @@ LIMITS = ["--time-limit", "2", "--max-horizon", "3"]
 HANG = 120.0
 
 ASP_MODELS = {path.stem: path.read_text() for path in sorted(MODELS.glob("*.lp"))}
-PLANS = {"trolley": "pull", "footbridge": "push", "heist": "", "rescue": ""}
+PLANS = {"trolley": "pull", "footbridge": "push", "heist": "", "rescue": "",
+         "lightning": "drop_match"}
 ACTIONS = {"trolley": ["pull", "refrain"], "footbridge": ["push", "refrain"],
-           "heist": ["stage_heist", "buy_flowers"], "rescue": ["take_key", "break_door"]}
+           "heist": ["stage_heist", "buy_flowers"], "rescue": ["take_key", "break_door"],
+           "lightning": ["drop_match", "keep_match"]}
 PDDL = {path.name: path.read_text() for path in sorted((MODELS / "pddl").glob("*"))}
 PDDL_TASKS = [("trolley", "(pull)"), ("care", ""), ("blocksworld", ""), ("gripper", "")]
 ENCODING_LINES = [line for path in sorted(ENCODINGS.rglob("*.lp"))

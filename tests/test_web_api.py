@@ -98,7 +98,7 @@ def test_page_and_its_assets_are_bundled(client):
 def test_model_at_a_glance(client):
     data = client.get("/api/model").json
     assert data["name"] == "trolley.lp" and data["principle"] == "do-no-harm"
-    assert data["principles"] == ["deontology", "do-no-harm", "utilitarianism"]
+    assert {"deontology", "do-no-harm", "utilitarianism"} <= set(data["principles"])
     assert [a["term"] for a in data["model"]["actions"]] == ["pull", "refrain"]
     one = next(v for v in data["model"]["variables"] if v["term"] == "one_will_die")
     assert one["true"] == {"literal": "one_will_die", "shown": "one_will_die", "utility": -1,

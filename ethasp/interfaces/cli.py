@@ -38,9 +38,11 @@ via Automatically Generated Explanations" (IEEE CASE 2021).
 
 MODEL is one or more ASP files in the vocabulary variable/1, action/1, pre/3,
 eff/3, ceff/4, cpre/4, init/1, goal/2, utility/2, utility/3 (derived variables:
-derived/1, axiom/2, axiom_pre/4), or a PDDL domain and problem (STRIPS, ADL,
-derived predicates) with ASP annotation files; the name of a bundled model (e.g.
-trolley) also works.  Bad input gets one line on standard error and exit code 2;
+derived/1, axiom/2, axiom_pre/4; events: event/1, event_at/2, ...), or a PDDL
+domain and problem (STRIPS, ADL, derived predicates) with ASP annotation files,
+or a HERA situation (.yaml, .json); the name of a bundled model (e.g. trolley)
+also works.  A model that comes with a plan (a situation's) is judged on it
+when --plan is not given.  Bad input gets one line on standard error and exit code 2;
 Ctrl-C one line and exit code 130."""
 
 # Bounds of the numeric options (a larger value is refused, not wrapped).
@@ -52,7 +54,8 @@ MAX_REASONS = 1_000_000
 def model_paths(names: Sequence[str]) -> list[Path]:
     """Model files: paths as given, or else the bundled model of that name.
 
-    Bundled PDDL files and their annotations are in the folder ``pddl``.
+    Bundled PDDL files and their annotations are in the folder ``pddl``, HERA
+    situations in the folder ``hera``.
     """
     paths = []
     for name in names:
@@ -65,6 +68,8 @@ def model_paths(names: Sequence[str]) -> list[Path]:
             bundled = MODELS / (name if name.endswith(".lp") else name + ".lp")
             if "/" not in name and not bundled.is_file():
                 bundled = MODELS / "pddl" / name
+            if "/" not in name and not bundled.is_file():
+                bundled = MODELS / "hera" / name
             if "/" not in name and bundled.is_file():
                 path = bundled
         paths.append(path)
@@ -230,7 +235,7 @@ def command_validate(args: argparse.Namespace) -> int:
     from ethasp.planning.validation import validate
 
     model = load_model(args)
-    validation = validate(model, Plan.parse(args.plan))
+    validation = validate(model, _given_plan(args, model))
     if validation.valid:
         text = (f"valid plan of {steps(len(validation.plan))}; "
                 f"final state: {model.naming.facts(validation.final_state)}")
@@ -277,18 +282,26 @@ def _state_words(literals: list[str], final: set[str], naming) -> str:
     return naming.facts(literals)
 
 
-def _given_plan(args: argparse.Namespace) -> Plan:
-    """The plan of --plan, or of --plan-file (for plans too long for a command line)."""
-    if args.plan_file is None:
+def _given_plan(args: argparse.Namespace, model: Model | None = None) -> Plan:
+    """The plan of --plan, or of --plan-file (for plans too long for a command
+    line), or else the plan the model comes with (a HERA situation's)."""
+    if args.plan_file is not None:
+        return Plan.parse(read_text(Path(args.plan_file), "--plan-file"))
+    if args.plan is not None:
         return Plan.parse(args.plan)
-    return Plan.parse(read_text(Path(args.plan_file), "--plan-file"))
+    own = model.own_plan() if model is not None else None
+    if own is None:
+        raise InputError("no plan given: use --plan or --plan-file (the model comes with "
+                         "no plan of its own)")
+    return own
 
 
 def _add_plan_arguments(parser: argparse.ArgumentParser, required: bool = True,
                         what: str = "the plan") -> None:
     given = parser.add_mutually_exclusive_group(required=required)
+    default = "" if required else " (default: the plan the model comes with, if any)"
     given.add_argument("--plan", metavar='"A1 A2 ..."',
-                       help=f"{what}: action terms separated by spaces")
+                       help=f"{what}: action terms separated by spaces{default}")
     given.add_argument("--plan-file", metavar="FILE",
                        help=f"read {what} from FILE (actions separated by white space)")
 
@@ -324,7 +337,7 @@ def command_judge(args: argparse.Namespace) -> int:
     _reasons_limit(args)
     if args.reasons_limit < 0:
         raise InputError("--reasons-limit must be at least 0")
-    report = judge(model, _given_plan(args), args.principle, _max_horizon(args),
+    report = judge(model, _given_plan(args, model), args.principle, _max_horizon(args),
                    reasons_limit=args.reasons_limit, budget=budget(args), best=args.best)
     lines = _explanation_text(report) + [_judgement_text(report, model)]
     _draw(args, model, lambda pictures: pictures.report(report))
@@ -338,7 +351,7 @@ def command_ask(args: argparse.Namespace) -> int:
 
     _reasons_limit(args)
     model = load_model(args)
-    plan = _given_plan(args) if (args.plan or args.plan_file) else None
+    plan = _given_plan(args) if (args.plan or args.plan_file) else model.own_plan()
     answer = ask(model, args.question, plan, args.principle, args.under, _max_horizon(args),
                  reasons_limit=args.reasons_limit, budget=budget(args),
                  satisficing=args.satisficing)
@@ -425,7 +438,7 @@ def command_query(args: argparse.Namespace) -> int:
     from ethasp.principles.judgement import query
 
     model = load_model(args)
-    result = query(model, _given_plan(args), args.formula)
+    result = query(model, _given_plan(args, model), args.formula)
     emit(args, result.to_json(), "true" if result.value else "false")
     return 0
 
@@ -435,7 +448,7 @@ def command_query(args: argparse.Namespace) -> int:
 def _add_model_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("model", nargs="+", metavar="MODEL",
                         help="model files (ASP), or a PDDL domain and problem (.pddl) "
-                             "with ASP annotation files")
+                             "with ASP annotation files, or a HERA situation (.yaml, .json)")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.add_argument("--allow-scripts", action="store_true",
                         help="run #script blocks in model files (refused by default)")
@@ -493,7 +506,10 @@ def build_parser() -> argparse.ArgumentParser:
     _add_satisficing_argument(plan)
     plan.add_argument("--principle", action="append", metavar="NAME",
                       help="find a plan permissible under the principle NAME (deontology, "
-                           "utilitarianism or do-no-harm; repeat it to require several)")
+                           "utilitarianism, do-no-harm, or one of HERA's with a restriction: "
+                           "hera-deontology, goal-deontology, avoid-any-harm, "
+                           "avoid-avoidable-harm, hera-utilitarianism; repeat it to "
+                           "require several)")
     _add_svg_argument(plan, "the plan found (with --principle: and its judgement)")
     plan.set_defaults(run=command_plan)
 
@@ -502,20 +518,28 @@ def build_parser() -> argparse.ArgumentParser:
         description="Check a plan: the first inapplicable step and its failing precondition, "
                     "or the goal facts left unmet. Exit code 0 for a plan, 2 otherwise.")
     _add_model_arguments(check)
-    check.add_argument("--plan", required=True, metavar='"A1 A2 ..."',
+    check.add_argument("--plan", metavar='"A1 A2 ..."',
                        help="action terms separated by spaces, e.g. \"pull\" or \"go(a,b) pick(x)\", "
-                            "or PDDL actions, e.g. \"(go a b) (pick x)\"")
+                            "or PDDL actions, e.g. \"(go a b) (pick x)\" (default: the plan "
+                            "the model comes with, if any)")
+    check.set_defaults(plan_file=None)
     check.set_defaults(run=command_validate)
 
     judging = commands.add_parser(
         "judge", help="judge a plan under ethical principles",
-        description="Judge a plan under ethical principles (default: all of "
-                    "encodings/principles/). Status: proven, or bounded (utilitarianism "
-                    "compared the final state only with the states searched).")
+        description="Judge a plan under ethical principles (default: the paper's three, "
+                    "deontology, do-no-harm and utilitarianism). Status: proven, or bounded "
+                    "(utilitarianism compared the final state only with the states searched; "
+                    "avoid-avoidable-harm did not learn whether the goal is reachable).")
     _add_model_arguments(judging)
-    _add_plan_arguments(judging)
+    _add_plan_arguments(judging, required=False)
     judging.add_argument("--principle", action="append", metavar="NAME",
-                         help="deontology, do-no-harm or utilitarianism (repeatable)")
+                         help="a principle of encodings/principles/ (repeatable): the paper's "
+                              "deontology, do-no-harm, utilitarianism; HERA's hera-deontology, "
+                              "goal-deontology, avoid-any-harm, avoid-avoidable-harm, "
+                              "hera-do-no-harm, do-no-instrumental-harm, kantian-humanity, "
+                              "kantian-humanity-2, double-effect, hera-utilitarianism; or a "
+                              "group: paper, hera, all")
     judging.add_argument("--max-horizon", type=_horizon, default=DEFAULT_MAX_HORIZON, metavar="N",
                          help="compare with the states reachable in at most N steps "
                               f"(default {DEFAULT_MAX_HORIZON})")
@@ -536,7 +560,7 @@ def build_parser() -> argparse.ArgumentParser:
                     "false, e.g. 'Caused(one_will_die) and not Bad(pull)'.")
     _add_model_arguments(asking)
     asking.add_argument("formula", metavar="FORMULA", help="the formula (see the README)")
-    _add_plan_arguments(asking)
+    _add_plan_arguments(asking, required=False)
     asking.set_defaults(run=command_query)
 
     contrast = commands.add_parser(

@@ -28,7 +28,8 @@ class Source:
     name: str
     text: str
     path: Path | None = None
-    generated: bool = False   # written by ethasp (a PDDL translation), not by a user
+    generated: bool = False   # written by ethasp (a translation), not by a user
+    kind: str = "asp"         # asp, pddl (a PDDL translation) or situation (a HERA situation)
 
 
 def _describe(problem: clingo.Symbol) -> str:
@@ -64,8 +65,26 @@ def _describe(problem: clingo.Symbol) -> str:
         return (f"{args[0]}: the utility is too large: with {args[2]} morally valued elements, "
                 f"|utility| must be at most {args[1]} (= (2^31 - 1) / {args[2]}), so that every "
                 "sum of utilities stays within clingo's 32-bit integers")
-    if name == "no_goal":
-        return "the model has no goal (add goal(V,true) or goal(V,false) facts)"
+    if name == "empty":
+        return "the model is empty: it declares no variable and no action"
+    if name == "undeclared_event":
+        return f"unknown event {args[0]} in {args[1]} (declare it with event({args[0]}))"
+    if name == "bad_time":
+        return f"an event's step must be an integer from 1 to 1000000 in {args[0]}"
+    if name == "derived_in_event":
+        return (f"derived variable {args[0]} in {args[1]} (events read and set state "
+                "variables only)")
+    if name == "contradicting_event_effect":
+        return f"effect {args[1]} of event {args[0]} sets variable {args[2]} both to true and to false"
+    if name == "undeclared_patient":
+        return f"unknown moral patient {args[0]} in {args[1]} (declare it with patient({args[0]}))"
+    if name == "bad_sign":
+        return f"the sign must be pos or neg in {args[0]}"
+    if name == "bad_plan":
+        return (f"{args[0]} does not describe a plan (one length N >= 0, one action at each "
+                "step 1..N)")
+    if name == "override_without_condition":
+        return f"{args[0]} names a condition that no cpre/4 has"
     return str(problem)
 
 
@@ -92,9 +111,16 @@ class Model:
 
         Files ending in ``.pddl`` are translated into rules (see
         :mod:`ethasp.planning.pddl`); the model then shows actions in PDDL form.
+        HERA situations (``.yaml``, ``.yml``, ``.json``) are translated into
+        facts (see :mod:`ethasp.planning.situation`).
         """
+        from ethasp.planning.situation import situation_paths, translate
+
         paths = [Path(path) for path in paths]
         sources, naming = [], Naming()
+        situations, paths = situation_paths(paths)
+        for path in situations:
+            sources.append(Source(str(path), translate(path), generated=True, kind="situation"))
         if any(path.suffix.lower() == ".pddl" for path in paths):
             from ethasp.planning.pddl import split_paths, translate_files
 
@@ -107,7 +133,7 @@ class Model:
                 raise InputError(f"{', '.join(map(str, pddl_paths))}: expressions nested too "
                                  "deeply to read") from None
             sources.append(Source(name, encoding("planning/pddl.lp").read_text() + program,
-                                  generated=True))
+                                  generated=True, kind="pddl"))
             naming = PddlNaming()
         for path in paths:
             text = read_text(path)
@@ -138,7 +164,13 @@ class Model:
     @property
     def is_pddl(self) -> bool:
         """Is this a PDDL task (a translation plus annotation files)?"""
-        return any(source.generated for source in self.sources)
+        return any(source.kind == "pddl" for source in self.sources)
+
+    @property
+    def is_situation(self) -> bool:
+        """Is this a HERA situation (a translation, perhaps with ASP files)?
+        Its plans are judged even where they miss the goal, as HERA does."""
+        return any(source.kind == "situation" for source in self.sources)
 
     def _parse(self, source: Source) -> None:
         """Parse a source: syntax, #script blocks, and the model's namespace
@@ -222,6 +254,17 @@ class Model:
             raise InputError(f"{names}: the model's rules have more than one answer set (a "
                              "choice, a disjunction or a loop through negation); a model must "
                              "describe one planning task")
+
+    def own_plan(self):
+        """The plan the model comes with (``plan_length/1``, ``plan_step/2``: a
+        HERA situation's), or None."""
+        from ethasp.planning.plan import Plan
+
+        if not self.planner.get("plan_length", 1):
+            return None
+        steps = sorted((atom.arguments[0].number, atom.arguments[1])
+                       for atom in self.planner.get("plan_step", 2))
+        return Plan(tuple(action for _, action in steps))
 
     def facts(self, predicates):
         """The model's atoms of the given clorm predicates (its rules grounded

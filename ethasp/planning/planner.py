@@ -50,7 +50,7 @@ from typing import TYPE_CHECKING, Iterable, Sequence
 import clingo
 
 from ethasp.errors import InputError
-from ethasp.planning import incremental
+from ethasp.planning import incremental, namespace
 from ethasp.planning.budget import Budget
 from ethasp.planning.messages import Messages
 from ethasp.planning.incremental import CHECK, STEP, TIME_MARKER
@@ -61,12 +61,10 @@ if TYPE_CHECKING:   # imported when used: plain plan search starts without them
 
 # What a model defines (encodings/planning/model.lp and reasons/labels.lp):
 # programs about a plan or a formula read these atoms of the ground model.
-MODEL_VOCABULARY = (("variable", 1), ("action", 1), ("pre", 3), ("eff", 3), ("ceff", 4),
-                    ("cpre", 4), ("derived", 1), ("axiom", 2), ("axiom_pre", 4), ("init", 1),
-                    ("goal", 2), ("utility", 2), ("utility", 3),
-                    ("agent_label", 2), ("action_label", 3), ("fact_label", 3))
+MODEL_VOCABULARY = tuple(namespace.MODEL_VOCABULARY)
 
-TRACE_ENCODINGS = ("planning/model.lp", "planning/trace.lp", "judgement/judge.lp")
+TRACE_ENCODINGS = ("planning/model.lp", "planning/trace.lp", "planning/trace_events.lp",
+                   "judgement/judge.lp")
 BOUND_ENCODINGS = ("planning/model.lp", "planning/relaxed.lp", "judgement/best.lp")
 
 LOOPFREE = "loopfree"
@@ -74,7 +72,8 @@ SEARCH = "search"
 
 # Parts of the model's own base part and of the searches (relative to encodings/).
 MODEL_ENCODINGS = ("planning/model.lp", "planning/check.lp")
-SEARCH_ENCODINGS = ("planning/relaxed.lp", "planning/transition.lp",
+SEARCH_ENCODINGS = ("planning/relaxed.lp", "planning/transition.lp", "planning/events.lp",
+                    "judgement/runs.lp",
                     "judgement/best.lp", "reasons/other_state.lp",
                     "questions/questions.lp")
 GOAL_ENCODING = "planning/goal.lp"
@@ -371,10 +370,32 @@ class Planner:
         """Whether the exact reachability engine of this model is still to be made."""
         return self._reachability is None
 
+    @property
+    def has_events(self) -> bool:
+        """Does the model have exogenous events (``event_at/2``)?"""
+        return bool(self.get("event_at", 2))
+
+    @property
+    def last_event(self) -> int:
+        """The last step at which an event is due (0 without events): a plan of
+        fewer steps ends there, after the events."""
+        steps = [atom.arguments[1].number for atom in self.get("event_at", 2)
+                 if atom.arguments[1].type == clingo.SymbolType.Number]
+        return max(steps, default=0)
+
+    @property
+    def exact_reachability(self) -> bool:
+        """Does the exact reachability engine apply?  It knows actions, not
+        exogenous events: models with events are searched in ASP alone."""
+        return not self.has_events
+
     @_locked
     def reachability(self) -> Reachability:
         """The exact reachability engine over this model (created once, expanded
-        by whoever needs more layers)."""
+        by whoever needs more layers).  Models with exogenous events have none
+        (:attr:`exact_reachability`)."""
+        if not self.exact_reachability:
+            raise RuntimeError("exact reachability does not model exogenous events")
         if self._reachability is None:
             from ethasp.planning import reachability
 
@@ -456,6 +477,10 @@ class Planner:
         if self._mutexes:
             return True
         if self._mutexes is None:
+            return False
+        if self.has_events:
+            # The mutexes are computed from the actions alone: events may break them.
+            self._mutexes = None
             return False
         reachable = {}
         for atom in self.search_atoms("reachable", 2):
@@ -572,8 +597,11 @@ class Planner:
               models: int = 1) -> Outcome:
         """Solve at one horizon under a setting (grounding what it needs first)."""
         self._prepare(setting)
-        self.ground_to(horizon)
-        assumptions = self._set(setting, horizon, horizon)
+        # A plan shorter than the last event ends after it: the goal and the
+        # state at the horizon are checked there (the steps between idle).
+        check = max(horizon, self.last_event)
+        self.ground_to(check)
+        assumptions = self._set(setting, check, horizon)
         began = time.monotonic()
         outcome = self._solve(assumptions, budget, setting.optimize, models)
         if time.monotonic() - began > MUTEX_AFTER and self._mutexes is False:

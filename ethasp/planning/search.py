@@ -104,8 +104,10 @@ class _Exact:
         self.planner = planner
         self.budget = budget
         self.read_plan = read_plan
+        # The layers know the actions, not exogenous events.
         self.usable = (setting.goal and setting.best_utility is None
-                       and setting.at_least is None and setting.other_state is None)
+                       and setting.at_least is None and setting.other_state is None
+                       and planner.exact_reachability)
         self.layers: Layers | None = None
         self.solving = 0.0            # seconds spent in solves so far
         # The ground atoms the layers need, read now: the planner's control
@@ -360,7 +362,16 @@ def find_plan(model, max_horizon: int | None = None, time_limit: float | None = 
     """A shortest plan for the model (all shortest plans with ``all_plans``);
     with ``satisficing``, some plan, found fast and not proven shortest.
     ``max_horizon`` defaults to :data:`DEFAULT_MAX_HORIZON` (shortest plans)
-    or :data:`DEFAULT_SATISFICING_HORIZON` (any plan)."""
+    or :data:`DEFAULT_SATISFICING_HORIZON` (any plan).
+
+    A model without a goal has nothing to plan for: InputError (under a
+    principle, :func:`ethasp.principles.restriction.plan_with_principles`
+    finds a shortest permissible action sequence instead).
+    """
+    if not model.planner.get("goal", 2):
+        raise InputError("the model has no goal, so plan search has nothing to reach (with "
+                         "--principle NAME it finds a shortest action sequence permissible "
+                         "under NAME)")
     budget = budget or Budget(time_limit)
     if satisficing:
         if all_plans:

@@ -23,10 +23,11 @@ from ethasp.planning.plan import Plan
 from ethasp.planning.planner import occurrences
 from ethasp.planning.validation import read_validation
 from ethasp.vocabulary import (Action, ActionLabel, AgentLabel, Caused, Causing, Changed,
-                               FactLabel, Final, Goal, Init, Initially, SetAt, UtilityOfFinal,
-                               Variable, Weight)
+                               EventChanged, FactLabel, Final, Goal, Happened, Init, Initially,
+                               SetAt, UtilityOfFinal, Variable, Weight)
 
-STEPS = ("planning/model.lp", "planning/trace.lp", "planning/steps.lp", "judgement/judge.lp")
+STEPS = ("planning/model.lp", "planning/trace.lp", "planning/trace_events.lp",
+         "planning/steps.lp", "judgement/judge.lp")
 
 # Every state of a plan is computed for its picture: longer plans are refused.
 MAX_STEPS = 200
@@ -134,14 +135,18 @@ class Valuation:
 @dataclass
 class Column:
     """One step of a plan: its action, the effects that change the state
-    (``changes``), those that set a value it already had (``kept``), and the
-    effects that produce a fact the plan causes (``causing``)."""
+    (``changes``, the events' of the step included), those that set a value it
+    already had (``kept``), and the effects that produce a fact the plan causes
+    (``causing``); ``events`` happened at the step (exogenous events: a step
+    after the end of the plan has only events, and its action is
+    ``events(E,...)``)."""
 
     step: int
     action: clingo.Symbol
     changes: list[Fact]
     kept: list[Fact]
     causing: set[Fact]
+    events: list[clingo.Symbol] = field(default_factory=list)
 
 
 @dataclass
@@ -188,16 +193,26 @@ def timeline(model: Model, plan: Plan, valuation: Valuation | None = None) -> Ti
     validation = read_validation(plan, symbols)
     if not validation.valid:
         raise InputError(f"not a plan: {validation.message(model.naming)}")
-    atoms = unify([Initially, SetAt, Changed, Causing, Caused, Final, UtilityOfFinal], symbols)
+    atoms = unify([Initially, SetAt, Changed, Causing, Caused, Final, UtilityOfFinal,
+                   EventChanged, Happened], symbols)
     sets = list(atoms.query(SetAt).all())
     changes = list(atoms.query(Changed).all())
     causing = list(atoms.query(Causing).all())
+    by_events = list(atoms.query(EventChanged).all())
+    happened: dict[int, list[clingo.Symbol]] = {}
+    for atom in sorted(atoms.query(Happened).all(), key=lambda a: (a.step, str(a.event))):
+        happened.setdefault(atom.step, []).append(atom.event.symbol)
     columns = []
     for step, action in enumerate(plan, start=1):
         changed = _facts(changes, step)
-        columns.append(Column(step, action, changed,
+        events = _facts(by_events, step)
+        columns.append(Column(step, action,
+                              changed + [fact for fact in events if fact not in changed],
                               [fact for fact in _facts(sets, step) if fact not in changed],
-                              set(_facts(causing, step))))
+                              set(_facts(causing, step)), happened.get(step, [])))
+    for step in sorted(s for s in happened if s > len(plan)):
+        columns.append(Column(step, clingo.Function("events", happened[step]),
+                              _facts(by_events, step), [], set(), happened[step]))
     moved = {fact.variable for column in columns for fact in column.changes}
     initial = [fact for fact in _facts(atoms.query(Initially).all()) if fact.variable in moved]
     final = _facts(atoms.query(Final).all())

@@ -9,13 +9,23 @@ The syntax (documented in the README, section "Formulas")::
     atom        ::= "(" formula ")" | "true" | "false"
                   | "Good(" element ")" | "Bad(" element ")" | "Neutral(" element ")"
                   | "Caused(" fact ")" | "GEq(" facts "," facts ")"
+                  | "Goal(" fact ")" | "Finally(" fact ")" | "ButFor(" fact ")"
+                  | "Instrumental(" fact ")" | "Avoidable(" fact ")"
+                  | "Means(" patient ")" | "Means2(" patient ")" | "End(" patient ")"
+                  | uterm ( ">" | ">=" | "=" | "<" | "<=" ) uterm
+    uterm       ::= uprimary { ( "+" | "-" ) uprimary }
+    uprimary    ::= "U(" facts ")" | integer | "-" uprimary
     facts       ::= fact { "&" fact } | "()"
     element     ::= action | fact
     fact        ::= variable | "-" variable
 
-Actions and variables are ASP terms of the model (``pull``, ``push(man)``,
-``at(robot,r1)``); ``v`` is the fact "v is true" and ``-v`` the fact "v is
-false".  The operator names are case-insensitive.
+Actions, variables and moral patients are ASP terms of the model (``pull``,
+``push(man)``, ``at(robot,r1)``, ``"4alive"``); ``v`` is the fact "v is true"
+and ``-v`` the fact "v is false".  The operator names are case-insensitive.
+The operators after GEq are HERA's (see ``encodings/judgement/language.lp``);
+a comparison of utility terms is ``ucompare(O,X,Y)`` with O ``gt``, ``geq``
+or ``eq`` (``<`` and ``<=`` swap the sides), X and Y built of ``u(C)``,
+``num(N)``, ``add/2``, ``sub/2``, ``minus/1``.
 
 A parsed formula is the ASP term that ``encodings/judgement/language.lp`` evaluates
 (``bad(action(pull))``, ``caused(five_will_die,false)``, ``neg/1``, ``and/2``,
@@ -51,7 +61,17 @@ TRUE, FALSE = Function("true"), Function("false")
 EMPTY = Function("empty")
 
 # Operator names (lower case) and how they print.
-ATOMS = {"good": "Good", "bad": "Bad", "neutral": "Neutral", "caused": "Caused", "geq": "GEq"}
+ATOMS = {"good": "Good", "bad": "Bad", "neutral": "Neutral", "caused": "Caused", "geq": "GEq",
+         "goal_fact": "Goal", "finally": "Finally", "but_for": "ButFor",
+         "instrumental": "Instrumental", "avoidable": "Avoidable", "means": "Means",
+         "means2": "Means2", "end": "End", "ucompare": "U"}
+# HERA's operators on facts and on patients, by the name users write (lower case).
+FACT_OPERATORS = {"goal": "goal_fact", "finally": "finally", "butfor": "but_for",
+                  "instrumental": "instrumental", "avoidable": "avoidable"}
+PATIENT_OPERATORS = {"means": "means", "means2": "means2", "end": "end"}
+COMPARISONS = {">=": ("geq", False), "<=": ("geq", True), ">": ("gt", False),
+               "<": ("gt", True), "=": ("eq", False)}
+_SHOWN = {"gt": ">", "geq": ">=", "eq": "="}
 KEYWORDS = {"not", "and", "or", "true", "false"}
 
 _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_']*")
@@ -66,13 +86,15 @@ class Elements:
 
     actions: frozenset[clingo.Symbol]
     variables: frozenset[clingo.Symbol]
+    patients: frozenset[clingo.Symbol] = frozenset()
 
     @classmethod
     def of_model(cls, model) -> "Elements":
-        """The actions and variables of a :class:`ethasp.model.Model`."""
+        """The actions, variables and moral patients of a :class:`ethasp.model.Model`."""
         planner = model.planner
         return cls(frozenset(a.arguments[0] for a in planner.get("action", 1)),
-                   frozenset(v.arguments[0] for v in planner.get("variable", 1)))
+                   frozenset(v.arguments[0] for v in planner.get("variable", 1)),
+                   frozenset(p.arguments[0] for p in planner.get("patient", 1)))
 
 
 # -- parsed formulas ------------------------------------------------------------
@@ -225,9 +247,24 @@ class _Parser:
             return Function("all", [EMPTY])
         if key == "false" and self.accept(word):
             return Function("any", [EMPTY])
-        if key not in ATOMS:
-            self.fail(f"expected a formula (Good, Bad, Neutral, Caused, GEq, not, true, false "
-                      f"or '('), found {self.found()}")
+        self.skip()
+        if key == "u" or (word is None and self.pos < len(self.text)
+                          and (self.text[self.pos].isdigit() or self.text[self.pos] == "-")):
+            return self.comparison()
+        if key in FACT_OPERATORS or key in PATIENT_OPERATORS:
+            self.accept(word)
+            self.expect("(")
+            if key in PATIENT_OPERATORS:
+                term = Function(PATIENT_OPERATORS[key], [self.patient(word)])
+            else:
+                fact = self.element(allow_action=False, operator=word)
+                term = Function(FACT_OPERATORS[key], list(fact.arguments))
+            self.expect(")")
+            return term
+        if key not in ATOMS or key in ("ucompare", "goal_fact", "but_for"):
+            self.fail(f"expected a formula (Good, Bad, Neutral, Caused, GEq, Goal, Finally, "
+                      f"ButFor, Instrumental, Avoidable, Means, Means2, End, U, not, true, "
+                      f"false or '('), found {self.found()}")
         self.accept(word)
         self.expect("(")
         if key == "geq":
@@ -242,6 +279,86 @@ class _Parser:
             variable, value = element.arguments
             return Function("caused", [variable, value])
         return Function(key, [element])
+
+    # -- comparisons of utilities ------------------------------------------------------
+
+    def comparison(self) -> clingo.Symbol:
+        """uterm OP uterm, as ucompare(O,X,Y)."""
+        left = self.utility_term()
+        self.skip()
+        for token in (">=", "<=", ">", "<", "="):
+            if self.text.startswith(token, self.pos):
+                self.pos += len(token)
+                break
+        else:
+            self.fail(f"expected a comparison (>, >=, =, <, <=), found {self.found()}")
+        right = self.utility_term()
+        operator, swap = COMPARISONS[token]
+        if swap:
+            left, right = right, left
+        return Function("ucompare", [Function(operator), left, right])
+
+    def utility_term(self) -> clingo.Symbol:
+        """uprimary { (+|-) uprimary }, left associative (no recursion)."""
+        term = self.utility_primary()
+        depth = 0
+        while True:
+            self.skip()
+            if (self.pos < len(self.text) and self.text[self.pos] in "+-"
+                    and not self.text.startswith("->", self.pos)):
+                name = "add" if self.text[self.pos] == "+" else "sub"
+                self.pos += 1
+                depth += 1
+                if depth > MAX_NESTING:
+                    self.fail(f"the utility term nests more than {MAX_NESTING} operators")
+                term = Function(name, [term, self.utility_primary()])
+            else:
+                return term
+
+    def utility_primary(self) -> clingo.Symbol:
+        signs = 0
+        while True:
+            self.skip()
+            if self.pos < len(self.text) and self.text[self.pos] == "-":
+                self.pos += 1
+                signs += 1
+                if signs > MAX_NESTING:
+                    self.fail(f"more than {MAX_NESTING} signs")
+                continue
+            break
+        start = self.pos
+        match = re.compile(r"[0-9]+").match(self.text, self.pos)
+        if match:
+            self.pos = match.end()
+            value = int(match.group())
+            if value > 2**31 - 1:
+                self.fail("the number is outside clingo's 32-bit integers", start)
+            term = Function("num", [clingo.Number(value)])
+        else:
+            word = self.word()
+            if word is None or word.lower() != "u":
+                self.fail(f"expected U(...) or a number, found {self.found()}")
+            self.accept(word)
+            self.expect("(")
+            term = Function("u", [self.conjunction_of_facts()])
+            self.expect(")")
+        for _ in range(signs):
+            term = Function("minus", [term])
+        return term
+
+    def patient(self, operator: str) -> clingo.Symbol:
+        text, start = self.term_text()
+        if not text:
+            self.fail(f"{operator} takes a moral patient, found {self.found()}", start)
+        try:
+            symbol = parse_symbol(text, "name")
+        except TermError as error:
+            detail = f" ({error.reason})" if error.reason else ""
+            self.fail(f"not a patient name: '{text[:60]}'{detail}", start)
+        if symbol not in self.elements.patients:
+            self.fail(f"unknown moral patient '{symbol}' (declare it with patient/1, or "
+                      "affects in a situation)", start)
+        return symbol
 
     # -- elements -------------------------------------------------------------------
 
@@ -367,12 +484,48 @@ _CONNECTIVES = {"neg": 1, "and": 2, "or": 2, "imp": 2}
 _STRENGTH = {"neg": _NOT, "and": _AND, "or": _OR, "imp": _IMP}
 
 
+def _facts_text(side, conj: _Lookup) -> str:
+    facts = [format_fact(variable, value) for variable, value in conj(side)]
+    return " & ".join(facts) if facts else "()"
+
+
+def _utility_text(term: clingo.Symbol, conj: _Lookup) -> str:
+    """A utility term as text (no recursion: the left spine is walked)."""
+    parts: list[str] = []
+    while term.type == clingo.SymbolType.Function and term.name in ("add", "sub") \
+            and len(term.arguments) == 2:
+        parts.append(("+ " if term.name == "add" else "- ")
+                     + _utility_primary(term.arguments[1], conj))
+        term = term.arguments[0]
+    return " ".join([_utility_primary(term, conj)] + list(reversed(parts)))
+
+
+def _utility_primary(term: clingo.Symbol, conj: _Lookup) -> str:
+    signs = 0
+    while term.type == clingo.SymbolType.Function and term.name == "minus" and len(term.arguments) == 1:
+        signs += 1
+        term = term.arguments[0]
+    if term.type == clingo.SymbolType.Function and term.name == "num" and len(term.arguments) == 1:
+        text = str(term.arguments[0])
+    elif term.type == clingo.SymbolType.Function and term.name == "u" and len(term.arguments) == 1:
+        text = f"U({_facts_text(term.arguments[0], conj)})"
+    else:
+        raise ValueError(f"not a utility term: {term}")
+    return "-" * signs + text
+
+
 def _atom_text(term: clingo.Symbol, conj: _Lookup) -> str:
     name, args = term.name, term.arguments
     if name in ("good", "bad", "neutral") and len(args) == 1:
         return f"{ATOMS[name]}({_element(args[0])})"
-    if name == "caused" and len(args) == 2:
-        return f"Caused({format_fact(*args)})"
+    if name in ("caused", "goal_fact", "finally", "but_for", "instrumental", "avoidable") \
+            and len(args) == 2:
+        return f"{ATOMS[name]}({format_fact(*args)})"
+    if name in ("means", "means2", "end") and len(args) == 1:
+        return f"{ATOMS[name]}({args[0]})"
+    if name == "ucompare" and len(args) == 3 and args[0].name in _SHOWN:
+        return (f"{_utility_text(args[1], conj)} {_SHOWN[args[0].name]} "
+                f"{_utility_text(args[2], conj)}")
     if name == "geq" and len(args) == 2:
         sides = []
         for side in args:

@@ -20,6 +20,15 @@ reachable states:
   bound): ``permissible``, ``proven``;
 * otherwise ``permissible`` as far as searched, ``bounded``: a better
   reachable state may exist.
+
+HERA's principles (``encodings/principles/``, see the README) evaluate in the
+same program.  Those whose formulas use counterfactual operators (ButFor,
+Instrumental, Means, Means2) are given the counterfactual facts of the plan
+first, the brave consequences of ``encodings/judgement/counterfactual.lp``
+(one more clingo call per plan, exact: ``proven``); avoid-avoidable-harm is
+given whether a plan reaches the goal (plan search: ``proven`` when it found
+one or proved that none exists, else ``bounded``).  A HERA situation's plan
+is judged even where it misses its goal, as HERA does.
 """
 
 from __future__ import annotations
@@ -35,17 +44,22 @@ from ethasp.planning.budget import Budget
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
-from ethasp.planning.planner import Answer, occurrences
+from ethasp.planning.planner import TRACE_ENCODINGS, Answer, occurrences
+from ethasp.planning.search import FOUND, NONE, find_plan
 from ethasp.planning.validation import TRACE_ATOMS, Validation, read_validation, validate
 from ethasp.principles.formula import Elements, parse_formula
-from ethasp.principles.principle import Principle, available_principles, select_principles
+from ethasp.principles.principle import (COUNTERFACTUALS, DEFAULT, GOAL_REACHABLE, Principle,
+                                         available_principles, formula_needs, select_principles)
 from ethasp.principles.utilitarianism import (BOUNDED, PROVEN, BestReachable, ReachableState,
                                               best_reachable, better_state)
 from ethasp.vocabulary import UtilityOfFinal, Verdict
 
 # The program that evaluates formulas over a plan's trace.
 LANGUAGE = "judgement/language.lp"
-FORMULAS = ("planning/model.lp", LANGUAGE)
+RUNS = "judgement/runs.lp"
+FORMULAS = ("planning/model.lp", LANGUAGE, RUNS)
+# The counterfactual facts of a plan (brave consequences).
+COUNTERFACTUAL = ("planning/model.lp", RUNS, "judgement/counterfactual.lp")
 QUERY_NAME = clingo.Function("query")
 
 # What reasons read of an evaluation of formulas (its #show statements).
@@ -90,17 +104,23 @@ class Judgement:
 
 @dataclass
 class JudgementReport:
-    """A plan, its final state (literals ``v`` / ``-v``) and utility, and its judgements."""
+    """A plan, its final state (literals ``v`` / ``-v``) and utility, and its
+    judgements; ``goal_reached`` is False for a HERA situation's plan that
+    misses its goal (judged all the same, as HERA does)."""
 
     plan: Plan
     final_state: list[str]
     utility: int
     judgements: list[Judgement] = field(default_factory=list)
+    goal_reached: bool = True
 
     def to_json(self) -> dict:
-        return {"plan": self.plan.to_list(), "final_state": self.final_state,
+        data = {"plan": self.plan.to_list(), "final_state": self.final_state,
                 "utility": self.utility,
                 "judgements": [judgement.to_json() for judgement in self.judgements]}
+        if not self.goal_reached:
+            data["goal_reached"] = False
+        return data
 
 
 @dataclass
@@ -115,18 +135,116 @@ class QueryResult:
         return {"plan": self.plan.to_list(), "formula": self.formula, "value": self.value}
 
 
-def _require_plan(model: Model, validation: Validation) -> None:
-    if not validation.valid:
-        raise InputError(f"not a plan: {validation.message(model.naming)}")
+def require_plan(model: Model, validation: Validation) -> None:
+    """Raise InputError unless the sequence can be judged: a plan of the model,
+    or, for a HERA situation, any sequence (its actions are always applicable;
+    HERA judges a plan that misses its goal too)."""
+    if validation.valid:
+        return
+    if model.is_situation and validation.failure_step is None:
+        return
+    raise InputError(f"not a plan: {validation.message(model.naming)}")
 
 
-def evaluation(model: Model, plan: Plan) -> Answer:
+_require_plan = require_plan
+
+
+@dataclass
+class Inputs:
+    """What searches established for principles that need it (see
+    :data:`ethasp.principles.principle.COUNTERFACTUALS`): the facts for the
+    evaluation, and for whether a plan reaches the goal its status and proof."""
+
+    facts: list[clingo.Symbol] = field(default_factory=list)
+    status: str = PROVEN
+    proof: str = "the principle depends on the plan alone"
+
+
+def counterfactuals(model: Model, plan: Plan) -> list[clingo.Symbol]:
+    """The counterfactual facts of a plan (``counterfactual(F)``, F a
+    ``but_for/2`` or ``instrumental/2`` atom that holds): the brave consequences
+    of ``encodings/judgement/counterfactual.lp``, computed once per plan."""
+    memo = model.planner.memo
+    key = ("counterfactuals", plan)
+    if key not in memo:
+        ctl = model.planner.program(COUNTERFACTUAL, symbols=occurrences(plan))
+        ctl.configuration.solve.enum_mode = "brave"
+        ctl.configuration.solve.models = "0"
+        last: list[clingo.Symbol] = []
+
+        def keep(answer: clingo.Model) -> None:
+            last[:] = answer.symbols(shown=True)
+
+        ctl.solve(on_model=keep)
+        memo[key] = sorted(clingo.Function("counterfactual", [atom.arguments[0]])
+                           for atom in last if atom.name == "witness")
+    return memo[key]
+
+
+def goal_reachable(model: Model, budget: Budget, max_horizon: int) -> tuple[bool | None, str]:
+    """Does a plan reach the goal (None: not known within the limits), and why."""
+    memo = model.planner.memo
+    key = ("goal_reachable", max_horizon)
+    if key in memo:
+        return memo[key]
+    if not model.planner.get("goal", 2):
+        return True, "the model has no goal: every state meets it"
+    result = find_plan(model, max_horizon, budget=budget)
+    if result.status == FOUND:
+        answer = (True, f"a plan of {result.horizon} steps reaches the goal")
+    elif result.status == NONE:
+        answer = (False, f"no plan reaches the goal: {result.proof}")
+    else:
+        return None, f"whether a plan reaches the goal is not known: {result.proof}"
+    memo[key] = answer
+    return answer
+
+
+def _inputs(model: Model, plan: Plan, needs: Iterable[str], budget: Budget,
+            max_horizon: int) -> Inputs:
+    inputs = Inputs()
+    needs = set(needs)
+    if COUNTERFACTUALS in needs:
+        inputs.facts += counterfactuals(model, plan)
+    if GOAL_REACHABLE in needs:
+        reachable, proof = goal_reachable(model, budget, max_horizon)
+        if reachable:
+            inputs.facts.append(clingo.Function("goal_reachable"))
+        inputs.proof = proof
+        if reachable is None:
+            inputs.status = BOUNDED
+            inputs.proof = f"{proof}; judged as if no plan reached it"
+    return inputs
+
+
+def evaluation(model: Model, plan: Plan, principles: Iterable[Principle] = (),
+               budget: Budget | None = None,
+               max_horizon: int = DEFAULT_MAX_HORIZON) -> Answer:
     """The plan's evaluation, computed once per plan by the model's planner: its
-    trace (validity, final state, Caused, utility) and the formula of every
-    principle that depends on the plan alone, with the atoms reasons read
-    (``judgement/evidence.lp``)."""
-    plain = [p.encoding for p in available_principles() if not p.reads_alternatives]
-    return model.planner.trace(plan, [LANGUAGE, EVIDENCE, *plain])
+    trace (validity, final state, Caused, utility) and the formula of the
+    paper's principles that depend on the plan alone and of the ``principles``
+    given (those that compare with reachable states excepted), with the atoms
+    reasons read (``judgement/evidence.lp``).  Principles that need
+    counterfactual facts or the goal's reachability get them first."""
+    return _evaluation(model, plan, principles, budget or Budget(), max_horizon)[0]
+
+
+def _evaluation(model: Model, plan: Plan, principles: Iterable[Principle], budget: Budget,
+                max_horizon: int) -> tuple[Answer, Inputs]:
+    chosen = [p for p in list(select_principles(DEFAULT)) + list(principles)
+              if not p.reads_alternatives]
+    encodings = sorted({p.encoding for p in chosen})
+    needs = set().union(*(p.needs for p in chosen))
+    if not needs:
+        return model.planner.trace(plan, [LANGUAGE, RUNS, EVIDENCE, *encodings]), Inputs()
+    inputs = _inputs(model, plan, needs, budget, max_horizon)
+    key = ("evaluation", plan, tuple(encodings), tuple(inputs.facts))
+    memo = model.planner.memo
+    if key not in memo:
+        memo[key] = model.planner.solve_program(
+            list(TRACE_ENCODINGS) + [LANGUAGE, RUNS, EVIDENCE, *encodings],
+            symbols=occurrences(plan) + inputs.facts)
+    return memo[key], inputs
 
 
 def trace_facts(model: Model, plan: Plan) -> list[clingo.Symbol]:
@@ -141,12 +259,14 @@ def final_utility(model: Model, plan: Plan) -> int:
     return next(iter(answer.query(UtilityOfFinal).all())).utility
 
 
-def evaluate(model: Model, plan: Plan, encodings: Sequence[str], facts: Iterable = ()
-             ) -> Answer:
+def evaluate(model: Model, plan: Plan, encodings: Sequence[str], facts: Iterable = (),
+             inputs: Iterable[clingo.Symbol] = ()) -> Answer:
     """Evaluate formulas of L (given by principle encodings and facts, clingo
     symbols or clorm facts: for instance a state to compare with) over a plan's
-    trace: the verdicts and the atoms that reasons read (``judgement/evidence.lp``)."""
-    symbols = trace_facts(model, plan) + [getattr(fact, "raw", fact) for fact in facts]
+    trace: the verdicts and the atoms that reasons read (``judgement/evidence.lp``).
+    ``inputs`` are the counterfactual facts and ``goal_reachable``, if needed."""
+    symbols = (trace_facts(model, plan) + [getattr(fact, "raw", fact) for fact in facts]
+               + list(inputs))
     return model.planner.solve_program(list(FORMULAS) + [EVIDENCE] + list(encodings),
                                        symbols=symbols)
 
@@ -188,7 +308,8 @@ def _compare(model: Model, plan: Plan, utility: int, budget: Budget, max_horizon
 def judge(model: Model, plan: Plan, principles: Iterable[str] | None = None,
           max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
           budget: Budget | None = None, best: bool = False) -> JudgementReport:
-    """Judge a plan under the principles (all when None), without explanations.
+    """Judge a plan under the principles (the paper's three when None; see
+    :func:`ethasp.principles.principle.select_principles`), without explanations.
 
     ``max_horizon`` and ``budget`` (or ``time_limit``) bound the search for a
     reachable state better than the final state (utilitarianism); with
@@ -198,7 +319,9 @@ def judge(model: Model, plan: Plan, principles: Iterable[str] | None = None,
     """
     budget = budget or Budget(time_limit)
     chosen = select_principles(principles)
-    answer = evaluation(model, plan)
+    if any(principle.needs for principle in chosen):
+        _require_plan(model, validate(model, plan))     # before searching for inputs
+    answer, inputs = _evaluation(model, plan, chosen, budget, max_horizon)
     validation = read_validation(plan, answer.select(TRACE_ATOMS))
     _require_plan(model, validation)
     utility = final_utility(model, plan)
@@ -219,8 +342,14 @@ def judge(model: Model, plan: Plan, principles: Iterable[str] | None = None,
     for principle in chosen:
         permissible = verdicts[principle.asp_name]
         if not principle.reads_alternatives:
-            judgements.append(Judgement(principle.name, permissible, PROVEN,
-                                        "the principle depends on the plan alone",
+            if GOAL_REACHABLE in principle.needs:
+                status, proof = inputs.status, inputs.proof
+            elif principle.needs:
+                status, proof = PROVEN, ("the counterfactual facts of the plan are known "
+                                         "(every variant of the plan was considered)")
+            else:
+                status, proof = PROVEN, "the principle depends on the plan alone"
+            judgements.append(Judgement(principle.name, permissible, status, proof,
                                         principle.asp_name))
             continue
         assert compared is not None
@@ -230,14 +359,18 @@ def judge(model: Model, plan: Plan, principles: Iterable[str] | None = None,
         judgements.append(Judgement(principle.name, permissible, compared.status,
                                     compared.proof, principle.asp_name, compared.best,
                                     compared.state))
-    return JudgementReport(plan, validation.final_state, utility, judgements)
+    return JudgementReport(plan, validation.final_state, utility, judgements,
+                           goal_reached=not validation.unmet_goals)
 
 
 def query(model: Model, plan: Plan, formula: str) -> QueryResult:
     """Evaluate a formula of L (text, see :mod:`ethasp.principles.formula`) for a plan."""
     parsed = parse_formula(formula, Elements.of_model(model))
     _require_plan(model, validate(model, plan))
-    answer = evaluate(model, plan, [], parsed.facts(QUERY_NAME))
+    inputs = _inputs(model, plan, formula_needs(parsed.term), Budget(), DEFAULT_MAX_HORIZON)
+    if inputs.status != PROVEN:
+        raise InputError(f"formula: cannot decide Avoidable: {inputs.proof}")
+    answer = evaluate(model, plan, [], parsed.facts(QUERY_NAME), inputs.facts)
     verdicts = unify([Verdict], answer.get("verdict", 2)).query(Verdict).all()
     value = any(str(atom.name.symbol) == "query" and atom.value == "true" for atom in verdicts)
     return QueryResult(plan, str(parsed), value)

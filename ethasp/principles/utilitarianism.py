@@ -203,6 +203,8 @@ def _bound_states(planner: Planner, r: Reachability):
 
 def _best_exact(planner: Planner, budget: Budget, max_horizon: int, within: str,
                 other_than) -> BestReachable | None:
+    if not planner.exact_reachability:
+        return None  # exogenous events: optimisation in ASP
     bound = upper_bound(planner)
     r = planner.reachability()
     restriction = _restriction(r, within, other_than)
@@ -282,6 +284,8 @@ def _better_state(planner: Planner, utility: int, budget: Budget,
                 return _found_better(planner, outcome, horizon)
             if outcome.satisfiable is None and budget.expired():
                 return Comparison(BOUNDED, f"{budget.why_stopped()} at horizon {horizon}")
+    if not planner.exact_reachability:
+        return _better_by_search(planner, utility, budget, max_horizon)
     found: list[Best] = []
 
     def decided(r: Reachability, k: int) -> bool:
@@ -328,8 +332,10 @@ def _horizons(max_horizon: int) -> list[int]:
 
 
 def _read_state(symbols, horizon: int) -> list[tuple[clingo.Symbol, bool]]:
+    # The state at the time checked: the horizon, or the last event's step when
+    # it is later (Planner.solve); at_horizon/3 holds at that one time only.
     atoms = unify([AtHorizon], symbols).query(AtHorizon).all()
-    return sorted(((a.variable.symbol, a.value == "true") for a in atoms if a.time == horizon),
+    return sorted(((a.variable.symbol, a.value == "true") for a in atoms),
                   key=lambda pair: str(pair[0]))
 
 
@@ -406,6 +412,8 @@ def _better_by_search(planner: Planner, utility: int, budget: Budget,
 def _goal_distance(planner: Planner, utility: int, budget: Budget,
                    max_horizon: int) -> tuple[int | None, str, str]:
     """:func:`goal_distance`, under the planner's lock."""
+    if not planner.exact_reachability:
+        return None, BOUNDED, "exact reachability does not model exogenous events"
     r = planner.reachability()
     goal = r.goal()
 

@@ -44,7 +44,8 @@ from ethasp.planning.plan import Plan
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
 from ethasp.planning.validation import validate
 from ethasp.principles.formula import format_literal
-from ethasp.principles.judgement import Judgement, JudgementReport, evaluate, evaluation
+from ethasp.principles.judgement import (Judgement, JudgementReport, evaluate, evaluation,
+                                         require_plan)
 from ethasp.principles.judgement import judge as judge_verdicts
 from ethasp.principles.principle import Principle, select_principles
 from ethasp.principles.utilitarianism import ReachableState, best_reachable
@@ -69,8 +70,8 @@ OTHER = clingo.Function("other")
 LABELS = (("agent_label", 2), ("action_label", 3), ("fact_label", 3))
 
 # The atoms of an evaluation that the reasons' programs read (judgement/evidence.lp).
-EVIDENCE = (("formula", 2), ("member", 2), ("conj", 3), ("conj_worth", 2), ("verdict", 2),
-            ("satisfied", 1), ("weight", 2))
+EVIDENCE = (("formula", 2), ("member", 2), ("conj", 3), ("conj_worth", 2), ("term_value", 2),
+            ("verdict", 2), ("satisfied", 1), ("weight", 2))
 
 
 def _literals(symbols: Iterable[clingo.Symbol]) -> list[Literal]:
@@ -170,9 +171,7 @@ def explain(model: Model, plan: Plan, principle: str | Principle, limit: int = D
         raise InputError("the reasons limit must be at least 1")
     budget = budget or Budget(time_limit)
     chosen = principle if isinstance(principle, Principle) else select_principles([principle])[0]
-    validation = validate(model, plan)
-    if not validation.valid:
-        raise InputError(f"not a plan: {validation.message(model.naming)}")
+    require_plan(model, validate(model, plan))
     key = ("explain", plan, chosen.asp_name, limit,
            None if alternative is None else tuple(alternative.facts))
     memo = model.planner.memo
@@ -187,7 +186,7 @@ def explain(model: Model, plan: Plan, principle: str | Principle, limit: int = D
             facts = alternative.asp_facts(OTHER)
             compared = alternative.literals
     answer = (evaluate(model, plan, [chosen.encoding], facts) if chosen.reads_alternatives
-              else evaluation(model, plan))
+              else evaluation(model, plan, [chosen], budget, max_horizon))
     program = (answer.text(EVIDENCE) + model.planner.vocabulary_text(LABELS)
                + f"explain({chosen.asp_name}).\n")
     necessary_ctl = model.planner.program(NECESSARY, program, OPTIONS, model=False)
@@ -226,7 +225,8 @@ def judge(model: Model, plan: Plan, principles: Iterable[str] | None = None,
           max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
           reasons_limit: int | None = DEFAULT_LIMIT, budget: Budget | None = None,
           best: bool = False) -> JudgementReport:
-    """Judge a plan under the principles (all when None) and explain each verdict.
+    """Judge a plan under the principles (the paper's three when None) and
+    explain each verdict.
 
     Each judgement gets an explanation with at most ``reasons_limit``
     sufficient and necessary reasons (none when 0 or None).  Raises InputError

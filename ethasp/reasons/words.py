@@ -22,7 +22,15 @@ Templates, by literal (``X`` a gerund or fact phrase, ``P`` a possessive):
   "this way X is not caused by P action" ("actions" for plans of several
   steps);
 * ``GEq(c,d)``: "X is better than Y" (or "is as good as"), ``not GEq(c,d)``:
-  "X is worse than Y", where X and Y name the facts mentioned for each side.
+  "X is worse than Y", where X and Y name the facts mentioned for each side;
+* HERA's operators: ``Goal(p)`` "X is (not) one of P goals", ``Finally(p)``
+  "X holds (does not hold) in the end", ``ButFor(p)`` "but for P action, X
+  would not come about" / "X would come about even without P action",
+  ``Instrumental(p)``
+  "X is (not) a means to P goal", ``Avoidable(p)`` "X could (not) be
+  avoided", ``Means(x)`` "x is (not) used as a means", ``Means2(x)`` "x is
+  (not) affected by P action", ``End(x)`` "x is (not) treated as an end",
+  and comparisons "the utility of the final state is (not) greater than 0".
 
 A reason of several literals joins their clauses with "and".
 """
@@ -143,6 +151,19 @@ def literal_clause(literal: Literal, labels: Labels,
         noun = "action" if actions <= 1 else "actions"
         return (f"this way {fact} is {negation}caused by "
                 f"{possessive(labels, pronoun)} {noun}")
+    if atom.name in _HERA_FACTS:
+        variable, truth = atom.arguments
+        fact = fact_phrase(labels, variable, truth.name == "true")
+        noun = "action" if actions <= 1 else "actions"
+        return _HERA_FACTS[atom.name](fact, possessive(labels, pronoun), noun, value)
+    if atom.name in _HERA_PATIENTS:
+        patient = _term_words(atom.arguments[0])
+        noun = "action" if actions <= 1 else "actions"
+        return _HERA_PATIENTS[atom.name](patient, possessive(labels, pronoun), noun, value)
+    if atom.name == "ucompare":
+        operator, left, right = atom.arguments
+        relation = _RELATIONS[operator.name][0 if value else 1]
+        return f"{_utility_words(left, labels)} {relation} {_utility_words(right, labels)}"
     if atom.name == "geq":
         comparison = (comparisons or {}).get(atom)
         if comparison is None:
@@ -157,6 +178,60 @@ def literal_clause(literal: Literal, labels: Labels,
             relation = "is better than"
         return f"{left} {relation} {right}"
     return f"{atom} is {negation}true"
+
+
+_HERA_FACTS = {
+    "goal_fact": lambda fact, poss, noun, value:
+        f"{fact} is {'' if value else 'not '}one of {poss} goals",
+    "finally": lambda fact, poss, noun, value:
+        f"{fact} {'holds' if value else 'does not hold'} in the end",
+    "but_for": lambda fact, poss, noun, value:
+        (f"but for {poss} {noun}, {fact} would not come about" if value
+         else f"{fact} would come about even without {poss} {noun}"),
+    "instrumental": lambda fact, poss, noun, value:
+        f"{fact} is {'' if value else 'not '}a means to {poss} goal",
+    "avoidable": lambda fact, poss, noun, value:
+        f"{fact} could {'' if value else 'not '}be avoided",
+}
+_HERA_PATIENTS = {
+    "means": lambda patient, poss, noun, value:
+        f"{patient} is {'' if value else 'not '}used as a means",
+    "means2": lambda patient, poss, noun, value:
+        f"{patient} is {'' if value else 'not '}affected by {poss} {noun}",
+    "end": lambda patient, poss, noun, value:
+        f"{patient} is {'' if value else 'not '}treated as an end",
+}
+_RELATIONS = {"gt": ("is greater than", "is not greater than"),
+              "geq": ("is at least", "is less than"),
+              "eq": ("equals", "does not equal")}
+
+
+def _utility_words(term: clingo.Symbol, labels: Labels) -> str:
+    """A utility term in words (no recursion: the left spine is walked)."""
+    parts: list[str] = []
+    while term.name in ("add", "sub") and len(term.arguments) == 2:
+        word = "plus" if term.name == "add" else "minus"
+        parts.append(f"{word} {_utility_primary_words(term.arguments[1])}")
+        term = term.arguments[0]
+    return " ".join([_utility_primary_words(term)] + list(reversed(parts)))
+
+
+def _utility_primary_words(term: clingo.Symbol) -> str:
+    signs = 0
+    while term.name == "minus" and len(term.arguments) == 1:
+        signs += 1
+        term = term.arguments[0]
+    if term.name == "num":
+        text = str(term.arguments[0])
+    else:
+        name = term.arguments[0] if term.arguments else term
+        if name.name == "final" and not name.arguments:
+            text = "the utility of the final state"
+        elif name.name == "alternative_final" and len(name.arguments) == 1:
+            text = f"the utility of alternative {name.arguments[0]}'s final state"
+        else:
+            text = f"the utility of {name}"
+    return "minus " * signs + text
 
 
 def reason_clause(literals: Sequence[Literal], labels: Labels,

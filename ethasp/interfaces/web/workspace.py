@@ -110,7 +110,7 @@ class Workspace:
     # -- judgements of plans (under every principle), kept --------------------------
 
     def report(self, plan: Plan, budget: Budget | None = None) -> JudgementReport:
-        """The plan judged and explained under every principle."""
+        """The plan judged and explained under the default principles (the paper's three)."""
         key = tuple(plan.to_list())
         with self._lock:
             if key in self._reports:
