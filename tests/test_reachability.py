@@ -101,3 +101,34 @@ def test_a_budget_stops_the_engine_without_a_claim():
     cancelled = Budget()
     cancelled.cancel()
     assert not r.expand(cancelled) and not r.complete and r.stopped
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(min_value=0, max_value=10**9), st.sampled_from([1, 2, 16]))
+def test_every_state_has_a_shortest_path_and_each_layer_its_best(seed, cluster):
+    """Paths to every reachable state (actions in clusters of 1, 2 or 16
+    written variables, so that a predecessor is looked for cluster by cluster)
+    and the best state of each layer and each prefix, asked one after another
+    (the engine remembers utilities between queries), against the oracle."""
+    import ethasp.planning.reachability as reachability
+
+    spec = spec_of(seed)
+    saved = reachability.CLUSTER_VARIABLES
+    reachability.CLUSTER_VARIABLES = cluster
+    try:
+        r = Reachability(ground(spec))
+    finally:
+        reachability.CLUSTER_VARIABLES = saved
+    assert r.run()
+    distances = spec.distances()
+    for k, layer in enumerate(r.layers):
+        states = [state for state, d in distances.items() if d == k]
+        best = r.best_in_layer(k)
+        assert best.utility == max(spec.state_utility(s) for s in states)
+        within = r.best_of(r.prefix(k))
+        assert within.utility == max(spec.state_utility(s) for s, d in distances.items()
+                                     if d <= k)
+        for state in _states(r, layer):
+            plan = [str(a) for a in r.path_to(state, k)]
+            assert len(plan) == k
+            assert spec.run(plan) == frozenset(str(v) for v in state), (plan, state)

@@ -31,6 +31,7 @@ exceeds its node limit or the budget.
 
 from __future__ import annotations
 
+import sys
 import warnings
 from dataclasses import dataclass, field
 from typing import Iterable, Sequence
@@ -48,6 +49,8 @@ DEFAULT_NODE_LIMIT = 4_000_000
 # Images between two checks of the budget (the node count is checked once a
 # layer: counting the nodes takes time of its own).
 CHECK_EVERY = 8
+# The most nodes whose best utility is remembered between queries.
+UTILITY_MEMO_LIMIT = 2_000_000
 
 # A cluster of actions shares one transition relation over the variables they
 # write: one relational product per cluster instead of one image per action.
@@ -217,14 +220,28 @@ def _clusters(model: GroundModel, index: dict[clingo.Symbol, int]) -> list[list[
 
 
 def _backend():
+    """The decision diagram module: ``dd.cudd`` (compiled), else ``dd.autoref``.
+
+    dd imports networkx if it can, for drawing diagrams, which this module
+    never does; that import alone took most of dd's start-up (about 0.13 s),
+    so it is kept out while dd loads (a ``None`` entry in ``sys.modules``
+    makes an import fail, and dd then goes without).
+    """
+    blocked = "networkx" not in sys.modules
+    if blocked:
+        sys.modules["networkx"] = None  # type: ignore[assignment]
     try:
-        from dd import cudd
+        try:
+            from dd import cudd
 
-        return cudd, True
-    except ImportError:  # the compiled module is optional
-        from dd import autoref
+            return cudd, True
+        except ImportError:  # the compiled module is optional
+            from dd import autoref
 
-        return autoref, False
+            return autoref, False
+    finally:
+        if blocked and sys.modules.get("networkx", 0) is None:
+            del sys.modules["networkx"]
 
 
 class Reachability:
@@ -253,12 +270,17 @@ class Reachability:
         self.bdd.configure(reordering=False)
         self._derived: dict = {}
         self._derive()
-        self._images = [self._cluster(group) for group in _clusters(model, self.index)]
+        self._groups = _clusters(model, self.index)
+        self._images = [self._cluster(group) for group in self._groups]
         init = self._cube([(v, v in model.init) for v in model.variables])
         self.layers = [init]
         self._prefixes: list = []
         self._relations: dict = {}
         self._level_table = None
+        # _max_utility's results by node, kept across calls (the sets asked
+        # about share most of their nodes); each entry holds its node, so
+        # that no key is freed and reused while it is remembered.
+        self._utility_memo: dict[int, tuple] = {}
         self.reached = init
         self.complete = False
         self.stopped = ""
@@ -410,9 +432,27 @@ class Reachability:
         return actions[::-1]
 
     def _predecessor(self, state: frozenset[clingo.Symbol], layer):
-        """An action and a state of ``layer`` from which the action leads to ``state``."""
+        """An action and a state of ``layer`` from which the action leads to
+        ``state``: first a cluster of actions that has one (one pre-image per
+        cluster), then an action of it."""
         full = self.state(state)
-        for action in self.model.actions:
+        variables = self.model.variables
+        for group, (relation, qvars, rename) in zip(self._groups, self._images):
+            written = [variables[int(x[1:])] for x in qvars]
+            after = self._cube([(v, v in state) for v in written], after=True)
+            before = self.bdd.exist(list(rename), relation & after)
+            if before & self.bdd.exist(qvars, full) & layer == self.bdd.false:
+                continue
+            step = self._action_predecessor(state, full, group, layer)
+            if step is not None:
+                return step
+        return None
+
+    def _action_predecessor(self, state: frozenset[clingo.Symbol], full,
+                            actions: list[GroundAction], layer):
+        """An action of ``actions`` and a state of ``layer`` from which it leads
+        to the state ``full``."""
+        for action in actions:
             relation, written = self._relation(action)
             after = self._cube([(v, v in state) for v in written], after=True)
             qvars = [f"x{self.index[v]}" for v in written]
@@ -521,9 +561,12 @@ class Reachability:
         levels = len(by_level)
         true_key, false_key = int(bdd.true), int(bdd.false)
         minus = float("-inf")
-        # memo: node key -> (value, chosen value, child, child's level)
-        memo: dict[int, tuple[float, bool, object, int]] = {true_key: (0.0, False, None, levels),
-                                                            false_key: (minus, False, None, levels)}
+        # memo: node key -> (value, chosen value, child, child's level, node)
+        memo = self._utility_memo
+        if len(memo) > UTILITY_MEMO_LIMIT:
+            memo.clear()
+        memo[true_key] = (0.0, False, None, levels, bdd.true)
+        memo[false_key] = (minus, False, None, levels, bdd.false)
         stack = [states]
         while stack:
             node = stack[-1]
@@ -550,9 +593,9 @@ class Reachability:
             on_low = memo[low_key][0] + free[level + 1] - free[low_level] + w_false
             on_high = memo[high_key][0] + free[level + 1] - free[high_level] + w_true
             if on_high >= on_low:
-                memo[key] = (on_high, True, high, high_level)
+                memo[key] = (on_high, True, high, high_level, node)
             else:
-                memo[key] = (on_low, False, low, low_level)
+                memo[key] = (on_low, False, low, low_level, node)
         key = int(states)
         start_level = levels if key in (true_key, false_key) else states.level
         total = memo[key][0] + free[0] - free[start_level]
@@ -560,7 +603,7 @@ class Reachability:
         chosen: dict[int, bool] = {}
         node = states
         while int(node) not in (true_key, false_key):
-            _, value, child, _ = memo[int(node)]
+            _, value, child, _, _ = memo[int(node)]
             entry = by_level[node.level]
             if entry is not None:
                 chosen[entry[0]] = value
