@@ -393,3 +393,34 @@ def test_intra_action_order_is_kept():
     data["initialState"]["b"] = False
     model = Model.from_string(translate_data(data))
     assert "a" in validate(model, model.own_plan()).final_state
+
+
+@pytest.mark.parametrize("satisficing", [False, True])
+def test_plan_search_sees_the_events_that_exact_reachability_does_not_model(
+        satisficing, monkeypatch):
+    """Exact reachability knows the actions alone: with events, plan search
+    must not take its layers' word (started at once here).  An event at step
+    2 reaches the goal (the empty plan is a plan), and another at step 1
+    undoes what an action did (so no 2-step plan works)."""
+    from ethasp.planning import search
+    from ethasp.planning.budget import Budget
+    from ethasp.planning.planner import Setting
+    from ethasp.planning.search import FOUND, find_plan
+
+    monkeypatch.setattr(search, "LAYERS_AFTER", 0.0)
+
+    given_by_event = Model.from_string(
+        "variable(g). action(wait). goal(g,true). "
+        "event(e). event_at(e,2). event_effect(e,1,g,true).")
+    assert not search._Exact(given_by_event.planner, Setting(), Budget(), True).usable
+    result = find_plan(given_by_event, satisficing=satisficing)
+    assert result.status == FOUND and len(result.plan) == 0
+    undone = Model.from_string(
+        "variable(g). variable(h). action(set). eff(set,g,true). action(mark). "
+        "pre(mark,g,true). eff(mark,h,true). goal(h,true). "
+        "event(e). event_at(e,1). event_effect(e,1,g,false).")
+    result = find_plan(undone, satisficing=satisficing)
+    assert result.status == FOUND
+    assert validate(undone, result.plan).valid
+    if not satisficing:
+        assert [str(a) for a in result.plan.actions] == ["set", "set", "mark"]
