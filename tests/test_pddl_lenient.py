@@ -157,3 +157,34 @@ def test_what_cannot_be_read_is_one_line(tmp_path, problem, needle):
     with pytest.raises(InputError) as error:
         Model.load(write(tmp_path, TYPO.replace("crate", "box"), problem))
     assert needle in str(error.value) and "\n" not in str(error.value)
+
+
+# As some programs write PDDL: `object` listed among the types, empty
+# constants, the built-in equality declared as a predicate, a function
+# without `- number`.
+GENERATED = """
+(define (domain hops)
+  (:requirements :typing :action-costs)
+  (:types
+    object
+    spot - object)
+  (:constants )
+  (:predicates (at ?s - spot) (link ?a - spot ?b - spot) (= ?x - object ?y - object))
+  (:functions (total-cost ))
+  (:action hop :parameters (?a - spot ?b - spot)
+    :precondition (and (at ?a) (link ?a ?b) (not (= ?a ?b)))
+    :effect (and (not (at ?a)) (at ?b) (increase (total-cost ) 1))))
+"""
+GENERATED_PROBLEM = """
+(define (problem three) (:domain hops)
+  (:objects s1 s2 s3 - spot)
+  (:init (at s1) (link s1 s1) (link s1 s2) (link s2 s3) (= (total-cost) 0))
+  (:goal (at s3))
+  (:metric minimize (total-cost)))
+"""
+
+
+def test_generated_pddl_with_equality_declared_is_read(tmp_path):
+    model = Model.load(write(tmp_path, GENERATED, GENERATED_PROBLEM))
+    assert plan_of(model) == ["hop(s1,s2)", "hop(s2,s3)"]
+    assert "hop(s1,s1)" not in {str(a.name.symbol) for a in model.facts([Action]).query(Action).all()}

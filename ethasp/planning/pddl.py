@@ -351,8 +351,6 @@ class _Translator:
 
     def predicates(self) -> None:
         for predicate, params in sorted(self.domain.predicates.items()):
-            if predicate == "=":
-                continue
             scope, names, typing = self.bind(Scope(), params)
             kind = "derived" if predicate in self.derived else "variable"
             self.emit(rule(f"{kind}({term_of(pddl_name_to_asp(predicate), names)})", typing))

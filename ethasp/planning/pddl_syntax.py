@@ -578,6 +578,8 @@ class _Reader:
             declaration = self.group(item, "(p ?x ...)")
             if not declaration:
                 raise self.file.syntax_error(declaration, "expected (p ?x ...)")
+            if declaration[0] == "=":   # equality, built in; some writers of PDDL declare it
+                continue
             predicate = self.name(declaration[0], "a predicate")
             domain.predicates[predicate] = tuple(self.typed_list(declaration[1:], True))
             domain.predicate_pos[predicate] = declaration.pos
