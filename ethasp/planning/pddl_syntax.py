@@ -366,7 +366,10 @@ class _Reader:
     def name(self, expr: Expr, what: str = "a name") -> str:
         word = self.word(expr, what)
         if not _NAME.fullmatch(word):
-            raise self.file.syntax_error(word, f"expected {what}, found {word!r}")
+            hint = ("" if word[0] in "?:-" else
+                    " (ethasp reads names that start with a letter and have only letters, "
+                    "digits, '-' and '_')")
+            raise self.file.syntax_error(word, f"expected {what}, found {word!r}{hint}")
         if word in RESERVED:
             raise self.file.error(word, f"the name {word} cannot be used: "
                                         "it is a keyword of ASP, into which PDDL is translated")
