@@ -151,7 +151,7 @@ def test_latin1_comments_and_a_byte_order_mark_are_read(tmp_path):
     (TYPO_PROBLEM.replace("(= (weight b1) 3)", "(= () 3)"),
      "problem.pddl:4:32: syntax error: expected (f ...)"),
     (TYPO_PROBLEM.replace("b1 - box", "b1 1st - box"),
-     "problem.pddl:3:18: syntax error: expected a name, found '1st' (ethasp reads names that "
+     "problem.pddl:3:16: syntax error: expected a name, found '1st' (ethasp reads names that "
      "start with a letter"),
     (TYPO_PROBLEM.replace("; ", "").replace("b1 - box", "b\u00e9 - box").encode("latin-1"),
      "syntax error: expected a name, found 'b\u00e9'"),
