@@ -191,3 +191,14 @@ def test_generated_pddl_with_equality_declared_is_read(tmp_path):
     model = Model.load(write(tmp_path, GENERATED, GENERATED_PROBLEM))
     assert plan_of(model) == ["hop(s1,s2)", "hop(s2,s3)"]
     assert "hop(s1,s1)" not in {str(a.name.symbol) for a in model.facts([Action]).query(Action).all()}
+
+
+def test_validate_shows_the_atoms_that_hold_in_the_final_state(tmp_path):
+    """A PDDL state is the set of its true atoms (closed world): the final state
+    of a valid plan is shown so, not with every false atom of the task."""
+    write(tmp_path, GENERATED, GENERATED_PROBLEM)
+    run = ethasp("validate", "domain.pddl", "problem.pddl", "--plan", "(hop s1 s2) (hop s2 s3)",
+                 cwd=tmp_path)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.strip() == ("valid plan of 2 steps; final state: (at s3) (link s1 s1) "
+                                  "(link s1 s2) (link s2 s3)")
