@@ -302,8 +302,6 @@ def test_action_costs_are_ignored_with_a_warning(tmp_path):
      "unknown predicate fill"),
     (SHOP.replace(":effect (out)", ":effect (out ?b)"),
      SHOP_PROBLEM, "predicate out takes 0 arguments, found 1"),
-    (SHOP.replace("(?b - box) :precondition (not", "(?b - crate) :precondition (not"),
-     SHOP_PROBLEM, "unknown type crate"),
     (SHOP, SHOP_PROBLEM.replace("(out)", "(closed ?x)"), "unknown variable ?x"),
     (SHOP, SHOP_PROBLEM.replace("(:init {init})", "(:init (full b9))"), "unknown constant b9"),
 ])

@@ -232,13 +232,17 @@ def command_plan_permissible(args: argparse.Namespace, model: Model) -> int:
 
 
 def command_validate(args: argparse.Namespace) -> int:
+    from ethasp.planning.naming import PddlNaming
     from ethasp.planning.validation import validate
 
     model = load_model(args)
     validation = validate(model, _given_plan(args, model))
     if validation.valid:
+        final = validation.final_state
+        if isinstance(model.naming, PddlNaming):    # closed world: the atoms that hold
+            final = [literal for literal in final if not literal.startswith("-")]
         text = (f"valid plan of {steps(len(validation.plan))}; "
-                f"final state: {model.naming.facts(validation.final_state)}")
+                f"final state: {model.naming.facts(final)}")
     else:
         text = f"not a plan: {validation.message(model.naming)}"
     emit(args, validation.to_json(), text)

@@ -125,8 +125,6 @@ class Model:
             from ethasp.planning.pddl import split_paths, translate_files
 
             pddl_paths, paths = split_paths(paths)
-            for path in pddl_paths:
-                read_text(path)      # a clear message for directories, binary files, ...
             try:
                 program, name = translate_files(pddl_paths)
             except RecursionError:

@@ -53,9 +53,11 @@ Leniency, as planners have it: requirements used but not declared are
 accepted with one warning line per file on standard error; domain constants
 that only the problem declares (as objects) are accepted; an atom that the
 domain or problem uses is a state variable even if its arguments do not
-match the predicate's declared types.  Action costs (``increase`` of
-``total-cost``, numeric facts in the initial state and a ``:metric``) are
-ignored with a warning: plans are shortest in number of actions.  Other
+match the predicate's declared types; a type that the domain uses but that
+is declared nowhere and that no object has has no objects (with a warning).
+Action costs (``increase`` of ``total-cost``, numeric facts in the initial
+state and a ``:metric``) are ignored with a warning: plans are shortest in
+number of actions; so are numeric facts of undeclared functions.  Other
 numeric features, durative actions, processes and events are refused with
 one line naming them.
 """
@@ -187,6 +189,8 @@ class _Translator:
         self.fresh = 0
         self.eithers: set[tuple[str, ...]] = set()
         self.costs: int | None = None          # offset of the first ignored action cost
+        self.undeclared_types: dict[str, None] = {}      # used, declared nowhere, no objects
+        self.undeclared_functions: dict[str, None] = {}  # in numeric facts, not declared
         self.derived = {d.predicate for d in domain.derived}
         self.objects = {pddl_name_to_asp(p.name) for p in domain.constants + problem.objects}
         self.names = {*domain.predicates, *self.derived}
@@ -347,8 +351,6 @@ class _Translator:
 
     def predicates(self) -> None:
         for predicate, params in sorted(self.domain.predicates.items()):
-            if predicate == "=":
-                continue
             scope, names, typing = self.bind(Scope(), params)
             kind = "derived" if predicate in self.derived else "variable"
             self.emit(rule(f"{kind}({term_of(pddl_name_to_asp(predicate), names)})", typing))
@@ -478,8 +480,17 @@ class _Translator:
             if missing:
                 notes.append(f"requirement{'s' if len(missing) > 1 else ''} "
                              f"{', '.join(missing)} used but not declared (read anyway)")
+            if file is self.domain.file and self.undeclared_types:
+                names = ", ".join(self.undeclared_types)
+                notes.append(f"type{'s' if len(self.undeclared_types) > 1 else ''} {names} "
+                             "used but not declared (read as having no objects)")
             if file is self.domain.file and self.costs is not None:
                 notes.append("action costs are ignored (plans are shortest in number of actions)")
+            if file is self.problem.file and self.undeclared_functions:
+                names = ", ".join(self.undeclared_functions)
+                notes.append(f"numeric facts of the undeclared function"
+                             f"{'s' if len(self.undeclared_functions) > 1 else ''} {names} "
+                             "are ignored")
             if file is self.problem.file and self.problem.metric is not None:
                 notes.append("the metric is ignored (plans are shortest in number of actions)")
             if notes:
@@ -487,29 +498,25 @@ class _Translator:
         return lines
 
     def check_numeric_init(self) -> None:
-        for function, pos in self.problem.numeric_init:
+        """Numeric facts are ignored; those of undeclared functions are noted."""
+        for function, _ in self.problem.numeric_init:
             if function not in self.domain.functions:
-                raise self.problem.file.error(pos, f"unknown function {function}")
+                self.undeclared_functions.setdefault(function)
 
     def check_types(self) -> None:
+        """Types that the domain uses but that are neither declared nor given to
+        an object are noted: they have no objects (planners read them so)."""
         known = {"object"}
         for param in self.domain.types + self.domain.constants + self.problem.objects:
             known |= set(param.types)
         known |= {param.name for param in self.domain.types}
-
-        def check(params: Iterable[Param], file: PddlFile, pos: int) -> None:
+        for params in [*self.domain.predicates.values(),
+                       *(action.params for action in self.domain.actions),
+                       *(definition.params for definition in self.domain.derived)]:
             for param in params:
                 for type_name in param.types:
                     if type_name not in known:
-                        raise file.error(pos, f"unknown type {type_name}")
-
-        file = self.domain.file
-        for predicate, params in self.domain.predicates.items():
-            check(params, file, self.domain.predicate_pos[predicate])
-        for action in self.domain.actions:
-            check(action.params, file, action.pos)
-        for definition in self.domain.derived:
-            check(definition.params, file, definition.pos)
+                        self.undeclared_types.setdefault(type_name)
 
     def translate(self) -> str:
         if self.problem.domain_name != self.domain.name:

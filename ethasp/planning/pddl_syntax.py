@@ -39,6 +39,8 @@ _TOKEN = re.compile(r";[^\n]*|[()]|[^\s();]+")
 _NAME = re.compile(r"[a-z][-_a-z0-9]*")
 _DEFINE = re.compile(r"\(\s*define\s*\(\s*(domain|problem)\b")
 _COMMENT = re.compile(r";[^\n]*")
+# Names that are keywords of ASP (a PDDL name becomes an ASP constant).
+RESERVED = {"not"}
 
 
 # -- files and s-expressions ----------------------------------------------------
@@ -74,12 +76,25 @@ class PddlFile:
 
     @classmethod
     def read(cls, path: Path) -> "PddlFile":
-        if not path.is_file():
-            raise InputError(f"{path}: no such file")
+        """Read a file: UTF-8 (a byte order mark is skipped), or else Latin-1 (as
+        planners read it: comments may carry accented letters), unless it holds
+        a NUL byte, which no text does."""
         try:
-            return cls(str(path), path.read_text().lower())
-        except (OSError, UnicodeDecodeError) as exc:
-            raise InputError(f"{path}: cannot be read ({exc})") from None
+            if path.is_dir():
+                raise InputError(f"{path}: is a directory, not a file")
+            if not path.exists():
+                raise InputError(f"{path}: no such file")
+            data = path.read_bytes()
+        except OSError as exc:
+            raise InputError(f"{path}: cannot be read ({exc.strerror or exc})") from None
+        try:
+            text = data.decode("utf-8-sig")
+        except UnicodeDecodeError as exc:
+            if b"\0" in data:
+                raise InputError(f"{path}: cannot be read (not UTF-8 text: byte "
+                                 f"{exc.object[exc.start]:#04x} at offset {exc.start})") from None
+            text = data.decode("latin-1")
+        return cls(str(path), text.lower())
 
     def kind(self) -> str | None:
         """``domain``, ``problem`` or None, from the ``(define (...`` header."""
@@ -351,7 +366,13 @@ class _Reader:
     def name(self, expr: Expr, what: str = "a name") -> str:
         word = self.word(expr, what)
         if not _NAME.fullmatch(word):
-            raise self.file.syntax_error(word, f"expected {what}, found {word!r}")
+            hint = ("" if word[0] in "?:-" else
+                    " (ethasp reads names that start with a letter and have only letters, "
+                    "digits, '-' and '_')")
+            raise self.file.syntax_error(word, f"expected {what}, found {word!r}{hint}")
+        if word in RESERVED:
+            raise self.file.error(word, f"the name {word} cannot be used: "
+                                        "it is a keyword of ASP, into which PDDL is translated")
         return str(word)
 
     def arity(self, group: Group, count: int, what: str) -> None:
@@ -560,6 +581,8 @@ class _Reader:
             declaration = self.group(item, "(p ?x ...)")
             if not declaration:
                 raise self.file.syntax_error(declaration, "expected (p ?x ...)")
+            if declaration[0] == "=":   # equality, built in; some writers of PDDL declare it
+                continue
             predicate = self.name(declaration[0], "a predicate")
             domain.predicates[predicate] = tuple(self.typed_list(declaration[1:], True))
             domain.predicate_pos[predicate] = declaration.pos
@@ -650,10 +673,14 @@ def _read_init(reader: _Reader, group: Group, problem: Problem) -> None:
         head = reader.head(element)
         if head == "=":
             reader.arity(element, 2, "=")
-            function = reader.group(element[1], "(f ...)") if isinstance(element[1], Group) \
-                else element[1]
-            name = reader.name(function[0] if isinstance(function, Group) else function,
-                               "a function")
+            if not isinstance(element[1], Group):
+                raise reader.file.error(element, "an equality of objects in the initial state "
+                                                 "(only numeric facts (= (f ...) N) use =; "
+                                                 "objects are equal only to themselves)")
+            function = element[1]
+            if not function:
+                raise reader.file.syntax_error(function, "expected (f ...)")
+            name = reader.name(function[0], "a function")
             problem.numeric_init.append((name, element.pos))
             continue
         if head == "not":     # closed world: negative facts are the default
