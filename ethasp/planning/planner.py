@@ -62,6 +62,10 @@ if TYPE_CHECKING:   # imported when used: plain plan search starts without them
 # What a model defines (encodings/planning/model.lp and reasons/labels.lp):
 # programs about a plan or a formula read these atoms of the ground model.
 MODEL_VOCABULARY = tuple(namespace.MODEL_VOCABULARY)
+# The predicates of the vocabulary about one action (its first argument): a
+# plan's trace reads them for the plan's actions only.
+ACTION_VOCABULARY = (("action", 1), ("pre", 3), ("eff", 3), ("cpre", 4), ("ceff", 4),
+                     ("utility", 2), ("override", 4), ("action_label", 3))
 
 TRACE_ENCODINGS = ("planning/model.lp", "planning/trace.lp", "planning/trace_events.lp",
                    "judgement/judge.lp")
@@ -269,6 +273,8 @@ class Planner:
         self._traces: dict = {}
         self._externals: dict[clingo.Symbol, bool] = {}   # values assigned so far
         self._model_text: str | None = None
+        self._action_atoms: dict[clingo.Symbol, list[clingo.Symbol]] | None = None
+        self._state_text: str | None = None
         self._bound: Answer | None = None
         self.memo: dict = {}          # results of the layers above, by question asked
         try:
@@ -594,8 +600,10 @@ class Planner:
 
     @_locked
     def solve(self, horizon: int, setting: Setting, budget: Budget,
-              models: int = 1) -> Outcome:
-        """Solve at one horizon under a setting (grounding what it needs first)."""
+              models: int = 1, mutex_after: float = MUTEX_AFTER) -> Outcome:
+        """Solve at one horizon under a setting (grounding what it needs first);
+        a solve that takes more than ``mutex_after`` seconds has the h^2
+        mutexes grounded for the next ones (:meth:`use_mutexes`)."""
         self._prepare(setting)
         # A plan shorter than the last event ends after it: the goal and the
         # state at the horizon are checked there (the steps between idle).
@@ -604,7 +612,7 @@ class Planner:
         assumptions = self._set(setting, check, horizon)
         began = time.monotonic()
         outcome = self._solve(assumptions, budget, setting.optimize, models)
-        if time.monotonic() - began > MUTEX_AFTER and self._mutexes is False:
+        if time.monotonic() - began > mutex_after and self._mutexes is False:
             self.use_mutexes()          # a hard search: the next solves get them
         return outcome
 
@@ -666,6 +674,22 @@ class Planner:
             self._model_text = self.vocabulary_text(MODEL_VOCABULARY)
         return self._model_text
 
+    def plan_model_text(self, plan) -> str:
+        """The ground model's vocabulary as facts, the facts about actions
+        (:data:`ACTION_VOCABULARY`) for the plan's actions only: all that a
+        trace of the plan reads (``planning/trace.lp`` joins every fact about
+        an action with its occurrence), and much less than the whole model."""
+        if self._action_atoms is None:
+            by_action: dict[clingo.Symbol, list[clingo.Symbol]] = {}
+            for signature in ACTION_VOCABULARY:
+                for symbol in self.get(*signature):
+                    by_action.setdefault(symbol.arguments[0], []).append(symbol)
+            self._action_atoms = by_action
+            self._state_text = self.vocabulary_text(
+                [s for s in MODEL_VOCABULARY if s not in ACTION_VOCABULARY])
+        return self._state_text + "".join(f"{symbol}.\n" for action in dict.fromkeys(plan)
+                                          for symbol in self._action_atoms.get(action, ()))
+
     def program(self, encodings: Sequence[str], facts: str = "", arguments: Sequence[str] = (),
                 model: bool = True, symbols: Iterable[clingo.Symbol] = ()) -> clingo.Control:
         """A grounded control with the ground model's facts (unless ``model`` is
@@ -698,8 +722,12 @@ class Planner:
         for done, answer in self._traces.get(plan, []):
             if wanted <= done:
                 return answer
-        answer = self.solve_program(list(TRACE_ENCODINGS) + list(encodings),
-                                    symbols=occurrences(plan))
+        if encodings:     # further programs may read any action of the model
+            answer = self.solve_program(list(TRACE_ENCODINGS) + list(encodings),
+                                        symbols=occurrences(plan))
+        else:
+            answer = self.solve_program(TRACE_ENCODINGS, self.plan_model_text(plan),
+                                        model=False, symbols=occurrences(plan))
         self._traces.setdefault(plan, []).append((wanted, answer))
         return answer
 

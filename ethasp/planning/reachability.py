@@ -576,6 +576,10 @@ class Reachability:
         return int(total), frozenset(true)
 
 
+def _effect_key(effect: Effect):
+    return (effect.variable, effect.value, effect.condition)
+
+
 def from_atoms(variables: Sequence[clingo.Symbol], actions: Sequence[clingo.Symbol],
                pre: Iterable[tuple[clingo.Symbol, clingo.Symbol, bool]],
                eff: Iterable[tuple[clingo.Symbol, clingo.Symbol, bool]],
@@ -602,10 +606,11 @@ def from_atoms(variables: Sequence[clingo.Symbol], actions: Sequence[clingo.Symb
         conditions.setdefault((action, key), []).append((variable, value))
     for action, key, variable, value in ceff:
         if action in effects:
-            condition = tuple(sorted(conditions.get((action, key), []), key=str))
+            condition = tuple(sorted(conditions.get((action, key), [])))
             effects[action].append(Effect(variable, value, condition))
-    ground = [GroundAction(a, tuple(sorted(pres[a], key=str)),
-                           tuple(sorted(effects[a], key=str))) for a in actions]
+    # Sorted by the terms' own order (cheaper than by their text).
+    ground = [GroundAction(a, tuple(sorted(pres[a])),
+                           tuple(sorted(effects[a], key=_effect_key))) for a in actions]
     bodies: dict[tuple[clingo.Symbol, clingo.Symbol], list[Literal]] = {
         (name, key): [] for name, key in axioms}
     for name, key, variable, value in axiom_pre:
