@@ -13,9 +13,14 @@ taken from the queue, with its parent's estimate until then).
 It is a proposal engine, as the exact layers are: it reads the ground model
 and proposes a sequence of actions; the search checks the plan by its trace
 (``encodings/planning/trace.lp``) before anyone sees it, so what a plan is
-stays decided by the encodings.  It claims nothing else: running out of
-states, of time or of the node limit, it stops without a claim.  It runs in
-a child process beside the solver (see :class:`Greedy`).
+stays decided by the encodings.  Its one other claim is that no goal state
+is reachable, when it has expanded every reachable state (pruning only
+repeated states and states from which even the relaxed goal is
+unreachable); running out of time or of its state limit, it stops without
+a claim.  Like the layers, it is started only where relaxed reachability
+found the goal reachable (the search model leaves out the goal literals on
+variables that never change).  It runs in a child process beside the
+solver (see :class:`Greedy`).
 
 States are Python integers (bit i: variable i is true), so a state is
 hashed and compared as one number.  Models with derived variables are left
@@ -26,6 +31,7 @@ from __future__ import annotations
 
 import heapq
 from dataclasses import dataclass
+
 import clingo
 
 from ethasp.planning.budget import Budget
@@ -33,6 +39,9 @@ from ethasp.planning.layers import Layers
 
 # States generated beyond which the search gives up (memory).
 STATE_LIMIT = 2_000_000
+# Why a search without a plan stopped when it expanded every reachable state
+# (but relaxed dead ends, from which no goal state is reachable either).
+EXHAUSTED = "every reachable state expanded without a goal state"
 # Expansions between two checks of the budget.
 CHECK_EVERY = 64
 # Turns in a row the queue of helpful actions gets whenever the estimate
@@ -248,7 +257,7 @@ def greedy_plan(task: Task, budget: Budget | None = None,
                 heapq.heappush(queues[1], (h, counter, successor))
         if len(parents) > state_limit:
             return None, f"more than {state_limit} states"
-    return None, "every reachable state expanded without a plan"
+    return None, EXHAUSTED
 
 
 def _path(task: Task, parents: dict, state: int) -> list[clingo.Symbol]:
@@ -263,7 +272,8 @@ class Greedy(Layers):
     """Greedy forward search (:func:`greedy_plan`) beside a search, run as the
     exact layers are run (:class:`ethasp.planning.layers.Layers`: a child
     process on Linux, else a thread); its :attr:`status` gets a ``plan`` (not
-    a shortest one) or ``stopped``, nothing else."""
+    a shortest one), ``complete`` (no goal state is reachable) or
+    ``stopped``."""
 
     def _work(self, publish) -> None:
         from ethasp.planning.layers import search_model
@@ -274,7 +284,9 @@ class Greedy(Layers):
             publish(stopped="greedy search does not evaluate derived variables")
             return
         plan, why = greedy_plan(Task(self.model), self._budget)
-        if plan is None:
+        if plan is None and why == EXHAUSTED:
+            publish(complete=True)
+        elif plan is None:
             publish(stopped=f"greedy search: {why}")
         else:
             publish(plan=tuple(plan))

@@ -123,13 +123,15 @@ class _Exact:
         self.atoms: Atoms | None = None
         if not self.usable:
             return
-        if greedy and read_plan:
-            # Any-plan search: a greedy forward search proposes a plan meanwhile.
+        if greedy and read_plan and not planner.get("derived", 1):
+            # Any-plan search: a greedy forward search proposes a plan (or
+            # proves that there is none) instead of the layers.
             from ethasp.planning.greedy import Greedy
 
             reader = (lambda: Atoms(planner)) if layers_module.can_fork() else Atoms(planner)
             self.greedy = Greedy(reader, budget, read_plan=True).start()
-        if self.greedy is None and len(planner.get("action", 1)) >= LAYERS_AT_ONCE_ACTIONS \
+            return
+        if len(planner.get("action", 1)) >= LAYERS_AT_ONCE_ACTIONS \
                 and layers_module.can_fork():
             # Started now, before any solve: the child process reads the
             # ground atoms itself while this process goes on grounding.
@@ -143,17 +145,21 @@ class _Exact:
         return self.layers.status if self.layers is not None else None
 
     def start(self) -> None:
-        if self.layers is None and self.usable:
+        if self.layers is None and self.atoms is not None:
             self.layers = Layers(self.atoms, self.budget, read_plan=self.read_plan).start()
 
     def greedy_plan(self) -> tuple | None:
         """The actions of a plan the greedy search proposed, if any (unchecked)."""
         return self.greedy.status.plan if self.greedy is not None else None
 
+    def greedy_complete(self) -> bool:
+        """Did the greedy search expand every reachable state without a goal state?"""
+        return self.greedy is not None and self.greedy.status.complete
+
     def moot(self, horizon: int) -> bool:
         """Is a solve at this horizon made pointless by what the layers proved
         (or by a plan that the greedy search proposed)?"""
-        if self.greedy_plan() is not None:
+        if self.greedy_plan() is not None or self.greedy_complete():
             return True
         status = self.status()
         if status is None:
@@ -324,8 +330,8 @@ def any_plan(planner: Planner, setting: Setting, budget: Budget,
     horizon and the slice growing by :data:`GROWTH`.  For plain plan search
     (no restriction, no question constraint) a greedy forward search
     (:mod:`ethasp.planning.greedy`) runs beside it in a child process and
-    may deliver a plan first; otherwise exact layers run beside it as in
-    :func:`shortest`.  A plan from either engine is checked by its trace.
+    may deliver a plan (or the proof that none exists) first; otherwise exact
+    layers run beside it as in :func:`shortest`.  A plan from either engine is checked by its trace.
     ``none`` is proven as by :func:`shortest`: relaxed or exact
     reachability, or a refuted horizon without a simple path of its length.
     """
@@ -354,6 +360,10 @@ def _any_plan(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
             return SearchResult(FOUND, plan=plan, horizon=len(plan), optimal=False,
                                 proof="a plan found by greedy forward search (not proven "
                                       "shortest)")
+        if exact.greedy_complete():
+            return SearchResult(NONE, horizon=horizon, optimal=False, proof=(
+                "greedy forward search expanded every reachable state (but those from "
+                "which even the relaxed goal is unreachable), and none is a goal state"))
         status = exact.status()
         if status is not None:
             if status.plan is not None and len(status.plan) <= max_horizon:
