@@ -42,6 +42,11 @@ LAYERS_AFTER = 0.03
 # search: there the layers often find a shortest plan before the solver has
 # refuted the first few horizons.
 LAYERS_AT_ONCE_ACTIONS = 32
+# Seconds the solver waits, at the start of a search, for an engine started
+# with it (layers, greedy search) to finish: where it finishes that soon, the
+# solver's work would only have taken a core from it (the machine may have
+# fewer free cores than processes).
+HEAD_START = 0.3
 # Seconds a solve takes before the h^2 mutexes are grounded, while layers
 # started at once (or the greedy search of any-plan search) are working:
 # grounding cannot be interrupted, and they often end the search within this
@@ -147,6 +152,21 @@ class _Exact:
     def start(self) -> None:
         if self.layers is None and self.atoms is not None:
             self.layers = Layers(self.atoms, self.budget, read_plan=self.read_plan).start()
+
+    def head_start(self) -> None:
+        """Wait up to :data:`HEAD_START` seconds for an engine started with the
+        search (not for layers that start later) to finish."""
+        engine = self.greedy if self.greedy is not None else \
+            (self.layers if self.atoms is None else None)
+        if engine is None:
+            return
+        end = time.monotonic() + HEAD_START
+        while engine.status.working and not self.budget.expired():
+            left = end - time.monotonic()
+            if left <= 0:
+                return
+            engine.news.wait(min(left, 0.05))
+            engine.news.clear()
 
     def greedy_plan(self) -> tuple | None:
         """The actions of a plan the greedy search proposed, if any (unchecked)."""
@@ -261,6 +281,7 @@ def _shortest(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
     checkpoints = _checkpoints(max_horizon)
     bound, why = start, start_proof          # every plan has at least `bound` steps
     horizon = start
+    exact.head_start()
     while True:
         status = exact.status()
         if status is not None:
@@ -353,6 +374,7 @@ def _any_plan(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
               start_proof: str, task: str, exact: _Exact) -> SearchResult:
     bound, why = start, start_proof          # every plan has at least `bound` steps
     horizon, slice_, checked = start, SLICE, 0
+    exact.head_start()
     while True:
         proposed = exact.greedy_plan()
         if proposed is not None and len(proposed) <= max_horizon:
