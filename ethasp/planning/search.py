@@ -48,9 +48,8 @@ LAYERS_AT_ONCE_ACTIONS = 32
 # fewer free cores than processes).
 HEAD_START = 0.3
 # Seconds a solve takes before the h^2 mutexes are grounded, while layers
-# started at once (or the greedy search of any-plan search) are working:
-# grounding cannot be interrupted, and they often end the search within this
-# time.
+# started at once are working: grounding cannot be interrupted, and they
+# often end the search within this time.
 MUTEX_AFTER_LAYERS = 0.5
 
 # Any-plan search: seconds of solving a horizon gets before the search moves
@@ -189,7 +188,9 @@ class _Exact:
     def mutex_after(self) -> float:
         """Seconds a solve takes before the h^2 mutexes are grounded."""
         if self.greedy is not None and self.greedy.status.working:
-            return MUTEX_AFTER_LAYERS
+            # Never while the greedy search works: at the large horizons of
+            # any-plan search their grounding takes seconds, uninterrupted.
+            return float("inf")
         status = self.status()
         if status is not None and status.working and self.atoms is None:
             return MUTEX_AFTER_LAYERS
