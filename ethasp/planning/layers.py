@@ -41,7 +41,7 @@ if TYPE_CHECKING:   # imported in the thread that computes the layers
 
 # Live diagram nodes beyond which the layers give up (the search goes on
 # without them).
-NODE_LIMIT = 2_000_000
+NODE_LIMIT = 500_000
 
 
 def _value(symbol: clingo.Symbol) -> bool:

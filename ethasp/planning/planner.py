@@ -26,6 +26,10 @@ Program parts of the control (``t`` a time, ``x`` an input value):
 * ``mutex`` and ``mutex_step(t)``: the h^2 mutexes of ``planning/mutex.lp``
   and their constraints, grounded (for every step so far and from then on)
   once a solve has been slow (:meth:`Planner.use_mutexes`);
+* ``canonical`` and ``canonical_step(t)``: the canonical order of
+  independent consecutive actions of ``planning/canonical.lp`` (switched by
+  ``require(canonical)``), grounded once a search that may use it has been
+  slow (:meth:`Planner.use_canonical`);
 * ``question(x)``, ``question_step(x,t)``, ``question_check(x,t)``: one
   question of ``questions/questions.lp``, grounded when it is asked;
 * ``best_utility(x)``, ``at_least(x)``, ``other_state(x)`` and their ``_check``
@@ -90,6 +94,17 @@ MUTEX = "mutex"
 MUTEX_STEP = "mutex_step"
 MUTEX_MAX_FLUENTS = 400
 MUTEX_AFTER = 0.05
+# The canonical order of independent actions (partial-order reduction): its
+# pairs of independent actions grow with the square of the actions, so it is
+# grounded (with the mutexes) only for models of at most this many usable ones.
+CANONICAL_ENCODING = "planning/canonical.lp"
+CANONICAL = "canonical"
+CANONICAL_STEP = "canonical_step"
+CANONICAL_MAX_ACTIONS = 1000
+# ... and once a solve that may use it has taken this many seconds (its
+# grounding, per step, costs more than it saves on easier horizons).
+CANONICAL_AFTER = 0.5
+CANONICAL_SWITCH = clingo.Function("require", [clingo.Function("canonical")])
 LOOPFREE_ENCODING = "planning/loopfree.lp"
 RESTRICTIONS = "restrictions"
 
@@ -209,7 +224,10 @@ class Setting:
     objective (the utility of the state at the horizon, then goal states);
     ``satisficing``: the solver's decision heuristic for any-plan searches
     (``planning/satisficing.lp``; it changes which plan is found first, not
-    which plans exist).
+    which plans exist); ``canonical``: independent consecutive actions in the
+    order of their terms (``planning/canonical.lp``, once grounded): for
+    searches that want one plan of a length, whatever its order (it removes
+    plans, but never all plans of a length).
     """
 
     goal: bool = True
@@ -220,6 +238,7 @@ class Setting:
     other_state: int | None = None
     optimize: bool = False
     satisficing: bool = False
+    canonical: bool = False
 
 
 @dataclass
@@ -261,6 +280,7 @@ class Planner:
         self._parts: dict[str, tuple[str, ...]] = {}
         self._searching = False
         self._mutexes: bool | None = False   # grounded (True), not yet, or never (None)
+        self._canonical: bool | None = False  # the same for the canonical order
         self.grounded = -1            # step and check parts grounded up to this time
         self._loopfree = 0            # loopfree parts grounded up to this time
         self._inputs: dict[str, list[clingo.Symbol]] = {name: [] for name in incremental.INPUTS}
@@ -415,13 +435,14 @@ class Planner:
         """Add and ground the searches' encodings (once, on the first search)."""
         if self._searching:
             return
-        switches = [GOAL_SWITCH, SATISFICING_SWITCH] + [restriction_switch(p)
+        switches = [GOAL_SWITCH, SATISFICING_SWITCH, CANONICAL_SWITCH] + [restriction_switch(p)
                                                         for p in available_restrictions()]
         try:
             with clingo.ast.ProgramBuilder(self.ctl) as builder:
                 files = [(name, STEP, None, SEARCH) for name in SEARCH_ENCODINGS]
                 # Grounded when a search is found hard (see use_mutexes).
                 files.append((MUTEX_ENCODING, MUTEX_STEP, None, MUTEX))
+                files.append((CANONICAL_ENCODING, CANONICAL_STEP, None, CANONICAL))
                 files.append((GOAL_ENCODING, STEP, GOAL_SWITCH, SEARCH))
                 files.append((SATISFICING_ENCODING, STEP, SATISFICING_SWITCH, SEARCH))
                 files += [(f"{RESTRICTIONS}/{principle}.lp", STEP, restriction_switch(principle),
@@ -465,6 +486,8 @@ class Planner:
             parts += [(STEP, [clingo.Number(t)]), (CHECK, [clingo.Number(t)])]
             if self._mutexes:
                 parts.append((MUTEX_STEP, [clingo.Number(t)]))
+            if self._canonical:
+                parts.append((CANONICAL_STEP, [clingo.Number(t)]))
             for name, values in self._inputs.items():
                 if name == "simple_path":
                     continue
@@ -498,6 +521,24 @@ class Planner:
         self._ground([(MUTEX, [])] + [(MUTEX_STEP, [clingo.Number(t)])
                                       for t in range(1, self.grounded + 1)])
         self._mutexes = True
+        return True
+
+    @_locked
+    def use_canonical(self) -> bool:
+        """Ground the canonical order of independent actions
+        (``planning/canonical.lp``) for every step so far and from now on,
+        unless the model has exogenous events or more than
+        CANONICAL_MAX_ACTIONS usable actions; whether it is in use (a search
+        imposes it with :attr:`Setting.canonical`)."""
+        self._start_search()
+        if self._canonical is not False:
+            return bool(self._canonical)
+        if self.has_events or len(self.search_atoms("usable", 1)) > CANONICAL_MAX_ACTIONS:
+            self._canonical = None     # never
+            return False
+        self._ground([(CANONICAL, [])] + [(CANONICAL_STEP, [clingo.Number(t)])
+                                          for t in range(1, self.grounded + 1)])
+        self._canonical = True
         return True
 
     def _register(self, name: str, value: clingo.Symbol,
@@ -560,6 +601,8 @@ class Planner:
                 assign(_time_atom(PAST, t), t > end)
         assign(GOAL_SWITCH, setting.goal and horizon is not None)
         assign(SATISFICING_SWITCH, setting.satisficing)
+        # Paths compare the states between the actions, which a swap changes.
+        assign(CANONICAL_SWITCH, setting.canonical and simple_path is None)
         for principle in available_restrictions():
             assign(restriction_switch(principle), principle in setting.restrictions)
         wanted = {
@@ -603,7 +646,9 @@ class Planner:
               models: int = 1, mutex_after: float = MUTEX_AFTER) -> Outcome:
         """Solve at one horizon under a setting (grounding what it needs first);
         a solve that takes more than ``mutex_after`` seconds has the h^2
-        mutexes grounded for the next ones (:meth:`use_mutexes`)."""
+        mutexes grounded for the next ones (:meth:`use_mutexes`), and one
+        under a canonical setting that takes more than CANONICAL_AFTER (and
+        ``mutex_after``) seconds the canonical order (:meth:`use_canonical`)."""
         self._prepare(setting)
         # A plan shorter than the last event ends after it: the goal and the
         # state at the horizon are checked there (the steps between idle).
@@ -612,8 +657,12 @@ class Planner:
         assumptions = self._set(setting, check, horizon)
         began = time.monotonic()
         outcome = self._solve(assumptions, budget, setting.optimize, models)
-        if time.monotonic() - began > mutex_after and self._mutexes is False:
+        seconds = time.monotonic() - began
+        if seconds > mutex_after and self._mutexes is False:
             self.use_mutexes()          # a hard search: the next solves get them
+        if seconds > max(mutex_after, CANONICAL_AFTER) and setting.canonical \
+                and self._canonical is False:
+            self.use_canonical()        # a harder one: worth its grounding
         return outcome
 
     def _solve(self, assumptions, budget: Budget, optimize: bool, models: int) -> Outcome:

@@ -47,10 +47,6 @@ LAYERS_AT_ONCE_ACTIONS = 32
 # solver's work would only have taken a core from it (the machine may have
 # fewer free cores than processes).
 HEAD_START = 0.3
-# Seconds a solve takes before the h^2 mutexes are grounded, while layers
-# started at once are working: grounding cannot be interrupted, and they
-# often end the search within this time.
-MUTEX_AFTER_LAYERS = 0.5
 
 # Any-plan search: seconds of solving a horizon gets before the search moves
 # on to a larger one, and the factor by which horizons (and slices) grow then.
@@ -191,9 +187,6 @@ class _Exact:
             # Never while the greedy search works: at the large horizons of
             # any-plan search their grounding takes seconds, uninterrupted.
             return float("inf")
-        status = self.status()
-        if status is not None and status.working and self.atoms is None:
-            return MUTEX_AFTER_LAYERS
         return MUTEX_AFTER
 
     def watch(self, horizon: int) -> Budget:
@@ -217,6 +210,15 @@ class _Exact:
         for engine in (self.layers, self.greedy):
             if engine is not None:
                 engine.stop()
+
+
+def _one_plan_wanted(setting: Setting) -> bool:
+    """Does a search under this setting want just some plan of each length (so
+    that independent actions may be taken in one order, ``planning/
+    canonical.lp``)?  Not with utility thresholds, states to avoid or
+    optimisation (they read the states a plan passes)."""
+    return (setting.goal and setting.best_utility is None and setting.at_least is None
+            and setting.other_state is None and not setting.optimize)
 
 
 def _bound_proof(bound: int, why: str, horizon: int) -> str:
@@ -269,6 +271,8 @@ def shortest(planner: Planner, setting: Setting, budget: Budget,
                                   "the maximal horizon")
     plain = not setting.restrictions and not setting.constraints and not all_plans
     exact = _Exact(planner, setting, budget, read_plan=plain)
+    if plain and _one_plan_wanted(setting):
+        setting = replace(setting, canonical=True)
     try:
         return _shortest(planner, setting, budget, max_horizon, start, start_proof, all_plans,
                          task, exact)
@@ -364,7 +368,8 @@ def any_plan(planner: Planner, setting: Setting, budget: Budget,
                             proof="the goal is unreachable even ignoring delete effects")
     plain = not setting.restrictions and not setting.constraints
     exact = _Exact(planner, setting, budget, read_plan=plain, greedy=True)
-    setting = replace(setting, satisficing=True)
+    setting = replace(setting, satisficing=True,
+                      canonical=plain and _one_plan_wanted(setting))
     try:
         return _any_plan(planner, setting, budget, max_horizon, start, start_proof, task, exact)
     finally:
