@@ -150,10 +150,11 @@ class _Exact:
 
     def head_start(self) -> None:
         """Wait up to :data:`HEAD_START` seconds for an engine started with the
-        search (not for layers that start later) to finish."""
+        search (not for layers that start later) to finish, where it may end
+        the search with a plan (plain plan search)."""
         engine = self.greedy if self.greedy is not None else \
             (self.layers if self.atoms is None else None)
-        if engine is None:
+        if engine is None or not self.read_plan:
             return
         end = time.monotonic() + HEAD_START
         while engine.status.working and not self.budget.expired():
