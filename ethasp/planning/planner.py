@@ -723,19 +723,25 @@ class Planner:
             self._model_text = self.vocabulary_text(MODEL_VOCABULARY)
         return self._model_text
 
-    def plan_model_text(self, plan) -> str:
-        """The ground model's vocabulary as facts, the facts about actions
-        (:data:`ACTION_VOCABULARY`) for the plan's actions only: all that a
-        trace of the plan reads (``planning/trace.lp`` joins every fact about
-        an action with its occurrence), and much less than the whole model."""
+    @_locked
+    def prepare_traces(self) -> None:
+        """Index the facts about actions by action (for :meth:`plan_model_text`;
+        made once, and early by a search that waits for an engine)."""
         if self._action_atoms is None:
             by_action: dict[clingo.Symbol, list[clingo.Symbol]] = {}
             for signature in ACTION_VOCABULARY:
                 for symbol in self.get(*signature):
                     by_action.setdefault(symbol.arguments[0], []).append(symbol)
-            self._action_atoms = by_action
             self._state_text = self.vocabulary_text(
                 [s for s in MODEL_VOCABULARY if s not in ACTION_VOCABULARY])
+            self._action_atoms = by_action
+
+    def plan_model_text(self, plan) -> str:
+        """The ground model's vocabulary as facts, the facts about actions
+        (:data:`ACTION_VOCABULARY`) for the plan's actions only: all that a
+        trace of the plan reads (``planning/trace.lp`` joins every fact about
+        an action with its occurrence), and much less than the whole model."""
+        self.prepare_traces()
         return self._state_text + "".join(f"{symbol}.\n" for action in dict.fromkeys(plan)
                                           for symbol in self._action_atoms.get(action, ()))
 

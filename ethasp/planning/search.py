@@ -157,6 +157,8 @@ class _Exact:
         if engine is None or not self.read_plan:
             return
         end = time.monotonic() + HEAD_START
+        # Meanwhile: what checking the engine's plan by its trace will read.
+        self.planner.prepare_traces()
         while engine.status.working and not self.budget.expired():
             left = end - time.monotonic()
             if left <= 0:
