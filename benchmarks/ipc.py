@@ -1,8 +1,9 @@
 """Plan search on IPC domains: ethasp next to Fast Downward, in one run.
 
 For every domain folder (a ``domain.pddl`` and problem files ``*.pddl``) under
-the given folder (default ``/work/shared/ipc``) and every problem, four whole
-processes are timed from outside, each capped (``--time-limit``, default 60 s):
+the folder given (for instance a copy of IPC domains) and every problem, four
+whole processes are timed from outside, each capped (``--time-limit``,
+default 60 s):
 
 * ``ethasp plan DOMAIN PROBLEM --json`` (a shortest plan, proven);
 * ``ethasp plan DOMAIN PROBLEM --satisficing --json`` (some plan);
@@ -19,7 +20,7 @@ plan within 3x its time, on every instance Fast Downward solves within 10 s.
 ``--repeat N`` runs each process N times and keeps the fastest (the machine
 may be shared).  Without ``up-fast-downward`` it prints ethasp's figures alone.
 
-Usage: python benchmarks/ipc.py [FOLDER] [--time-limit S] [--repeat N] [--only TEXT]
+Usage: python benchmarks/ipc.py FOLDER [--time-limit S] [--repeat N] [--only TEXT]
                                 [--modes opt,sat,fd-opt,fd-sat]
 """
 
@@ -39,7 +40,6 @@ from dataclasses import dataclass
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-DEFAULT_FOLDER = Path("/work/shared/ipc")
 FD_SEARCH = {"fd-opt": "astar(lmcut())", "fd-sat": "lazy_greedy([ff()])"}
 MODES = ("opt", "sat", "fd-opt", "fd-sat")
 # Targets: Fast Downward solves within this many seconds, ethasp within a factor.
@@ -168,8 +168,8 @@ def meets(mode: str, ours: Run | None, theirs: Run | None) -> bool | None:
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("folder", nargs="?", type=Path, default=DEFAULT_FOLDER,
-                        help=f"a folder of domain folders (default {DEFAULT_FOLDER})")
+    parser.add_argument("folder", type=Path,
+                        help="a folder of domain folders, each with domain.pddl and problems")
     parser.add_argument("--time-limit", type=float, default=60.0,
                         help="seconds per process (default 60)")
     parser.add_argument("--repeat", type=int, default=1,

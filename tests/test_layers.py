@@ -43,8 +43,8 @@ def run_layers(model: Model, read_plan: bool = True):
 @pytest.fixture(params=["process", "thread"])
 def mode(request, monkeypatch):
     if request.param == "thread":
-        monkeypatch.setattr(layers_module, "_can_fork", lambda: False)
-    elif not layers_module._can_fork():
+        monkeypatch.setattr(layers_module, "can_fork", lambda: False)
+    elif not layers_module.can_fork():
         pytest.skip("no child processes here")
     return request.param
 

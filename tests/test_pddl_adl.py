@@ -169,7 +169,9 @@ def test_derived_predicates_recursive_and_negated(tmp_path):
     model = load(tmp_path, ROOMS, ROOMS_PROBLEM)
     result = find_plan(model)
     assert result.status == "found" and len(result.plan) == 5
-    assert str(result.plan.actions[-1]) == "go(r1,r4)"
+    # one of the shortest plans (go to r4 last, or switch the light on there last)
+    assert validate(model, result.plan).valid
+    assert str(result.plan.actions[-1]) in ("go(r1,r4)", "switch(r4)")
     check = validate(model, Plan.parse("(open r1 r2) (go r1 r3)"))
     assert check.failure_step == 2 and check.unmet_preconditions == ["reach(r3)"]
     # derived facts are not part of the state

@@ -30,7 +30,7 @@ import signal
 import sys
 import threading
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Callable
 
 import clingo
 
@@ -41,7 +41,7 @@ if TYPE_CHECKING:   # imported in the thread that computes the layers
 
 # Live diagram nodes beyond which the layers give up (the search goes on
 # without them).
-NODE_LIMIT = 2_000_000
+NODE_LIMIT = 500_000
 
 
 def _value(symbol: clingo.Symbol) -> bool:
@@ -166,14 +166,16 @@ class Status:
         return not (self.plan is not None or self.complete or self.stopped)
 
 
-def _can_fork() -> bool:
+def can_fork() -> bool:
     """Whether the layers may run in a child process (a fork of this one)."""
     return hasattr(os, "fork") and sys.platform.startswith("linux")
 
 
 class Layers:
     """Exact layers of a planner's search model (given by its :class:`Atoms`,
-    read between solves), computed beside the search.
+    read between solves, or by a function that reads them: called in the child
+    process, so only where the planner is not solving when the layers start),
+    computed beside the search.
 
     :meth:`start` starts the work, :attr:`status` tells what is proven so
     far (:attr:`news` is set whenever it changes), :meth:`stop` ends the work.
@@ -187,7 +189,7 @@ class Layers:
     through a pipe, one line a finding.  Elsewhere they run in a thread.
     """
 
-    def __init__(self, atoms: Atoms, budget: Budget, read_plan: bool = True,
+    def __init__(self, atoms: Atoms | Callable[[], Atoms], budget: Budget, read_plan: bool = True,
                  node_limit: int = NODE_LIMIT):
         self._atoms = atoms
         self.model: GroundModel | None = None
@@ -201,9 +203,11 @@ class Layers:
         self._lock = threading.Lock()
 
     def start(self) -> "Layers":
-        if _can_fork():
+        if can_fork():
             self._start_child()
         else:
+            if callable(self._atoms):        # read here: a thread shares the control
+                self._atoms = self._atoms()
             threading.Thread(target=self._run, args=(self._publish,), name="ethasp-layers",
                              daemon=True).start()
         return self
@@ -266,7 +270,8 @@ class Layers:
             publish(stopped=f"exact reachability failed: {type(error).__name__}: {error}")
 
     def _work(self, publish) -> None:
-        self.model = search_model(self._atoms)
+        atoms = self._atoms() if callable(self._atoms) else self._atoms
+        self.model = search_model(atoms)
         _import_diagrams()
         from ethasp.planning.reachability import Reachability
 

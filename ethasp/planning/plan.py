@@ -89,6 +89,15 @@ class Plan:
         ordered = sorted(atoms, key=lambda atom: atom.step)
         return cls(tuple(atom.action.symbol for atom in ordered))
 
+    @classmethod
+    def from_symbols(cls, symbols: Iterable[clingo.Symbol]) -> "Plan":
+        """The plan of the ``occurs(A,T)`` atoms among clingo symbols (other
+        atoms are left aside): read without the typed vocabulary, whose
+        classes take longer to build than a short plan search takes."""
+        occurs = [symbol.arguments for symbol in symbols
+                  if symbol.name == "occurs" and len(symbol.arguments) == 2]
+        return cls(tuple(action for action, _ in sorted(occurs, key=lambda a: a[1].number)))
+
     def facts(self) -> list[Occurs]:
         """The plan as ``occurs(A,T)`` facts."""
         from clorm import Raw

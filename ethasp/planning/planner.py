@@ -26,6 +26,10 @@ Program parts of the control (``t`` a time, ``x`` an input value):
 * ``mutex`` and ``mutex_step(t)``: the h^2 mutexes of ``planning/mutex.lp``
   and their constraints, grounded (for every step so far and from then on)
   once a solve has been slow (:meth:`Planner.use_mutexes`);
+* ``canonical`` and ``canonical_step(t)``: the canonical order of
+  independent consecutive actions of ``planning/canonical.lp`` (switched by
+  ``require(canonical)``), grounded once a search that may use it has been
+  slow (:meth:`Planner.use_canonical`);
 * ``question(x)``, ``question_step(x,t)``, ``question_check(x,t)``: one
   question of ``questions/questions.lp``, grounded when it is asked;
 * ``best_utility(x)``, ``at_least(x)``, ``other_state(x)`` and their ``_check``
@@ -62,6 +66,10 @@ if TYPE_CHECKING:   # imported when used: plain plan search starts without them
 # What a model defines (encodings/planning/model.lp and reasons/labels.lp):
 # programs about a plan or a formula read these atoms of the ground model.
 MODEL_VOCABULARY = tuple(namespace.MODEL_VOCABULARY)
+# The predicates of the vocabulary about one action (its first argument): a
+# plan's trace reads them for the plan's actions only.
+ACTION_VOCABULARY = (("action", 1), ("pre", 3), ("eff", 3), ("cpre", 4), ("ceff", 4),
+                     ("utility", 2), ("override", 4), ("action_label", 3))
 
 TRACE_ENCODINGS = ("planning/model.lp", "planning/trace.lp", "planning/trace_events.lp",
                    "judgement/judge.lp")
@@ -86,6 +94,17 @@ MUTEX = "mutex"
 MUTEX_STEP = "mutex_step"
 MUTEX_MAX_FLUENTS = 400
 MUTEX_AFTER = 0.05
+# The canonical order of independent actions (partial-order reduction): its
+# pairs of independent actions grow with the square of the actions, so it is
+# grounded (with the mutexes) only for models of at most this many usable ones.
+CANONICAL_ENCODING = "planning/canonical.lp"
+CANONICAL = "canonical"
+CANONICAL_STEP = "canonical_step"
+CANONICAL_MAX_ACTIONS = 1000
+# ... and once a solve that may use it has taken this many seconds (its
+# grounding, per step, costs more than it saves on easier horizons).
+CANONICAL_AFTER = 0.5
+CANONICAL_SWITCH = clingo.Function("require", [clingo.Function("canonical")])
 LOOPFREE_ENCODING = "planning/loopfree.lp"
 RESTRICTIONS = "restrictions"
 
@@ -205,7 +224,10 @@ class Setting:
     objective (the utility of the state at the horizon, then goal states);
     ``satisficing``: the solver's decision heuristic for any-plan searches
     (``planning/satisficing.lp``; it changes which plan is found first, not
-    which plans exist).
+    which plans exist); ``canonical``: independent consecutive actions in the
+    order of their terms (``planning/canonical.lp``, once grounded): for
+    searches that want one plan of a length, whatever its order (it removes
+    plans, but never all plans of a length).
     """
 
     goal: bool = True
@@ -216,6 +238,7 @@ class Setting:
     other_state: int | None = None
     optimize: bool = False
     satisficing: bool = False
+    canonical: bool = False
 
 
 @dataclass
@@ -257,6 +280,7 @@ class Planner:
         self._parts: dict[str, tuple[str, ...]] = {}
         self._searching = False
         self._mutexes: bool | None = False   # grounded (True), not yet, or never (None)
+        self._canonical: bool | None = False  # the same for the canonical order
         self.grounded = -1            # step and check parts grounded up to this time
         self._loopfree = 0            # loopfree parts grounded up to this time
         self._inputs: dict[str, list[clingo.Symbol]] = {name: [] for name in incremental.INPUTS}
@@ -269,6 +293,8 @@ class Planner:
         self._traces: dict = {}
         self._externals: dict[clingo.Symbol, bool] = {}   # values assigned so far
         self._model_text: str | None = None
+        self._action_atoms: dict[clingo.Symbol, list[clingo.Symbol]] | None = None
+        self._state_text: str | None = None
         self._bound: Answer | None = None
         self.memo: dict = {}          # results of the layers above, by question asked
         try:
@@ -409,13 +435,14 @@ class Planner:
         """Add and ground the searches' encodings (once, on the first search)."""
         if self._searching:
             return
-        switches = [GOAL_SWITCH, SATISFICING_SWITCH] + [restriction_switch(p)
+        switches = [GOAL_SWITCH, SATISFICING_SWITCH, CANONICAL_SWITCH] + [restriction_switch(p)
                                                         for p in available_restrictions()]
         try:
             with clingo.ast.ProgramBuilder(self.ctl) as builder:
                 files = [(name, STEP, None, SEARCH) for name in SEARCH_ENCODINGS]
                 # Grounded when a search is found hard (see use_mutexes).
                 files.append((MUTEX_ENCODING, MUTEX_STEP, None, MUTEX))
+                files.append((CANONICAL_ENCODING, CANONICAL_STEP, None, CANONICAL))
                 files.append((GOAL_ENCODING, STEP, GOAL_SWITCH, SEARCH))
                 files.append((SATISFICING_ENCODING, STEP, SATISFICING_SWITCH, SEARCH))
                 files += [(f"{RESTRICTIONS}/{principle}.lp", STEP, restriction_switch(principle),
@@ -459,6 +486,8 @@ class Planner:
             parts += [(STEP, [clingo.Number(t)]), (CHECK, [clingo.Number(t)])]
             if self._mutexes:
                 parts.append((MUTEX_STEP, [clingo.Number(t)]))
+            if self._canonical:
+                parts.append((CANONICAL_STEP, [clingo.Number(t)]))
             for name, values in self._inputs.items():
                 if name == "simple_path":
                     continue
@@ -492,6 +521,24 @@ class Planner:
         self._ground([(MUTEX, [])] + [(MUTEX_STEP, [clingo.Number(t)])
                                       for t in range(1, self.grounded + 1)])
         self._mutexes = True
+        return True
+
+    @_locked
+    def use_canonical(self) -> bool:
+        """Ground the canonical order of independent actions
+        (``planning/canonical.lp``) for every step so far and from now on,
+        unless the model has exogenous events or more than
+        CANONICAL_MAX_ACTIONS usable actions; whether it is in use (a search
+        imposes it with :attr:`Setting.canonical`)."""
+        self._start_search()
+        if self._canonical is not False:
+            return bool(self._canonical)
+        if self.has_events or len(self.search_atoms("usable", 1)) > CANONICAL_MAX_ACTIONS:
+            self._canonical = None     # never
+            return False
+        self._ground([(CANONICAL, [])] + [(CANONICAL_STEP, [clingo.Number(t)])
+                                          for t in range(1, self.grounded + 1)])
+        self._canonical = True
         return True
 
     def _register(self, name: str, value: clingo.Symbol,
@@ -554,6 +601,8 @@ class Planner:
                 assign(_time_atom(PAST, t), t > end)
         assign(GOAL_SWITCH, setting.goal and horizon is not None)
         assign(SATISFICING_SWITCH, setting.satisficing)
+        # Paths compare the states between the actions, which a swap changes.
+        assign(CANONICAL_SWITCH, setting.canonical and simple_path is None)
         for principle in available_restrictions():
             assign(restriction_switch(principle), principle in setting.restrictions)
         wanted = {
@@ -594,8 +643,12 @@ class Planner:
 
     @_locked
     def solve(self, horizon: int, setting: Setting, budget: Budget,
-              models: int = 1) -> Outcome:
-        """Solve at one horizon under a setting (grounding what it needs first)."""
+              models: int = 1, mutex_after: float = MUTEX_AFTER) -> Outcome:
+        """Solve at one horizon under a setting (grounding what it needs first);
+        a solve that takes more than ``mutex_after`` seconds has the h^2
+        mutexes grounded for the next ones (:meth:`use_mutexes`), and one
+        under a canonical setting that takes more than CANONICAL_AFTER (and
+        ``mutex_after``) seconds the canonical order (:meth:`use_canonical`)."""
         self._prepare(setting)
         # A plan shorter than the last event ends after it: the goal and the
         # state at the horizon are checked there (the steps between idle).
@@ -604,8 +657,12 @@ class Planner:
         assumptions = self._set(setting, check, horizon)
         began = time.monotonic()
         outcome = self._solve(assumptions, budget, setting.optimize, models)
-        if time.monotonic() - began > MUTEX_AFTER and self._mutexes is False:
+        seconds = time.monotonic() - began
+        if seconds > mutex_after and self._mutexes is False:
             self.use_mutexes()          # a hard search: the next solves get them
+        if seconds > max(mutex_after, CANONICAL_AFTER) and setting.canonical \
+                and self._canonical is False:
+            self.use_canonical()        # a harder one: worth its grounding
         return outcome
 
     def _solve(self, assumptions, budget: Budget, optimize: bool, models: int) -> Outcome:
@@ -666,6 +723,28 @@ class Planner:
             self._model_text = self.vocabulary_text(MODEL_VOCABULARY)
         return self._model_text
 
+    @_locked
+    def prepare_traces(self) -> None:
+        """Index the facts about actions by action (for :meth:`plan_model_text`;
+        made once, and early by a search that waits for an engine)."""
+        if self._action_atoms is None:
+            by_action: dict[clingo.Symbol, list[clingo.Symbol]] = {}
+            for signature in ACTION_VOCABULARY:
+                for symbol in self.get(*signature):
+                    by_action.setdefault(symbol.arguments[0], []).append(symbol)
+            self._state_text = self.vocabulary_text(
+                [s for s in MODEL_VOCABULARY if s not in ACTION_VOCABULARY])
+            self._action_atoms = by_action
+
+    def plan_model_text(self, plan) -> str:
+        """The ground model's vocabulary as facts, the facts about actions
+        (:data:`ACTION_VOCABULARY`) for the plan's actions only: all that a
+        trace of the plan reads (``planning/trace.lp`` joins every fact about
+        an action with its occurrence), and much less than the whole model."""
+        self.prepare_traces()
+        return self._state_text + "".join(f"{symbol}.\n" for action in dict.fromkeys(plan)
+                                          for symbol in self._action_atoms.get(action, ()))
+
     def program(self, encodings: Sequence[str], facts: str = "", arguments: Sequence[str] = (),
                 model: bool = True, symbols: Iterable[clingo.Symbol] = ()) -> clingo.Control:
         """A grounded control with the ground model's facts (unless ``model`` is
@@ -698,8 +777,12 @@ class Planner:
         for done, answer in self._traces.get(plan, []):
             if wanted <= done:
                 return answer
-        answer = self.solve_program(list(TRACE_ENCODINGS) + list(encodings),
-                                    symbols=occurrences(plan))
+        if encodings:     # further programs may read any action of the model
+            answer = self.solve_program(list(TRACE_ENCODINGS) + list(encodings),
+                                        symbols=occurrences(plan))
+        else:
+            answer = self.solve_program(TRACE_ENCODINGS, self.plan_model_text(plan),
+                                        model=False, symbols=occurrences(plan))
         self._traces.setdefault(plan, []).append((wanted, answer))
         return answer
 

@@ -24,9 +24,10 @@ from dataclasses import dataclass, field, replace
 
 from ethasp.errors import InputError
 from ethasp.planning.budget import Budget
+from ethasp.planning import layers as layers_module
 from ethasp.planning.layers import Atoms, Layers, Status
 from ethasp.planning.plan import Plan, steps
-from ethasp.planning.planner import Planner, Setting
+from ethasp.planning.planner import MUTEX_AFTER, Planner, Setting
 
 FOUND, NONE, BOUNDED = "found", "none", "bounded"
 
@@ -37,6 +38,15 @@ DEFAULT_SATISFICING_HORIZON = 256
 # Seconds of solving after which exact layers start beside the encodings (the
 # smallest tasks are solved before, without the cost of starting them).
 LAYERS_AFTER = 0.03
+# Models with at least this many ground actions start the layers with the
+# search: there the layers often find a shortest plan before the solver has
+# refuted the first few horizons.
+LAYERS_AT_ONCE_ACTIONS = 32
+# Seconds the solver waits, at the start of a search, for an engine started
+# with it (layers, greedy search) to finish: where it finishes that soon, the
+# solver's work would only have taken a core from it (the machine may have
+# fewer free cores than processes).
+HEAD_START = 0.3
 
 # Any-plan search: seconds of solving a horizon gets before the search moves
 # on to a larger one, and the factor by which horizons (and slices) grow then.
@@ -86,21 +96,20 @@ def _checkpoints(limit: int) -> set[int]:
 
 def plans_of(models: list) -> list[Plan]:
     """The plans of answer sets (their ``occurs/2`` atoms), without repeats."""
-    from clorm import unify
-
-    from ethasp.vocabulary import Occurs
-
-    plans = [Plan.from_occurs(unify([Occurs], symbols).query(Occurs).all()) for symbols in models]
+    plans = [Plan.from_symbols(symbols) for symbols in models]
     return list(dict.fromkeys(plans))
 
 
 class _Exact:
     """Exact layers (:mod:`ethasp.planning.layers`) beside a search, started once
-    the solver has worked :data:`LAYERS_AFTER` seconds, for searches with the
-    goal and without utility thresholds or states to avoid (the layers know
-    the model's plans, and every plan a setting allows is one of them)."""
+    the solver has worked :data:`LAYERS_AFTER` seconds (with the search, for
+    models of at least :data:`LAYERS_AT_ONCE_ACTIONS` ground actions), for
+    searches with the goal and without utility thresholds or states to avoid
+    (the layers know the model's plans, and every plan a setting allows is one
+    of them)."""
 
-    def __init__(self, planner: Planner, setting: Setting, budget: Budget, read_plan: bool):
+    def __init__(self, planner: Planner, setting: Setting, budget: Budget, read_plan: bool,
+                 greedy: bool = False):
         self.planner = planner
         self.budget = budget
         self.read_plan = read_plan
@@ -109,24 +118,79 @@ class _Exact:
                        and setting.at_least is None and setting.other_state is None
                        and planner.exact_reachability)
         self.layers: Layers | None = None
+        self.greedy: Layers | None = None
         self.solving = 0.0            # seconds spent in solves so far
-        # The ground atoms the layers need, read now: the planner's control
-        # cannot be read while it solves, which is when the layers start.
-        self.atoms = Atoms(planner) if self.usable else None
+        self.atoms: Atoms | None = None
+        if not self.usable:
+            return
+        if greedy and read_plan and not planner.get("derived", 1):
+            # Any-plan search: a greedy forward search proposes a plan (or
+            # proves that there is none) instead of the layers.
+            from ethasp.planning.greedy import Greedy
+
+            reader = (lambda: Atoms(planner)) if layers_module.can_fork() else Atoms(planner)
+            self.greedy = Greedy(reader, budget, read_plan=True).start()
+            return
+        if len(planner.get("action", 1)) >= LAYERS_AT_ONCE_ACTIONS \
+                and layers_module.can_fork():
+            # Started now, before any solve: the child process reads the
+            # ground atoms itself while this process goes on grounding.
+            self.layers = Layers(lambda: Atoms(planner), budget, read_plan=read_plan).start()
+        else:
+            # The ground atoms the layers need, read now: the planner's control
+            # cannot be read while it solves, which is when the layers start.
+            self.atoms = Atoms(planner)
 
     def status(self) -> Status | None:
         return self.layers.status if self.layers is not None else None
 
     def start(self) -> None:
-        if self.layers is None and self.usable:
+        if self.layers is None and self.atoms is not None:
             self.layers = Layers(self.atoms, self.budget, read_plan=self.read_plan).start()
 
+    def head_start(self) -> None:
+        """Wait up to :data:`HEAD_START` seconds for an engine started with the
+        search (not for layers that start later) to finish, where it may end
+        the search with a plan (plain plan search)."""
+        engine = self.greedy if self.greedy is not None else \
+            (self.layers if self.atoms is None else None)
+        if engine is None or not self.read_plan:
+            return
+        end = time.monotonic() + HEAD_START
+        # Meanwhile: what checking the engine's plan by its trace will read.
+        self.planner.prepare_traces()
+        while engine.status.working and not self.budget.expired():
+            left = end - time.monotonic()
+            if left <= 0:
+                return
+            engine.news.wait(min(left, 0.05))
+            engine.news.clear()
+
+    def greedy_plan(self) -> tuple | None:
+        """The actions of a plan the greedy search proposed, if any (unchecked)."""
+        return self.greedy.status.plan if self.greedy is not None else None
+
+    def greedy_complete(self) -> bool:
+        """Did the greedy search expand every reachable state without a goal state?"""
+        return self.greedy is not None and self.greedy.status.complete
+
     def moot(self, horizon: int) -> bool:
-        """Is a solve at this horizon made pointless by what the layers proved?"""
+        """Is a solve at this horizon made pointless by what the layers proved
+        (or by a plan that the greedy search proposed)?"""
+        if self.greedy_plan() is not None or self.greedy_complete():
+            return True
         status = self.status()
         if status is None:
             return False
         return (status.plan is not None or status.complete or status.bound > horizon)
+
+    def mutex_after(self) -> float:
+        """Seconds a solve takes before the h^2 mutexes are grounded."""
+        if self.greedy is not None and self.greedy.status.working:
+            # Never while the greedy search works: at the large horizons of
+            # any-plan search their grounding takes seconds, uninterrupted.
+            return float("inf")
+        return MUTEX_AFTER
 
     def watch(self, horizon: int) -> Budget:
         """The budget of a solve at this horizon: it also stops when the layers
@@ -146,8 +210,18 @@ class _Exact:
             self.start()
 
     def stop(self) -> None:
-        if self.layers is not None:
-            self.layers.stop()
+        for engine in (self.layers, self.greedy):
+            if engine is not None:
+                engine.stop()
+
+
+def _one_plan_wanted(setting: Setting) -> bool:
+    """Does a search under this setting want just some plan of each length (so
+    that independent actions may be taken in one order, ``planning/
+    canonical.lp``)?  Not with utility thresholds, states to avoid or
+    optimisation (they read the states a plan passes)."""
+    return (setting.goal and setting.best_utility is None and setting.at_least is None
+            and setting.other_state is None and not setting.optimize)
 
 
 def _bound_proof(bound: int, why: str, horizon: int) -> str:
@@ -165,10 +239,15 @@ def _bound_proof(bound: int, why: str, horizon: int) -> str:
 
 def _layers_plan(planner: Planner, status: Status) -> Plan:
     """A plan read off the exact layers, checked by its trace (the encodings)."""
-    plan = Plan(tuple(status.plan))
+    return _checked(planner, status.plan, "exact reachability")
+
+
+def _checked(planner: Planner, actions, engine: str) -> Plan:
+    """A plan that an engine proposed, checked by its trace (the encodings)."""
+    plan = Plan(tuple(actions))
     answer = planner.trace(plan)
     if not answer.get("plan", 0):
-        raise RuntimeError(f"exact reachability proposed {plan}, which the encodings refute")
+        raise RuntimeError(f"{engine} proposed {plan}, which the encodings refute")
     return plan
 
 
@@ -195,6 +274,8 @@ def shortest(planner: Planner, setting: Setting, budget: Budget,
                                   "the maximal horizon")
     plain = not setting.restrictions and not setting.constraints and not all_plans
     exact = _Exact(planner, setting, budget, read_plan=plain)
+    if plain and _one_plan_wanted(setting):
+        setting = replace(setting, canonical=True)
     try:
         return _shortest(planner, setting, budget, max_horizon, start, start_proof, all_plans,
                          task, exact)
@@ -208,6 +289,7 @@ def _shortest(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
     checkpoints = _checkpoints(max_horizon)
     bound, why = start, start_proof          # every plan has at least `bound` steps
     horizon = start
+    exact.head_start()
     while True:
         status = exact.status()
         if status is not None:
@@ -233,7 +315,7 @@ def _shortest(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
         budget.report(task, horizon=horizon)
         began = time.monotonic()
         outcome = planner.solve(horizon, setting, exact.watch(horizon),
-                                models=0 if all_plans else 1)
+                                models=0 if all_plans else 1, mutex_after=exact.mutex_after())
         exact.solved(time.monotonic() - began)
         if outcome.satisfiable is None:
             if budget.expired():
@@ -274,9 +356,12 @@ def any_plan(planner: Planner, setting: Setting, budget: Budget,
     refutes in time is a lower bound (as in :func:`shortest`); one it cannot
     decide in time is left for a larger one (a search to horizon h finds the
     plans of at most h steps, so larger horizons leave it more room), the
-    horizon and the slice growing by :data:`GROWTH`.  Exact layers run beside
-    it as in :func:`shortest` and for plain plan search may deliver a plan
-    first.  ``none`` is proven as by :func:`shortest`: relaxed or exact
+    horizon and the slice growing by :data:`GROWTH`.  For plain plan search
+    (no restriction, no question constraint) a greedy forward search
+    (:mod:`ethasp.planning.greedy`) runs beside it in a child process and
+    may deliver a plan (or the proof that none exists) first; otherwise exact
+    layers run beside it as in :func:`shortest`.  A plan from either engine is checked by its trace.
+    ``none`` is proven as by :func:`shortest`: relaxed or exact
     reachability, or a refuted horizon without a simple path of its length.
     """
     if max_horizon < 0:
@@ -285,8 +370,9 @@ def any_plan(planner: Planner, setting: Setting, budget: Budget,
         return SearchResult(NONE, horizon=0, optimal=False,
                             proof="the goal is unreachable even ignoring delete effects")
     plain = not setting.restrictions and not setting.constraints
-    exact = _Exact(planner, setting, budget, read_plan=plain)
-    setting = replace(setting, satisficing=True)
+    exact = _Exact(planner, setting, budget, read_plan=plain, greedy=True)
+    setting = replace(setting, satisficing=True,
+                      canonical=plain and _one_plan_wanted(setting))
     try:
         return _any_plan(planner, setting, budget, max_horizon, start, start_proof, task, exact)
     finally:
@@ -297,7 +383,18 @@ def _any_plan(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
               start_proof: str, task: str, exact: _Exact) -> SearchResult:
     bound, why = start, start_proof          # every plan has at least `bound` steps
     horizon, slice_, checked = start, SLICE, 0
+    exact.head_start()
     while True:
+        proposed = exact.greedy_plan()
+        if proposed is not None and len(proposed) <= max_horizon:
+            plan = _checked(planner, proposed, "greedy search")
+            return SearchResult(FOUND, plan=plan, horizon=len(plan), optimal=False,
+                                proof="a plan found by greedy forward search (not proven "
+                                      "shortest)")
+        if exact.greedy_complete():
+            return SearchResult(NONE, horizon=horizon, optimal=False, proof=(
+                "greedy forward search expanded every reachable state (but those from "
+                "which even the relaxed goal is unreachable), and none is a goal state"))
         status = exact.status()
         if status is not None:
             if status.plan is not None and len(status.plan) <= max_horizon:
@@ -321,7 +418,8 @@ def _any_plan(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
         end = began + slice_
         watch = exact.watch(horizon)
         outcome = planner.solve(horizon, setting,
-                                watch.until(lambda: time.monotonic() > end), models=1)
+                                watch.until(lambda: time.monotonic() > end), models=1,
+                                mutex_after=exact.mutex_after())
         exact.solved(time.monotonic() - began)
         if outcome.satisfiable is None:
             if budget.expired():

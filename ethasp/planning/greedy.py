@@ -1,0 +1,293 @@
+"""Greedy forward search for any-plan search: some plan fast, not a shortest one.
+
+Any-plan search (:func:`ethasp.planning.search.any_plan`) asks the solver
+for plans at growing horizons; on tasks whose plans are long, proving that
+nothing fits a horizon costs more than finding a plan.  This engine runs
+beside it: a greedy best-first search over explicit states of the search
+model (:func:`ethasp.planning.layers.search_model`), guided by the FF
+heuristic (the length of a relaxed plan that ignores delete effects) and
+trying first the actions of that relaxed plan applicable in the state
+(helpful actions), with lazy evaluation (a state is evaluated when it is
+taken from the queue, with its parent's estimate until then).
+
+It is a proposal engine, as the exact layers are: it reads the ground model
+and proposes a sequence of actions; the search checks the plan by its trace
+(``encodings/planning/trace.lp``) before anyone sees it, so what a plan is
+stays decided by the encodings.  Its one other claim is that no goal state
+is reachable, when it has expanded every reachable state (pruning only
+repeated states and states from which even the relaxed goal is
+unreachable); running out of time or of its state limit, it stops without
+a claim.  Like the layers, it is started only where relaxed reachability
+found the goal reachable (the search model leaves out the goal literals on
+variables that never change).  It runs in a child process beside the
+solver (see :class:`Greedy`).
+
+States are Python integers (bit i: variable i is true), so a state is
+hashed and compared as one number.  Models with derived variables are left
+to the solver (the engine would have to evaluate axioms in every state).
+"""
+
+from __future__ import annotations
+
+import heapq
+from dataclasses import dataclass
+
+import clingo
+
+from ethasp.planning.budget import Budget
+from ethasp.planning.layers import Layers
+
+# States generated beyond which the search gives up (memory).
+STATE_LIMIT = 2_000_000
+# Why a search without a plan stopped when it expanded every reachable state
+# (but relaxed dead ends, from which no goal state is reachable either).
+EXHAUSTED = "every reachable state expanded without a goal state"
+# Expansions between two checks of the budget.
+CHECK_EVERY = 64
+# Turns in a row the queue of helpful actions gets whenever the estimate
+# improves (progress is followed where the relaxed plan points).
+BOOST = 1000
+
+
+@dataclass(frozen=True)
+class Step:
+    """An action over state bits: preconditions (bits that must be 1, bits that
+    must be 0), unconditional effects (bits set, bits cleared; set wins), and
+    conditional effects (condition masks and their set/clear masks)."""
+
+    name: clingo.Symbol
+    pos: int
+    neg: int
+    add: int
+    delete: int
+    conditional: tuple[tuple[int, int, int, int], ...]   # (pos, neg, add, delete)
+
+    def applicable(self, state: int) -> bool:
+        return state & self.pos == self.pos and not state & self.neg
+
+    def apply(self, state: int) -> int:
+        add, delete = self.add, self.delete
+        for pos, neg, cadd, cdelete in self.conditional:
+            if state & pos == pos and not state & neg:
+                add |= cadd
+                delete |= cdelete
+        return (state & ~delete) | add
+
+
+class Task:
+    """A ground model as bit masks, and its FF heuristic.
+
+    Relaxed facts are literals: ``2*i + 1`` for "variable i is true",
+    ``2*i`` for "variable i is false"; a relaxed action (an action, or one
+    conditional effect of it with its condition) needs its literals and adds
+    its effects' literals.
+    """
+
+    def __init__(self, model):
+        self.variables = list(model.variables)
+        index = {v: i for i, v in enumerate(self.variables)}
+        self.index = index
+        self.steps: list[Step] = []
+        relaxed: list[tuple[tuple[int, ...], tuple[int, ...], int]] = []  # (needs, adds, step)
+
+        def literal(variable, value: bool) -> int:
+            return 2 * index[variable] + (1 if value else 0)
+
+        def masks(literals) -> tuple[int, int]:
+            pos = neg = 0
+            for variable, value in literals:
+                if value:
+                    pos |= 1 << index[variable]
+                else:
+                    neg |= 1 << index[variable]
+            return pos, neg
+
+        for number, action in enumerate(model.actions):
+            pos, neg = masks(action.pre)
+            add = delete = 0
+            conditional = []
+            needs = tuple(literal(v, b) for v, b in action.pre)
+            plain_adds = []
+            for effect in action.effects:
+                bit = 1 << index[effect.variable]
+                if effect.condition:
+                    cpos, cneg = masks(effect.condition)
+                    conditional.append((cpos, cneg, bit if effect.value else 0,
+                                        0 if effect.value else bit))
+                    relaxed.append((needs + tuple(literal(v, b) for v, b in effect.condition),
+                                    (literal(effect.variable, effect.value),), number))
+                else:
+                    if effect.value:
+                        add |= bit
+                    else:
+                        delete |= bit
+                    plain_adds.append(literal(effect.variable, effect.value))
+            relaxed.append((needs, tuple(plain_adds), number))
+            self.steps.append(Step(action.name, pos, neg, add, delete, tuple(conditional)))
+        self.relaxed = relaxed
+        self.needs_count = [len(set(needs)) for needs, _, _ in relaxed]
+        self.needed_by: list[list[int]] = [[] for _ in range(2 * len(self.variables))]
+        for r, (needs, _, _) in enumerate(relaxed):
+            for lit in set(needs):
+                self.needed_by[lit].append(r)
+        self.free = [r for r, count in enumerate(self.needs_count) if count == 0]
+        self.init = sum(1 << index[v] for v in model.init)
+        self.goal = [literal(v, b) for v, b in model.goal]
+        self.goal_pos, self.goal_neg = masks(model.goal)
+        # Actions by a precondition bit, to find the applicable ones fast.
+        self._unconditioned = [s for s in self.steps if not s.pos]
+        self._by_bit: dict[int, list[Step]] = {}
+        for s in self.steps:
+            if s.pos:
+                low = (s.pos & -s.pos).bit_length() - 1
+                self._by_bit.setdefault(low, []).append(s)
+
+    def is_goal(self, state: int) -> bool:
+        return state & self.goal_pos == self.goal_pos and not state & self.goal_neg
+
+    def applicable(self, state: int) -> list[Step]:
+        found = [s for s in self._unconditioned if not state & s.neg]
+        bits = state
+        while bits:
+            low = bits & -bits
+            for s in self._by_bit.get(low.bit_length() - 1, ()):
+                if state & s.pos == s.pos and not state & s.neg:
+                    found.append(s)
+            bits ^= low
+        return found
+
+    def heuristic(self, state: int) -> tuple[int | None, set[int]]:
+        """The FF estimate of a state (None: the goal is relaxed unreachable) and
+        the helpful actions: those of the relaxed plan applicable in the state."""
+        n = len(self.variables)
+        reached = bytearray(2 * n)
+        supporter = [-1] * (2 * n)
+        frontier = []
+        for i in range(n):
+            lit = 2 * i + ((state >> i) & 1)
+            reached[lit] = 1
+            frontier.append(lit)
+        counts = list(self.needs_count)
+        relaxed, needed_by = self.relaxed, self.needed_by
+        open_goals = sum(1 for g in self.goal if not reached[g])
+        goal_set = set(self.goal)
+        pending = list(self.free)
+        while open_goals:
+            # One layer: the relaxed actions enabled so far add their literals.
+            for lit in frontier:
+                for r in needed_by[lit]:
+                    counts[r] -= 1
+                    if counts[r] == 0:
+                        pending.append(r)
+            if not pending:
+                return None, set()
+            frontier = []
+            for r in pending:
+                for lit in relaxed[r][1]:
+                    if not reached[lit]:
+                        reached[lit] = 1
+                        supporter[lit] = r
+                        frontier.append(lit)
+                        if lit in goal_set:
+                            open_goals -= 1
+            pending = []
+        # Extract a relaxed plan backwards from the goal.
+        chosen: set[int] = set()
+        agenda = [g for g in self.goal if supporter[g] >= 0]
+        seen = set(agenda)
+        while agenda:
+            lit = agenda.pop()
+            r = supporter[lit]
+            if r < 0 or r in chosen:
+                continue
+            chosen.add(r)
+            for need in relaxed[r][0]:
+                if supporter[need] >= 0 and need not in seen:
+                    seen.add(need)
+                    agenda.append(need)
+        actions = {relaxed[r][2] for r in chosen}
+        helpful = {a for a in actions if self.steps[a].applicable(state)}
+        return len(actions), helpful
+
+
+def greedy_plan(task: Task, budget: Budget | None = None,
+                state_limit: int = STATE_LIMIT) -> tuple[list[clingo.Symbol] | None, str]:
+    """A plan by lazy greedy best-first search (helpful actions first), or None
+    and why the search stopped."""
+    position = {id(s): i for i, s in enumerate(task.steps)}
+    parents: dict[int, tuple[int, int] | None] = {task.init: None}
+    # Two queues, taken in turn: every successor, and those by helpful actions.
+    queues: list[list] = [[], []]
+    counter = 0
+    heapq.heappush(queues[0], (0, counter, task.init))
+    closed: set[int] = set()
+    turn = 0
+    expansions = 0
+    best = None
+    boost = 0           # turns the helpful queue gets in a row (after progress)
+    while queues[0] or queues[1]:
+        if boost and queues[1]:
+            turn, boost = 1, boost - 1
+        elif not queues[turn]:
+            turn = 1 - turn
+        _, _, state = heapq.heappop(queues[turn])
+        turn = 1 - turn
+        if state in closed:
+            continue
+        closed.add(state)
+        if task.is_goal(state):
+            return _path(task, parents, state), ""
+        expansions += 1
+        if expansions % CHECK_EVERY == 0 and budget is not None and budget.expired():
+            return None, budget.why_stopped()
+        h, helpful = task.heuristic(state)
+        if h is None:
+            continue                      # a dead end, even relaxed
+        if best is None or h < best:
+            best, boost = h, boost + BOOST
+        for step in task.applicable(state):
+            successor = step.apply(state)
+            if successor in parents:
+                continue
+            number = position[id(step)]
+            parents[successor] = (state, number)
+            counter += 1
+            heapq.heappush(queues[0], (h, counter, successor))
+            if number in helpful:
+                heapq.heappush(queues[1], (h, counter, successor))
+        if len(parents) > state_limit:
+            return None, f"more than {state_limit} states"
+    return None, EXHAUSTED
+
+
+def _path(task: Task, parents: dict, state: int) -> list[clingo.Symbol]:
+    actions = []
+    while parents[state] is not None:
+        state, number = parents[state]
+        actions.append(task.steps[number].name)
+    return actions[::-1]
+
+
+class Greedy(Layers):
+    """Greedy forward search (:func:`greedy_plan`) beside a search, run as the
+    exact layers are run (:class:`ethasp.planning.layers.Layers`: a child
+    process on Linux, else a thread); its :attr:`status` gets a ``plan`` (not
+    a shortest one), ``complete`` (no goal state is reachable) or
+    ``stopped``."""
+
+    def _work(self, publish) -> None:
+        from ethasp.planning.layers import search_model
+
+        atoms = self._atoms() if callable(self._atoms) else self._atoms
+        self.model = search_model(atoms)
+        if self.model.axioms:
+            publish(stopped="greedy search does not evaluate derived variables")
+            return
+        plan, why = greedy_plan(Task(self.model), self._budget)
+        if plan is None and why == EXHAUSTED:
+            publish(complete=True)
+        elif plan is None:
+            publish(stopped=f"greedy search: {why}")
+        else:
+            publish(plan=tuple(plan))
+
