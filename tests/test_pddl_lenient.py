@@ -88,7 +88,10 @@ def test_a_carelessly_written_domain_is_read_and_planned(tmp_path):
     paths = write(tmp_path, MESSY, MESSY_PROBLEM)
     plan = plan_of(Model.load(paths))
     assert plan is not None and len(plan) == 5
-    assert plan[1] == "lift(bot,c1,shelf)" and plan[-2] == "put(bot,c1)", plan
+    # Shortest plans differ in where end_shift comes (after the lift): any one.
+    assert sorted(plan) == sorted(["move(bot,hall,shelf)", "lift(bot,c1,shelf)",
+                                   "move(bot,shelf,dock)", "end_shift", "put(bot,c1)"]), plan
+    assert plan.index("lift(bot,c1,shelf)") < plan.index("end_shift")
     run = ethasp("plan", "domain.pddl", "problem.pddl", cwd=tmp_path)
     assert run.returncode == 0 and run.stdout.startswith("plan of 5 steps: (move bot hall shelf)")
     assert run.stderr.splitlines() == [
