@@ -160,6 +160,11 @@ class FactLabel(Predicate, name="fact_label"):
     phrase: str = StringField
 
 
+class PatientLabel(Predicate, name="patient_label"):
+    patient: Raw
+    phrase: str = StringField
+
+
 # -- contrastive questions (questions.lp) -----------------------------------------
 
 class Contrast(Predicate, name="contrast"):

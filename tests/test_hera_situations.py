@@ -315,6 +315,27 @@ def test_reasons_and_words_of_hera_principles():
     assert ["not Goal(five_dead)"] not in why.necessary_reasons
 
 
+def test_moral_patients_are_named_by_their_labels(tmp_path):
+    """patient_label/2 (``labels: patients:`` in a situation) names a patient in
+    the words; without a label the patient's term does."""
+    why = explain(Model.load([FRANK]), Model.load([FRANK]).own_plan(), "kantian-humanity")
+    assert why.permissible and "because Frank is treated as an end" in why.text
+    unlabelled = Model.from_string(
+        "variable(h). action(help). eff(help,h,true). goal(h,true). patient(ann). "
+        "affects(ann,h,true,pos).")
+    why = explain(unlabelled, Plan.parse("help"), "kantian-humanity")
+    assert "ann is treated as an end" in why.text
+    labelled = Model.from_string(unlabelled.sources[0].text + ' patient_label(ann,"Ann").')
+    assert "Ann is treated as an end" in explain(labelled, Plan.parse("help"),
+                                                 "kantian-humanity").text
+    data = {"actions": [{"name": "help", "effects": [{"effect": {"h": True}}]}],
+            "affects": {"ann": {"pos": [{"h": True}], "neg": []}},
+            "initialState": {"h": False}, "utilities": [],
+            "labels": {"patients": {"ann": "Ann", "bob": "Bob"}}}
+    with pytest.raises(InputError, match="bob is not a patient of the situation"):
+        translate_data(data)
+
+
 # -- the mapping and its errors ------------------------------------------------------------
 
 def test_names_that_are_not_asp_constants_become_strings():

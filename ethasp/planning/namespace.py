@@ -76,6 +76,7 @@ MODEL_VOCABULARY: dict[tuple[str, int], str] = {
     ("agent_label", 2): "agent_label(Name,Possessive): words for the agent",
     ("action_label", 3): "action_label(A,Phrase,Gerund): words for action A",
     ("fact_label", 3): "fact_label(V,B,Phrase): words for the fact V=B",
+    ("patient_label", 2): "patient_label(P,Phrase): words for the moral patient P",
 }
 
 #: What the translation of a PDDL task writes besides the model vocabulary

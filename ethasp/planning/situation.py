@@ -38,7 +38,8 @@ neg: [..]}}``                  ``affects(p,v,b,neg).``
 ``alternatives: [[..], ..]``   ``alternative_plan(k,n).``, ``alternative_step(k,t,a).``
 (an ethasp extension: the      (HERA's utilitarianism compares the plan with
 plans of ``alethicAlternatives``) the final states of these plans)
-``labels`` (an extension)      ``agent_label/2``, ``action_label/3``, ``fact_label/3``
+``labels`` (an extension)      ``agent_label/2``, ``action_label/3``, ``fact_label/3``,
+                               ``patient_label/2``
 ============================== ==================================================
 
 HERA applies an action's effects (and the events of one time point) one after
@@ -115,6 +116,7 @@ class _Reader:
     where: str
     facts: list[clingo.Symbol] = field(default_factory=list)
     variables: dict[str, bool] = field(default_factory=dict)
+    patients: set[str] = field(default_factory=set)
     warnings: list[str] = field(default_factory=list)
 
     def warn(self, message: str) -> None:
@@ -358,6 +360,7 @@ class _Reader:
     def affects(self, value: Any) -> None:
         for patient, sides in self.mapping(value, "affects").items():
             name = self.name(patient, "a patient in affects")
+            self.patients.add(name)
             term = name_term(name)
             self.add("patient", term)
             sides = self.mapping(sides, f"affects of {name}")
@@ -405,6 +408,14 @@ class _Reader:
             if not isinstance(entry.get("label"), str):
                 self.fail(f"fact label {index} needs a label (a string)")
             self.add("fact_label", name_term(variable), truth, clingo.String(entry["label"]))
+        patients = self.mapping(value, "labels").get("patients")
+        for name, phrase in self.mapping(patients, "labels of patients").items():
+            name = self.name(name, "a patient in labels")
+            if name not in self.patients:
+                self.fail(f"labels: {name} is not a patient of the situation (in affects)")
+            if not isinstance(phrase, str):
+                self.fail(f"labels: patient {name} needs a phrase (a string)")
+            self.add("patient_label", name_term(name), clingo.String(phrase))
 
 
 def _load(path: Path, text: str) -> Any:

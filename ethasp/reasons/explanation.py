@@ -41,6 +41,7 @@ class Labels:
     possessive: str | None = None
     actions: dict[clingo.Symbol, tuple[str, str]] = field(default_factory=dict)
     facts: dict[tuple[clingo.Symbol, bool], str] = field(default_factory=dict)
+    patients: dict[clingo.Symbol, str] = field(default_factory=dict)
 
 
 @dataclass

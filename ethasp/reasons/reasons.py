@@ -52,7 +52,7 @@ from ethasp.principles.utilitarianism import ReachableState, best_reachable
 from ethasp.reasons.explanation import Comparison, Explanation, Labels, Literal
 from ethasp.reasons.words import non_contrastive
 from ethasp.vocabulary import (ActionLabel, AgentLabel, ComparisonAtom, Conjunct, FactLabel,
-                               Mention, ReasonAtom, Verdict)
+                               Mention, PatientLabel, ReasonAtom, Verdict)
 
 DEFAULT_LIMIT = 10
 
@@ -67,7 +67,7 @@ OPTIONS = ("--heuristic=Domain", "--opt-strategy=usc")
 # The name of the alternative state compared with for utilitarianism (conj/3).
 OTHER = clingo.Function("other")
 
-LABELS = (("agent_label", 2), ("action_label", 3), ("fact_label", 3))
+LABELS = (("agent_label", 2), ("action_label", 3), ("fact_label", 3), ("patient_label", 2))
 
 # The atoms of an evaluation that the reasons' programs read (judgement/evidence.lp).
 EVIDENCE = (("formula", 2), ("member", 2), ("conj", 3), ("conj_worth", 2), ("term_value", 2),
@@ -106,7 +106,7 @@ def _optimum(ctl: clingo.Control) -> list[clingo.Symbol] | None:
 
 
 def _labels(symbols: Iterable[clingo.Symbol]) -> Labels:
-    answer = unify([AgentLabel, ActionLabel, FactLabel], symbols)
+    answer = unify([AgentLabel, ActionLabel, FactLabel, PatientLabel], symbols)
     labels = Labels()
     for agent in answer.query(AgentLabel).all():
         labels.agent, labels.possessive = agent.name, agent.possessive
@@ -114,6 +114,8 @@ def _labels(symbols: Iterable[clingo.Symbol]) -> Labels:
         labels.actions[action.action.symbol] = (action.phrase, action.gerund)
     for fact in answer.query(FactLabel).all():
         labels.facts[(fact.variable.symbol, fact.value == "true")] = fact.phrase
+    for patient in answer.query(PatientLabel).all():
+        labels.patients[patient.patient.symbol] = patient.phrase
     return labels
 
 

@@ -157,7 +157,7 @@ def literal_clause(literal: Literal, labels: Labels,
         noun = "action" if actions <= 1 else "actions"
         return _HERA_FACTS[atom.name](fact, possessive(labels, pronoun), noun, value)
     if atom.name in _HERA_PATIENTS:
-        patient = _term_words(atom.arguments[0])
+        patient = labels.patients.get(atom.arguments[0]) or _term_words(atom.arguments[0])
         noun = "action" if actions <= 1 else "actions"
         return _HERA_PATIENTS[atom.name](patient, possessive(labels, pronoun), noun, value)
     if atom.name == "ucompare":
