@@ -205,3 +205,14 @@ def test_validate_shows_the_atoms_that_hold_in_the_final_state(tmp_path):
     assert run.returncode == 0, run.stderr
     assert run.stdout.strip() == ("valid plan of 2 steps; final state: (at s3) (link s1 s1) "
                                   "(link s1 s2) (link s2 s3)")
+
+
+def test_judge_shows_a_pddl_final_state_as_the_atoms_that_hold():
+    """As validate does: PDDL's closed world, the atoms that hold."""
+    folder = ROOT / "asp" / "pddl"
+    run = ethasp("judge", str(folder / "trolley-domain.pddl"), str(folder / "trolley-problem.pddl"),
+                 str(folder / "trolley-utility.lp"), "--plan", "(pull)",
+                 "--principle", "deontology", cwd=ROOT)
+    assert run.returncode == 0, run.stderr
+    final = next(line for line in run.stdout.splitlines() if line.startswith("final state:"))
+    assert "(" in final and " -(" not in final and not final.startswith("final state: -"), final

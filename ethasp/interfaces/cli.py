@@ -231,18 +231,24 @@ def command_plan_permissible(args: argparse.Namespace, model: Model) -> int:
     return 0
 
 
-def command_validate(args: argparse.Namespace) -> int:
+def _state_text(model: Model, literals: list[str]) -> str:
+    """A whole state in words: for a PDDL task the atoms that hold (PDDL's
+    closed world), for other models every variable's value."""
     from ethasp.planning.naming import PddlNaming
+
+    if isinstance(model.naming, PddlNaming):
+        literals = [literal for literal in literals if not literal.startswith("-")]
+    return model.naming.facts(literals)
+
+
+def command_validate(args: argparse.Namespace) -> int:
     from ethasp.planning.validation import validate
 
     model = load_model(args)
     validation = validate(model, _given_plan(args, model))
     if validation.valid:
-        final = validation.final_state
-        if isinstance(model.naming, PddlNaming):    # closed world: the atoms that hold
-            final = [literal for literal in final if not literal.startswith("-")]
         text = (f"valid plan of {steps(len(validation.plan))}; "
-                f"final state: {model.naming.facts(final)}")
+                f"final state: {_state_text(model, validation.final_state)}")
     else:
         text = f"not a plan: {validation.message(model.naming)}"
     emit(args, validation.to_json(), text)
@@ -252,7 +258,7 @@ def command_validate(args: argparse.Namespace) -> int:
 def _judgement_text(report: "JudgementReport", model: Model) -> str:
     naming = model.naming
     lines = [f"plan: {naming.actions(report.plan)}" if len(report.plan) else "plan: (empty)",
-             f"final state: {naming.facts(report.final_state)} (utility {report.utility})"]
+             f"final state: {_state_text(model, report.final_state)} (utility {report.utility})"]
     for judgement in report.judgements:
         verdict = "permissible" if judgement.permissible else "impermissible"
         if judgement.status == "bounded":
