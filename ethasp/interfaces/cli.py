@@ -317,7 +317,7 @@ def _add_plan_arguments(parser: argparse.ArgumentParser, required: bool = True,
 
 
 def _explanation_text(report: "JudgementReport") -> list[str]:
-    """Each judgement's explanation, then its reasons (ethasp/reasons.py)."""
+    """Each judgement's explanation, then its reasons (ethasp/reasons/reasons.py)."""
     lines = []
     for judgement in report.judgements:
         explanation = judgement.explanation
