@@ -81,6 +81,9 @@ __all__ = ["FRAGMENT", "PddlFile", "translate", "translate_files", "is_pddl", "s
 
 AUXILIARY = "formula"
 
+#: The heads of the rules over pddl_candidate/1 (see encodings/planning/static.lp).
+SCHEMA_PREDICATES = ("pddl_schema_instance", "pddl_static_failure")
+
 
 # -- negation normal form ---------------------------------------------------------
 
@@ -194,14 +197,15 @@ class _Translator:
         self.derived = {d.predicate for d in domain.derived}
         self.objects = {pddl_name_to_asp(p.name) for p in domain.constants + problem.objects}
         self.names = {*domain.predicates, *self.derived}
-        # Type-like predicates: unary, and no action changes them (untyped
-        # domains write types so: (ball ?b)).  A positive precondition on one
-        # decides which actions exist, as a type does.
+        # Static predicates: base predicates that no effect (conditional or
+        # not) adds or deletes.  Their atoms hold in every state exactly when
+        # they hold initially, so a precondition on one decides which actions
+        # exist, as a type does (untyped domains write types so: (ball ?b)).
         changed = {predicate for action in domain.actions
                    for predicate in effect_predicates(action.effect)}
-        self.types_as_predicates = {
-            pddl_name_to_asp(predicate) for predicate, params in domain.predicates.items()
-            if len(params) == 1 and predicate not in changed and predicate not in self.derived}
+        self.static = {
+            pddl_name_to_asp(predicate) for predicate in domain.predicates
+            if predicate not in changed and predicate not in self.derived}
 
     def emit(self, line: str) -> None:
         self.lines.append(line)
@@ -382,13 +386,17 @@ class _Translator:
         anchor = f"action({head})"
         scope = Scope(scope.variables, (anchor,))
         precondition = self.conjunction(nnf(action.precondition), scope, file, lift=False)
-        # Like a type: an action whose type-like precondition fails initially
-        # never occurs, so it does not exist (as an action of the wrong type).
-        types = [f"init({atom})" for atom, value in precondition.literals
-                 if value == "true" and atom.split("(")[0] in self.types_as_predicates]
-        self.emit(rule(anchor, typing + precondition.comparisons + types))
+        # An action whose static precondition fails initially never occurs,
+        # so it does not exist (as an action of a wrong type); pre/3 keeps the
+        # precondition, for reasons and words.
+        static = [(atom, value) for atom, value in precondition.literals
+                  if atom.split("(")[0] in self.static]
+        pruning = [f"init({atom})" if value == "true" else f"not init({atom})"
+                   for atom, value in static]
+        self.emit(rule(anchor, typing + precondition.comparisons + pruning))
         for atom, value in precondition.literals:
             self.emit(rule(f"pre({head},{atom},{value})", [anchor]))
+        self.schema(head, typing + precondition.comparisons, static)
         number = 0
         for effect_scope, conditions, literals in self.effect_groups(action.effect, scope):
             atoms = []
@@ -415,6 +423,18 @@ class _Translator:
                 for condition_atom, condition_value in alt.literals:
                     self.emit(rule(f"cpre({head},{name},{condition_atom},{condition_value})",
                                    body))
+
+    def schema(self, head: str, body: list[str], static: list[tuple[str, str]]) -> None:
+        """Rules telling why a term of a plan is no action (for validation):
+        whether a ``pddl_candidate/1`` is a well-typed instance of the action
+        schema (its equalities hold), and which static preconditions fail.
+        Without candidates (in every program but validation's) they derive
+        nothing."""
+        instance = f"pddl_schema_instance({head})"
+        self.emit(rule(instance, [f"pddl_candidate({head})", *body]))
+        for atom, value in static:
+            holds = f"init({atom})" if value == "false" else f"not init({atom})"
+            self.emit(rule(f"pddl_static_failure({head},{atom},{value})", [instance, holds]))
 
     def effect_groups(self, effect: Effect, scope: Scope):
         """The literal effects, grouped by scope and conditions (one group per
