@@ -75,7 +75,7 @@ class IsPlan(Predicate, name="plan"):
 
 # -- terms of a plan that are no action of a PDDL task (static.lp) --------------------
 
-class NoInstance(Predicate, name="no_instance"):
+class NoSchemaInstance(Predicate, name="no_schema_instance"):
     action: Raw
 
 

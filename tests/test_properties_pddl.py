@@ -87,7 +87,8 @@ def conjuncts(f, positive: bool = True) -> list:
 def failing(task: PddlTask, pre, binding) -> tuple[bool, set[str]]:
     """Whether a plain equality conjunct fails, and the plain static conjuncts
     that fail initially (as literals ``v`` / ``-v``)."""
-    changed = {literal[1] for _, _, _, effect in task.actions for literal in effect_literals(effect)}
+    changed = {literal[1] for _, _, _, effect in task.actions
+               for literal in effect_literals(effect)}
     static = set(task.predicates) - changed - {name for name, _, _ in task.derived}
     equality, failed = False, set()
     for atom, positive in conjuncts(pre):

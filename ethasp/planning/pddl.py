@@ -17,9 +17,18 @@ it writes
     pddl_del(move(R,From,To),at(R,From)) :- action(move(R,From,To)).
     pddl_add(move(R,From,To),at(R,To)) :- action(move(R,From,To)).
 
-plus ``variable/1`` (``derived/1`` for derived predicates) rules for every
-predicate, ``pddl_object/2`` and ``pddl_subtype/2`` facts for objects and
-types, and ``init/1`` and ``goal/2`` facts.  Names follow the rule of
+A precondition on a static predicate (one that no effect changes) that is a
+plain conjunct also goes into the body of the ``action/1`` rule, as
+``init(p)`` or ``not init(p)``: an instance whose static precondition fails
+does not exist.  Per action schema, ``pddl_schema_instance/1`` and
+``pddl_static_failure/3`` rules over ``pddl_candidate/1`` tell a validation
+why a term is no action (``encodings/planning/static.lp``); in the model they
+derive nothing.
+
+The translation also writes ``variable/1`` (``derived/1`` for derived
+predicates) rules for every predicate, ``pddl_object/2`` and
+``pddl_subtype/2`` facts for objects and types, and ``init/1`` and
+``goal/2`` facts.  Names follow the rule of
 :mod:`ethasp.planning.naming` (``five-will-die`` is ``five_will_die``).
 
 The ADL fragment

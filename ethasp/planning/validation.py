@@ -22,8 +22,8 @@ from ethasp.planning.pddl import SCHEMA_PREDICATES
 from ethasp.planning.plan import Plan
 from ethasp.planning.planner import add_facts
 from ethasp.resources import encoding
-from ethasp.vocabulary import (Failure, Final, Invalid, IsPlan, NoInstance, StaticFailure, Unmet,
-                               UnmetGoal)
+from ethasp.vocabulary import (Failure, Final, Invalid, IsPlan, NoSchemaInstance, StaticFailure,
+                               Unmet, UnmetGoal)
 
 # The atoms of a plan's trace that a validation reads (planning/trace.lp).
 TRACE_ATOMS = (("invalid", 1), ("unmet", 4), ("failure", 1), ("final", 2), ("unmet_goal", 2),
@@ -140,7 +140,7 @@ def _static_failure(model: Model,
         action, step = problem.arguments
         steps[action] = min(step.number, steps.get(action, step.number))
     answer = _schema_program(model, list(steps))
-    if list(answer.query(NoInstance).all()):
+    if list(answer.query(NoSchemaInstance).all()):
         return None
     failing: dict[clingo.Symbol, list[StaticFailure]] = {}
     for atom in answer.query(StaticFailure).all():
@@ -177,8 +177,8 @@ def _schema_program(model: Model, candidates: list[clingo.Symbol]):
         messages.raise_first("grounding failed")
     with ctl.solve(yield_=True) as handle:
         for answer in handle:
-            return unify([NoInstance, StaticFailure], answer.symbols(shown=True))
-    return unify([NoInstance, StaticFailure], [])
+            return unify([NoSchemaInstance, StaticFailure], answer.symbols(shown=True))
+    return unify([NoSchemaInstance, StaticFailure], [])
 
 
 def _head_name(rule) -> str | None:
