@@ -435,3 +435,17 @@ def test_validation_names_a_failing_static_precondition():
                  "(move kitchen hall) (move hall bedroom) (fly kitchen)"):
         with pytest.raises(InputError, match="unknown action"):
             validate(model, Plan.parse(plan))
+
+
+def test_a_question_naming_an_action_that_never_applies_says_why():
+    from ethasp.questions.contrast import check_question
+    from ethasp.questions.question import Question
+
+    model = Model.load([PDDL / "care-domain.pddl", PDDL / "care-problem.pddl"])
+    plan = Plan.parse("(move kitchen hall)")
+    with pytest.raises(InputError, match=r"action \(move hall bedroom\) never applies: "
+                                         r"precondition \(not \(sleeping-in bedroom\)\) does "
+                                         "not hold and no action changes it"):
+        check_question(model, Question.parse("why not (move hall bedroom)"), plan)
+    with pytest.raises(InputError, match=r"unknown action fly\(hall\)"):
+        check_question(model, Question.parse("why not (fly hall)"), plan)

@@ -139,17 +139,30 @@ def _static_failure(model: Model,
     for problem in problems:
         action, step = problem.arguments
         steps[action] = min(step.number, steps.get(action, step.number))
-    answer = _schema_program(model, list(steps))
+    failing = static_failures(model, list(steps))
+    if failing is None:
+        return None
+    action = min(steps, key=lambda action: steps[action])
+    return steps[action], str(action), failing[action]
+
+
+def static_failures(model: Model,
+                    terms: list[clingo.Symbol]) -> dict[clingo.Symbol, list[str]] | None:
+    """For terms that are no actions of a PDDL task: the static preconditions
+    (literals ``v`` / ``-v``) that each fails, as an instance of its action
+    schema; None if some term is no instance of any schema (with its equalities),
+    or if the model has no schemas (it is no PDDL task)."""
+    answer = _schema_program(model, terms)
     if list(answer.query(NoSchemaInstance).all()):
         return None
     failing: dict[clingo.Symbol, list[StaticFailure]] = {}
     for atom in answer.query(StaticFailure).all():
         failing.setdefault(atom.action.symbol, []).append(atom)
-    if set(failing) != set(steps):
+    if set(failing) != set(terms):
         return None
-    action = min(steps, key=lambda action: steps[action])
-    unmet = sorted(failing[action], key=lambda atom: str(atom.variable))
-    return steps[action], str(action), [literal(a.variable.symbol, a.value) for a in unmet]
+    return {term: [literal(a.variable.symbol, a.value)
+                   for a in sorted(atoms, key=lambda atom: str(atom.variable))]
+            for term, atoms in failing.items()}
 
 
 def _schema_program(model: Model, candidates: list[clingo.Symbol]):
