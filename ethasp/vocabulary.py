@@ -73,6 +73,18 @@ class IsPlan(Predicate, name="plan"):
     pass
 
 
+# -- terms of a plan that are no action of a PDDL task (static.lp) --------------------
+
+class NoSchemaInstance(Predicate, name="no_schema_instance"):
+    action: Raw
+
+
+class StaticFailure(Predicate, name="pddl_static_failure"):
+    action: Raw
+    variable: Raw
+    value: ConstantStr
+
+
 
 # -- judgements and the language L (language.lp, judge.lp, judgement/best.lp) ----
 

@@ -325,7 +325,9 @@ class _Generator:
 
 
 def random_task(seed: int) -> PddlTask:
-    """A small random ADL task with derived predicates (2 or 3 objects)."""
+    """A small random ADL task with derived predicates (2 or 3 objects) and,
+    mostly, static predicates (of arity 2, sometimes also 1) that preconditions
+    use as plain conjuncts, positive and negative, as well as anywhere else."""
     rng = random.Random(seed)
     gen = _Generator(rng)
     types = {"t0": "object", "t1": "t0"} if rng.random() < 0.5 else {"t0": "object",
@@ -340,9 +342,15 @@ def random_task(seed: int) -> PddlTask:
              for i in range(rng.randint(2, 3))}
     if all(args for args in basic.values()) and rng.random() < 0.5:
         basic["p9"] = ()
-    predicates = dict(basic)
+    # static predicates: no effect changes them (the translation prunes actions by them)
+    static = {}
+    if rng.random() < 0.7:
+        static["s0"] = (gen.type_spec(type_names), gen.type_spec(type_names))
+        if rng.random() < 0.4:
+            static["s1"] = (gen.type_spec(type_names),)
+    predicates = {**basic, **static}
     derived = []
-    readable = dict(basic)
+    readable = {**basic, **static}
     for i in range(rng.choice([0, 1, 1, 2])):
         name = f"d{i}"
         params = [(f"?h{j}", gen.type_spec(type_names)) for j in range(rng.randint(0, 1))]
@@ -365,6 +373,14 @@ def random_task(seed: int) -> PddlTask:
         variables = [var for var, _ in params]
         pre = (("and", []) if rng.random() < 0.4 else
                gen.formula(readable, variables, names, type_names, rng.randint(0, 2)))
+        if static and variables and rng.random() < 0.6:
+            # plain conjuncts on static predicates, positive and negative
+            literals = []
+            for _ in range(rng.randint(1, 2)):
+                name = rng.choice(sorted(static))
+                atom = ("atom", name, tuple(gen.term(variables, names) for _ in static[name]))
+                literals.append(("not", atom) if rng.random() < 0.4 else atom)
+            pre = ("and", [pre, *literals])
         effect = ("and", [gen.effect(basic, readable, variables, names, type_names)
                           for _ in range(rng.randint(1, 4))])
         actions.append((f"a{i}", params, pre, effect))
@@ -372,7 +388,10 @@ def random_task(seed: int) -> PddlTask:
                     ("and", []))
     ground = [(p, args) for p, arg_types in basic.items()
               for args in itertools.product(*[task.objects_of(t) for t in arg_types])]
-    task.init = frozenset(atom for atom in ground if rng.random() < 0.4)
+    fixed = [(p, args) for p, arg_types in static.items()
+             for args in itertools.product(*[task.objects_of(t) for t in arg_types])]
+    task.init = frozenset([*(atom for atom in ground if rng.random() < 0.4),
+                           *(atom for atom in fixed if rng.random() < 0.5)])
     # Mostly a goal that a far reachable state meets (some of its literals),
     # sometimes with a random formula (then often unreachable).
     distances = task.distances()

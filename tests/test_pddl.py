@@ -125,7 +125,7 @@ ROOMS_PROBLEM = """
 def test_translation_is_lifted():
     program = translated(ROOMS_DOMAIN, ROOMS_PROBLEM)
     assert "action(go(A,From,To)) :- has_type(A,robot), has_type(From,room), " \
-           "has_type(To,room), From != To." in program
+           "has_type(To,room), From != To, init(link(From,To))." in program
     assert "pre(go(A,From,To),at(A,From),true) :- action(go(A,From,To))." in program
     assert "variable(at(A,R)) :- has_type(A,agent), has_type(R,room)." in program
     # no action instance is written out: clingo grounds the rules
@@ -296,7 +296,7 @@ def test_validate_accepts_both_forms_and_reports_in_pddl(tmp_path):
     run = ethasp("validate", *files, "--plan", asp_form)
     assert run.returncode == 2
     assert ("step 2: action (move hall bedroom) is not applicable: precondition "
-            "(not (sleeping-in bedroom)) does not hold") in run.stdout
+            "(not (sleeping-in bedroom)) does not hold and no action changes it") in run.stdout
     run = ethasp("validate", *files, "--plan", "(move kitchen hall)", "--json")
     data = json.loads(run.stdout)
     assert data["plan"] == ["move(kitchen,hall)"] and data["unmet_goals"] == ["treated(ann)"]
@@ -381,13 +381,71 @@ UNTYPED_PROBLEM = """
 """
 
 
-def test_type_like_predicates_decide_which_actions_exist():
-    """Unary predicates that no action changes are types in untyped domains: an
-    action whose positive precondition on one fails does not exist (as an action
-    of a wrong type); other static preconditions (near) stay preconditions."""
+def test_static_predicates_decide_which_actions_exist():
+    """A predicate that no action changes is static: it holds in every state
+    exactly when it holds initially.  A precondition on one (of any arity,
+    positive or negative) decides which actions exist, as a type does (untyped
+    domains write types so: (ball ?b)); pre/3 keeps it, for reasons and words.
+    A changed predicate (free, on-floor) stays a precondition only."""
     program = translated(UNTYPED, UNTYPED_PROBLEM)
     assert ("action(grab(H,B)) :- has_type(H,object), has_type(B,object), "
-            "init(hand(H)), init(ball(B)).") in program
+            "init(hand(H)), init(ball(B)), init(near(B,H)).") in program
     assert "pre(grab(H,B),near(B,H),true) :- action(grab(H,B))." in program
+    assert "pre(grab(H,B),free(H),true) :- action(grab(H,B))." in program
     actions = ground_model(program)["action"]
-    assert actions == {"action(grab(left,b1))", "action(grab(left,b2))"}
+    assert actions == {"action(grab(left,b1))"}
+
+
+def test_negative_static_preconditions_decide_which_actions_exist():
+    domain = UNTYPED.replace("(near ?b ?h))\n    :effect", "(not (near ?b ?h)))\n    :effect")
+    program = translated(domain, UNTYPED_PROBLEM)
+    assert "not init(near(B,H))" in program
+    assert "pre(grab(H,B),near(B,H),false) :- action(grab(H,B))." in program
+    assert ground_model(program)["action"] == {"action(grab(left,b2))"}
+
+
+def test_a_changed_predicate_is_not_static():
+    """An effect, even a conditional one, makes a predicate not static."""
+    domain = UNTYPED.replace(
+        "(not (on-floor ?b)))))",
+        "(not (on-floor ?b)) (when (free ?h) (near ?b ?h)))))")
+    program = translated(domain, UNTYPED_PROBLEM)
+    assert "init(near(B,H))" not in program
+    assert ground_model(program)["action"] == {"action(grab(left,b1))", "action(grab(left,b2))"}
+
+
+def test_validation_names_a_failing_static_precondition():
+    """An instance of an action schema whose static precondition fails is no
+    action; validating a plan that names it says which precondition fails."""
+    model = Model.load([PDDL / "care-domain.pddl", PDDL / "care-problem.pddl"])
+    result = validate(model, Plan.parse("(move kitchen hall) (move hall bedroom)"))
+    assert not result.valid and result.static
+    assert (result.failure_step, result.failure_action) == (2, "move(hall,bedroom)")
+    assert result.unmet_preconditions == ["-sleeping_in(bedroom)"]
+    assert result.message(model.naming) == (
+        "step 2: action (move hall bedroom) is not applicable: precondition "
+        "(not (sleeping-in bedroom)) does not hold and no action changes it")
+    # (door kitchen store-room) is false initially and no action changes it
+    result = validate(model, Plan.parse("(move kitchen store-room)"))
+    assert result.failure_step == 1 and result.unmet_preconditions == ["door(kitchen,store_room)"]
+    # an earlier step that fails a precondition comes first
+    result = validate(model, Plan.parse("(move hall kitchen) (move hall bedroom)"))
+    assert result.failure_step == 1 and not result.static
+    for plan in ("(move kitchen kitchen)", "(fly kitchen)", "(move kitchen pills-ann)",
+                 "(move kitchen hall) (move hall bedroom) (fly kitchen)"):
+        with pytest.raises(InputError, match="unknown action"):
+            validate(model, Plan.parse(plan))
+
+
+def test_a_question_naming_an_action_that_never_applies_says_why():
+    from ethasp.questions.contrast import check_question
+    from ethasp.questions.question import Question
+
+    model = Model.load([PDDL / "care-domain.pddl", PDDL / "care-problem.pddl"])
+    plan = Plan.parse("(move kitchen hall)")
+    with pytest.raises(InputError, match=r"action \(move hall bedroom\) never applies: "
+                                         r"precondition \(not \(sleeping-in bedroom\)\) does "
+                                         "not hold and no action changes it"):
+        check_question(model, Question.parse("why not (move hall bedroom)"), plan)
+    with pytest.raises(InputError, match=r"unknown action fly\(hall\)"):
+        check_question(model, Question.parse("why not (fly hall)"), plan)

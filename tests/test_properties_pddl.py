@@ -3,9 +3,12 @@
 Random small tasks (tests/pddl_oracle.py) with typed and either-typed objects,
 predicates of arity 0 to 2, derived predicates (stratified, some recursive),
 and actions whose preconditions and effect conditions use every connective
-and quantifier, with conditional and universally quantified effects.  The
-oracle grounds and searches them explicitly; ethasp translates them into
-lifted rules that clingo grounds.
+and quantifier, with conditional and universally quantified effects, and
+static predicates (no effect changes them) in plain conjuncts of
+preconditions, positive and negative.  The oracle grounds and searches them
+explicitly; ethasp translates them into lifted rules that clingo grounds,
+keeping only the action instances whose static preconditions and equalities
+hold.
 """
 
 from __future__ import annotations
@@ -15,11 +18,12 @@ import io
 import random
 
 import clingo
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from conftest import ENCODINGS
-from ethasp import Model, Plan, find_plan, validate
+from ethasp import InputError, Model, Plan, find_plan, validate
 from ethasp.planning.pddl import PddlFile, translate
 from ethasp.vocabulary import Action
 from pddl_oracle import PddlTask, asp_atom, random_task
@@ -65,6 +69,59 @@ def test_shortest_plan_lengths_agree_with_the_oracle(seed):
             assert result.status == "none", (result, context(task))
 
 
+def conjuncts(f, positive: bool = True) -> list:
+    """The literals (``(atom or equality, positive)``) that are plain conjuncts
+    of a formula in negation normal form."""
+    kind = f[0]
+    if kind in ("atom", "="):
+        return [(f, positive)]
+    if kind == "not":
+        return conjuncts(f[1], not positive)
+    if (kind == "and" and positive) or (kind == "or" and not positive):
+        return [literal for g in f[1] for literal in conjuncts(g, positive)]
+    if kind == "imply" and not positive:
+        return conjuncts(f[1], True) + conjuncts(f[2], False)
+    return []
+
+
+def failing(task: PddlTask, pre, binding) -> tuple[bool, set[str]]:
+    """Whether a plain equality conjunct fails, and the plain static conjuncts
+    that fail initially (as literals ``v`` / ``-v``)."""
+    changed = {literal[1] for _, _, _, effect in task.actions
+               for literal in effect_literals(effect)}
+    static = set(task.predicates) - changed - {name for name, _, _ in task.derived}
+    equality, failed = False, set()
+    for atom, positive in conjuncts(pre):
+        if atom[0] == "=" and task.holds(atom, task.init, binding) != positive:
+            equality = True
+        elif atom[0] == "atom" and atom[1] in static \
+                and task.holds(atom, task.init, binding) != positive:
+            name = asp_atom((atom[1], task.ground_terms(atom[2], binding)))
+            failed.add(name if positive else f"-{name}")
+    return equality, failed
+
+
+def effect_literals(e) -> list:
+    if e[0] == "lit":
+        return [e]
+    if e[0] == "and":
+        return [literal for g in e[1] for literal in effect_literals(g)]
+    return effect_literals(e[2])      # forall, when
+
+
+@settings(max_examples=150, deadline=None)
+@given(SEEDS)
+def test_the_actions_are_those_whose_static_preconditions_hold(seed):
+    """The translation keeps exactly the instances whose plain equality and
+    static conjuncts hold (static predicates of any arity, both signs)."""
+    task = random_task(seed)
+    model = model_of(task)
+    actions = {str(a.name.symbol) for a in model.facts([Action]).query(Action).all()}
+    expected = {term for term, (pre, _), binding in task.ground_actions()
+                if failing(task, pre, binding) == (False, set())}
+    assert actions == expected, context(task)
+
+
 @settings(max_examples=150, deadline=None)
 @given(SEEDS, st.integers(min_value=0, max_value=10**6))
 def test_validation_agrees_with_the_oracle(seed, choice_seed):
@@ -73,15 +130,26 @@ def test_validation_agrees_with_the_oracle(seed, choice_seed):
     actions = sorted(str(a.name.symbol) for a in model.facts([Action]).query(Action).all())
     ground = {term for term, _, _ in task.ground_actions()}
     assert set(actions) <= ground, context(task)
-    # an action the translation leaves out fails an equality of its precondition
+    # an action the translation leaves out fails its precondition everywhere
+    # (an equality, or a static precondition)
     reachable = list(task.distances())
     for term, (pre, _), binding in task.ground_actions():
         if term not in actions:
             assert not any(task.holds(pre, task.closure(s), binding) for s in reachable), term
-    if not actions:
-        return
     rng = random.Random(choice_seed)
-    sequence = [rng.choice(actions) for _ in range(rng.randint(0, 5))]
+    pruned = sorted(ground - set(actions))
+    if not actions and not pruned:
+        return
+    sequence = [rng.choice(pruned) if pruned and (rng.random() < 0.2 or not actions)
+                else rng.choice(actions)
+                for _ in range(rng.randint(0, 5))]
+    reasons = {term: failing(task, pre, binding)
+               for term, (pre, _), binding in task.ground_actions() if term in sequence}
+    if any(reasons[term][0] for term in sequence if term in pruned):
+        # an instance whose equality fails is no instance of its schema
+        with pytest.raises(InputError, match="unknown action"):
+            validate(model, Plan.parse(" ".join(sequence)))
+        return
     check = validate(model, Plan.parse(" ".join(sequence)))
     state, failure = task.init, None
     for index, action in enumerate(sequence, start=1):
@@ -97,6 +165,10 @@ def test_validation_agrees_with_the_oracle(seed, choice_seed):
         assert true == sorted(asp_atom(atom) for atom in state), (sequence, context(task))
     else:
         assert not check.valid
+        term = sequence[failure - 1]
+        assert check.static == (term in pruned), (sequence, check, context(task))
+        if term in pruned:
+            assert set(check.unmet_preconditions) == reasons[term][1], (sequence, context(task))
 
 
 @settings(max_examples=100, deadline=None)

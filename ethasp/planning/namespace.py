@@ -80,12 +80,18 @@ MODEL_VOCABULARY: dict[tuple[str, int], str] = {
 }
 
 #: What the translation of a PDDL task writes besides the model vocabulary
-#: (read by encodings/planning/pddl.lp).
+#: (read by encodings/planning/pddl.lp, and by encodings/planning/static.lp
+#: when a plan names an action that does not exist).
 PDDL_VOCABULARY: dict[tuple[str, int], str] = {
     ("pddl_subtype", 2): "pddl_subtype(S,T): type S is a subtype of T",
     ("pddl_object", 2): "pddl_object(X,T): object X is declared of type T",
     ("pddl_add", 2): "pddl_add(A,V): an add effect",
     ("pddl_del", 2): "pddl_del(A,V): a delete effect",
+    ("pddl_candidate", 1): "pddl_candidate(A): a term of a plan that is no action (validation)",
+    ("pddl_schema_instance", 1): "pddl_schema_instance(A): candidate A is an instance of an "
+                                 "action schema",
+    ("pddl_static_failure", 3): "pddl_static_failure(A,V,B): static precondition V=B of the "
+                                "instance A fails",
 }
 
 VOCABULARY = {**MODEL_VOCABULARY, **PDDL_VOCABULARY}

@@ -17,9 +17,18 @@ it writes
     pddl_del(move(R,From,To),at(R,From)) :- action(move(R,From,To)).
     pddl_add(move(R,From,To),at(R,To)) :- action(move(R,From,To)).
 
-plus ``variable/1`` (``derived/1`` for derived predicates) rules for every
-predicate, ``pddl_object/2`` and ``pddl_subtype/2`` facts for objects and
-types, and ``init/1`` and ``goal/2`` facts.  Names follow the rule of
+A precondition on a static predicate (one that no effect changes) that is a
+plain conjunct also goes into the body of the ``action/1`` rule, as
+``init(p)`` or ``not init(p)``: an instance whose static precondition fails
+does not exist.  Per action schema, ``pddl_schema_instance/1`` and
+``pddl_static_failure/3`` rules over ``pddl_candidate/1`` tell a validation
+why a term is no action (``encodings/planning/static.lp``); in the model they
+derive nothing.
+
+The translation also writes ``variable/1`` (``derived/1`` for derived
+predicates) rules for every predicate, ``pddl_object/2`` and
+``pddl_subtype/2`` facts for objects and types, and ``init/1`` and
+``goal/2`` facts.  Names follow the rule of
 :mod:`ethasp.planning.naming` (``five-will-die`` is ``five_will_die``).
 
 The ADL fragment
@@ -80,6 +89,9 @@ from ethasp.planning.pddl_syntax import (FRAGMENT, IMPLIED, Action, AllEffects, 
 __all__ = ["FRAGMENT", "PddlFile", "translate", "translate_files", "is_pddl", "split_paths"]
 
 AUXILIARY = "formula"
+
+#: The heads of the rules over pddl_candidate/1 (see encodings/planning/static.lp).
+SCHEMA_PREDICATES = ("pddl_schema_instance", "pddl_static_failure")
 
 
 # -- negation normal form ---------------------------------------------------------
@@ -194,14 +206,15 @@ class _Translator:
         self.derived = {d.predicate for d in domain.derived}
         self.objects = {pddl_name_to_asp(p.name) for p in domain.constants + problem.objects}
         self.names = {*domain.predicates, *self.derived}
-        # Type-like predicates: unary, and no action changes them (untyped
-        # domains write types so: (ball ?b)).  A positive precondition on one
-        # decides which actions exist, as a type does.
+        # Static predicates: base predicates that no effect (conditional or
+        # not) adds or deletes.  Their atoms hold in every state exactly when
+        # they hold initially, so a precondition on one decides which actions
+        # exist, as a type does (untyped domains write types so: (ball ?b)).
         changed = {predicate for action in domain.actions
                    for predicate in effect_predicates(action.effect)}
-        self.types_as_predicates = {
-            pddl_name_to_asp(predicate) for predicate, params in domain.predicates.items()
-            if len(params) == 1 and predicate not in changed and predicate not in self.derived}
+        self.static = {
+            pddl_name_to_asp(predicate) for predicate in domain.predicates
+            if predicate not in changed and predicate not in self.derived}
 
     def emit(self, line: str) -> None:
         self.lines.append(line)
@@ -382,13 +395,17 @@ class _Translator:
         anchor = f"action({head})"
         scope = Scope(scope.variables, (anchor,))
         precondition = self.conjunction(nnf(action.precondition), scope, file, lift=False)
-        # Like a type: an action whose type-like precondition fails initially
-        # never occurs, so it does not exist (as an action of the wrong type).
-        types = [f"init({atom})" for atom, value in precondition.literals
-                 if value == "true" and atom.split("(")[0] in self.types_as_predicates]
-        self.emit(rule(anchor, typing + precondition.comparisons + types))
+        # An action whose static precondition fails initially never occurs,
+        # so it does not exist (as an action of a wrong type); pre/3 keeps the
+        # precondition, for reasons and words.
+        static = [(atom, value) for atom, value in precondition.literals
+                  if atom.split("(")[0] in self.static]
+        pruning = [f"init({atom})" if value == "true" else f"not init({atom})"
+                   for atom, value in static]
+        self.emit(rule(anchor, typing + precondition.comparisons + pruning))
         for atom, value in precondition.literals:
             self.emit(rule(f"pre({head},{atom},{value})", [anchor]))
+        self.schema(head, typing + precondition.comparisons, static)
         number = 0
         for effect_scope, conditions, literals in self.effect_groups(action.effect, scope):
             atoms = []
@@ -415,6 +432,18 @@ class _Translator:
                 for condition_atom, condition_value in alt.literals:
                     self.emit(rule(f"cpre({head},{name},{condition_atom},{condition_value})",
                                    body))
+
+    def schema(self, head: str, body: list[str], static: list[tuple[str, str]]) -> None:
+        """Rules telling why a term of a plan is no action (for validation):
+        whether a ``pddl_candidate/1`` is a well-typed instance of the action
+        schema (its equalities hold), and which static preconditions fail.
+        Without candidates (in every program but validation's) they derive
+        nothing."""
+        instance = f"pddl_schema_instance({head})"
+        self.emit(rule(instance, [f"pddl_candidate({head})", *body]))
+        for atom, value in static:
+            holds = f"init({atom})" if value == "false" else f"not init({atom})"
+            self.emit(rule(f"pddl_static_failure({head},{atom},{value})", [instance, holds]))
 
     def effect_groups(self, effect: Effect, scope: Scope):
         """The literal effects, grouped by scope and conditions (one group per

@@ -1,17 +1,29 @@
-"""Validation of a given action sequence against a model (encodings/planning/trace.lp)."""
+"""Validation of a given action sequence against a model (encodings/planning/trace.lp).
+
+A PDDL task has only the action instances whose static preconditions hold
+(:mod:`ethasp.planning.pddl`); a plan naming another instance of an action
+schema is told which static precondition fails, by a small program of its own
+(encodings/planning/static.lp over the translation's rules for candidates).
+"""
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 
 import clingo
+from clingo import ast
 from clorm import unify
 
 from ethasp.errors import InputError
+from ethasp.planning.messages import Messages
 from ethasp.planning.model import Model
 from ethasp.planning.naming import Naming
+from ethasp.planning.pddl import SCHEMA_PREDICATES
 from ethasp.planning.plan import Plan
-from ethasp.vocabulary import Failure, Final, Invalid, IsPlan, Unmet, UnmetGoal
+from ethasp.planning.planner import add_facts
+from ethasp.resources import encoding
+from ethasp.vocabulary import (Failure, Final, Invalid, IsPlan, NoSchemaInstance, StaticFailure,
+                               Unmet, UnmetGoal)
 
 # The atoms of a plan's trace that a validation reads (planning/trace.lp).
 TRACE_ATOMS = (("invalid", 1), ("unmet", 4), ("failure", 1), ("final", 2), ("unmet_goal", 2),
@@ -29,7 +41,9 @@ class Validation:
 
     ``failure_step`` is the first step (1-based) whose action is inapplicable,
     with ``failure_action`` and the ``unmet_preconditions`` there (literals
-    ``v`` / ``-v``); ``unmet_goals`` are the goal facts that the final state
+    ``v`` / ``-v``), ``static`` if they are static (no action changes them: the
+    step names an instance of a PDDL action schema that is no action of the
+    task); ``unmet_goals`` are the goal facts that the final state
     misses; ``final_state`` lists the final state's literals (when every step
     is applicable).
     """
@@ -39,6 +53,7 @@ class Validation:
     failure_step: int | None = None
     failure_action: str | None = None
     unmet_preconditions: list[str] = field(default_factory=list)
+    static: bool = False
     unmet_goals: list[str] = field(default_factory=list)
     final_state: list[str] = field(default_factory=list)
 
@@ -50,9 +65,12 @@ class Validation:
         if self.valid:
             return ""
         if self.failure_step is not None:
+            unmet = self.unmet_preconditions
+            static = (f" and no action changes {'it' if len(unmet) == 1 else 'them'}"
+                      if self.static else "")
             return (f"step {self.failure_step}: action {naming.action(self.failure_action)} "
                     f"is not applicable: precondition "
-                    f"{', '.join(map(naming.fact, self.unmet_preconditions))} does not hold")
+                    f"{', '.join(map(naming.fact, unmet))} does not hold{static}")
         return (f"the goal is not reached: {', '.join(map(naming.fact, self.unmet_goals))} "
                 "does not hold at the end")
 
@@ -64,6 +82,7 @@ class Validation:
                 "step": self.failure_step,
                 "action": self.failure_action,
                 "unmet_preconditions": self.unmet_preconditions,
+                "static": self.static,
             },
             "unmet_goals": self.unmet_goals,
             "final_state": self.final_state,
@@ -80,18 +99,25 @@ def _problem(problem: clingo.Symbol) -> str:
 def validate(model: Model, plan: Plan) -> Validation:
     """Validate a plan (its trace, computed once per plan by the model's
     planner); raise InputError if it names unknown actions."""
-    return read_validation(plan, model.planner.trace(plan).select(TRACE_ATOMS))
+    return read_validation(plan, model.planner.trace(plan).select(TRACE_ATOMS), model)
 
 
-def read_validation(plan: Plan, symbols: list[clingo.Symbol]) -> Validation:
-    """The validation of a plan from the shown atoms of a program with trace.lp."""
+def read_validation(plan: Plan, symbols: list[clingo.Symbol],
+                    model: Model | None = None) -> Validation:
+    """The validation of a plan from the shown atoms of a program with trace.lp
+    (and, for a PDDL task's ``model``, of the instances of its action schemas
+    that the plan names and that are no actions)."""
     facts = unify([Invalid, Unmet, Failure, Final, UnmetGoal, IsPlan], symbols)
-    invalid = sorted(str(_problem(atom.problem.symbol)) for atom in facts.query(Invalid).all())
-    if invalid:
-        raise InputError(f"plan: {invalid[0]}")
-    failures = list(facts.query(Failure).all())
+    problems = [atom.problem.symbol for atom in facts.query(Invalid).all()]
+    failures = sorted(atom.step for atom in facts.query(Failure).all())
+    if problems:
+        static = _static_failure(model, problems) if model is not None else None
+        if static is None:
+            raise InputError(f"plan: {sorted(map(_problem, problems))[0]}")
+        if not failures or static[0] < failures[0]:
+            return Validation(plan, False, *static, static=True)
     if failures:
-        step = failures[0].step
+        step = failures[0]
         unmet = sorted((atom for atom in facts.query(Unmet).all() if atom.step == step),
                        key=lambda atom: str(atom.variable))
         return Validation(plan, False, failure_step=step, failure_action=str(unmet[0].action),
@@ -100,3 +126,78 @@ def read_validation(plan: Plan, symbols: list[clingo.Symbol]) -> Validation:
     goals = sorted(literal(atom.variable.symbol, atom.value) for atom in facts.query(UnmetGoal).all())
     valid = bool(list(facts.query(IsPlan).all()))
     return Validation(plan, valid, unmet_goals=goals, final_state=final)
+
+
+def _static_failure(model: Model,
+                    problems: list[clingo.Symbol]) -> tuple[int, str, list[str]] | None:
+    """The first step whose term is an instance of a PDDL action schema that
+    fails a static precondition: (step, action, failing preconditions); None
+    if some problem is another one (an unknown action, a missing step)."""
+    if any(problem.name != "unknown_action" for problem in problems):
+        return None
+    steps: dict[clingo.Symbol, int] = {}
+    for problem in problems:
+        action, step = problem.arguments
+        steps[action] = min(step.number, steps.get(action, step.number))
+    failing = static_failures(model, list(steps))
+    if failing is None:
+        return None
+    action = min(steps, key=lambda action: steps[action])
+    return steps[action], str(action), failing[action]
+
+
+def static_failures(model: Model,
+                    terms: list[clingo.Symbol]) -> dict[clingo.Symbol, list[str]] | None:
+    """For terms that are no actions of a PDDL task: the static preconditions
+    (literals ``v`` / ``-v``) that each fails, as an instance of its action
+    schema; None if some term is no instance of any schema (with its equalities),
+    or if the model has no schemas (it is no PDDL task)."""
+    answer = _schema_program(model, terms)
+    if list(answer.query(NoSchemaInstance).all()):
+        return None
+    failing: dict[clingo.Symbol, list[StaticFailure]] = {}
+    for atom in answer.query(StaticFailure).all():
+        failing.setdefault(atom.action.symbol, []).append(atom)
+    if set(failing) != set(terms):
+        return None
+    return {term: [literal(a.variable.symbol, a.value)
+                   for a in sorted(atoms, key=lambda atom: str(atom.variable))]
+            for term, atoms in failing.items()}
+
+
+def _schema_program(model: Model, candidates: list[clingo.Symbol]):
+    """The answer set of static.lp over the model's rules for candidates (a
+    PDDL translation's), the task's typing and initial state, and the
+    candidates: a small program, in which no action of the task is grounded."""
+    messages = Messages()
+    ctl = clingo.Control(logger=messages, message_limit=20)
+    try:
+        with ast.ProgramBuilder(ctl) as builder:
+            def keep(statement):
+                if statement.ast_type == ast.ASTType.Rule and _head_name(statement) in \
+                        SCHEMA_PREDICATES:
+                    builder.add(statement)
+            for source in model.sources:
+                if source.path is not None:
+                    ast.parse_files([str(source.path)], keep, logger=messages)
+                else:
+                    ast.parse_string(source.text, keep, logger=messages)
+            ast.parse_files([str(encoding("planning/static.lp"))], builder.add)
+        add_facts(ctl, [*model.planner.get("init", 1), *model.planner.get("has_type", 2),
+                        *(clingo.Function("pddl_candidate", [action]) for action in candidates)])
+        ctl.ground([("base", [])])
+    except RuntimeError:
+        messages.raise_first("grounding failed")
+    with ctl.solve(yield_=True) as handle:
+        for answer in handle:
+            return unify([NoSchemaInstance, StaticFailure], answer.symbols(shown=True))
+    return unify([NoSchemaInstance, StaticFailure], [])
+
+
+def _head_name(rule) -> str | None:
+    head = rule.head
+    if head.ast_type == ast.ASTType.Literal and head.atom.ast_type == ast.ASTType.SymbolicAtom:
+        symbol = head.atom.symbol
+        if symbol.ast_type == ast.ASTType.Function:
+            return symbol.name
+    return None

@@ -28,7 +28,7 @@ from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan, parse_action
 from ethasp.planning.planner import Constraint, occurrences
 from ethasp.planning.search import BOUNDED, DEFAULT_MAX_HORIZON, FOUND, NONE
-from ethasp.planning.validation import validate
+from ethasp.planning.validation import static_failures, validate
 from ethasp.principles.judgement import Judgement
 from ethasp.principles.principle import select_principles
 from ethasp.principles.restriction import HPlanResult, plan_with_principles
@@ -73,8 +73,14 @@ def check_question(model: Model, question: Question, plan: Plan) -> list[Constra
             symbols = list(answer.symbols(shown=True))
             break
     answer = unify([Answered, UnknownAction], symbols)
-    unknown = sorted(str(atom.action) for atom in answer.query(UnknownAction).all())
+    unknown = sorted((atom.action.symbol for atom in answer.query(UnknownAction).all()), key=str)
     if unknown:
+        failing = static_failures(model, unknown[:1])
+        if failing:
+            facts = ", ".join(map(model.naming.fact, failing[unknown[0]]))
+            raise InputError(f"question '{question}': action {model.naming.action(unknown[0])} "
+                             f"never applies: precondition {facts} does not hold and no "
+                             "action changes it")
         raise InputError(f"question '{question}': unknown action {unknown[0]}")
     if list(answer.query(Answered).all()):
         raise InputError(f"question '{question}': the plan already meets its contrast "
