@@ -282,6 +282,9 @@ class Reachability:
         # that no key is freed and reused while it is remembered.
         self._utility_memo: dict[int, tuple] = {}
         self.reached = init
+        self.back_layers: list = []
+        self.back_reached = self.bdd.false
+        self.back_complete = False
         self.complete = False
         self.stopped = ""
 
@@ -407,6 +410,84 @@ class Reachability:
         self.reached |= new
         self.layers.append(new)
         return True
+
+    # -- backward: pre-images from a set of states --------------------------------
+
+    def _preimage(self, states, parts):
+        """The states from which an action of a cluster leads into ``states``:
+        the written variables renamed to their after-copies, then the
+        relation's product over them (the others keep their values)."""
+        relation, qvars, rename = parts
+        moved = self.bdd.let({x: y for y, x in rename.items()}, states)
+        after = list(rename)
+        if self._compiled:
+            return self._module.and_exists(moved, relation, after)
+        return self.bdd.exist(after, moved & relation)
+
+    def start_backward(self, states) -> None:
+        """Start backward layers from a set of states (the goal states, say):
+        backward layer j holds the states whose shortest path into the set has
+        j actions (states not reachable from the initial state included)."""
+        self.back_layers = [states]
+        self.back_reached = states
+        self.back_complete = False
+
+    def expand_backward(self, budget: Budget | None = None) -> bool:
+        """Compute the next backward layer; as :meth:`expand`."""
+        if self.back_complete:
+            return True
+        frontier = self.back_layers[-1]
+        new = self.bdd.false
+        for count, parts in enumerate(self._images, start=1):
+            new |= self._preimage(frontier, parts)
+            if count % CHECK_EVERY == 0 or count == len(self._images):
+                if budget is not None and budget.expired():
+                    self.stopped = budget.why_stopped()
+                    return False
+        if self.nodes() > self.node_limit:
+            self.stopped = f"more than {self.node_limit} diagram nodes"
+            return False
+        new &= ~self.back_reached
+        if new == self.bdd.false:
+            self.back_complete = True
+            return True
+        self.back_reached |= new
+        self.back_layers.append(new)
+        return True
+
+    def path_from(self, state: frozenset[clingo.Symbol], layer: int) -> list[clingo.Symbol]:
+        """The actions of a shortest path from a state of backward ``layer``
+        (given by its true variables) into the backward layers' first set:
+        forwards, layer by layer, an action and a successor in the layer below."""
+        actions: list[clingo.Symbol] = []
+        current = state
+        for k in range(layer, 0, -1):
+            step = self._successor(current, self.back_layers[k - 1])
+            if step is None:
+                raise RuntimeError(f"no successor of a state of backward layer {k} in "
+                                   f"backward layer {k - 1}")
+            action, current = step
+            actions.append(action)
+        return actions
+
+    def _successor(self, state: frozenset[clingo.Symbol], layer):
+        """An action and the state of ``layer`` it leads to from ``state``."""
+        full = self.state(state)
+        for group, parts in zip(self._groups, self._images):
+            if self._image(full, parts) & layer == self.bdd.false:
+                continue
+            for action in group:
+                relation, written = self._relation(action)
+                qvars = [f"x{self.index[v]}" for v in written]
+                moved = self.bdd.exist(qvars, full & relation)
+                after = self.bdd.let({f"y{self.index[v]}": x for v, x in zip(written, qvars)},
+                                     moved) & layer
+                if after != self.bdd.false:
+                    values = self.bdd.pick(after, care_vars=[f"x{i}" for i in
+                                                             range(len(self.model.variables))])
+                    return action.name, frozenset(v for v in self.model.variables
+                                                  if values[f"x{self.index[v]}"])
+        return None
 
     def run(self, budget: Budget | None = None) -> bool:
         """Expand until every reachable state is known (True) or stopped (False)."""
