@@ -56,6 +56,12 @@ UTILITY_MEMO_LIMIT = 2_000_000
 # write: one relational product per cluster instead of one image per action.
 CLUSTER_VARIABLES = 16
 
+# On models whose cluster relations have at most this many nodes together,
+# neighbouring clusters are merged while their joint relation stays within it
+# (logistics p4: one relation for all 84 actions, 1981 nodes, layers 4.5x
+# faster than with four clusters; on depots merging took longer than it saved).
+MERGE_NODES = 5_000
+
 # Rounds of the FORCE heuristic for the initial variable order; variables that
 # more than one action in HUB_SHARE uses take no part in it.
 FORCE_ROUNDS = 20
@@ -272,6 +278,7 @@ class Reachability:
         self._derive()
         self._groups = _clusters(model, self.index)
         self._images = [self._cluster(group) for group in self._groups]
+        self._merge(MERGE_NODES)
         init = self._cube([(v, v in model.init) for v in model.variables])
         self.layers = [init]
         self._prefixes: list = []
@@ -370,6 +377,37 @@ class Reachability:
         qvars = [f"x{self.index[v]}" for v in written]
         rename = {f"y{self.index[v]}": f"x{self.index[v]}" for v in written}
         return relation, qvars, rename
+
+    def _merge(self, limit: int) -> None:
+        """On models whose cluster relations have at most ``limit`` nodes together,
+        merge neighbouring clusters while their joint relation has at most
+        ``limit`` nodes: there fewer, larger products (often one relation for
+        every action) cost less than many small ones."""
+        if not self._images or sum(len(parts[0]) for parts in self._images) > limit:
+            return      # large models: joining costs more than it saves (depots)
+        groups, images = [self._groups[0]], [self._images[0]]
+        for group, parts in zip(self._groups[1:], self._images[1:]):
+            joint = self._joined(images[-1], parts)
+            if len(joint[0]) <= limit:
+                groups[-1] = groups[-1] + group
+                images[-1] = joint
+            else:
+                groups.append(group)
+                images.append(parts)
+        self._groups, self._images = groups, images
+
+    def _joined(self, first, second):
+        """One relation for two clusters: each keeps the variables only the other writes."""
+        def keep(parts, names):
+            relation = parts[0]
+            for x in names:
+                relation &= self.bdd.var(f"y{x[1:]}").equiv(self.bdd.var(x))
+            return relation
+
+        written = sorted(set(first[1]) | set(second[1]), key=lambda x: int(x[1:]))
+        relation = keep(first, [x for x in written if x not in first[1]]) | \
+            keep(second, [x for x in written if x not in second[1]])
+        return relation, written, {f"y{x[1:]}": x for x in written}
 
     def _image(self, states, parts):
         relation, qvars, rename = parts
