@@ -283,6 +283,7 @@ class Reachability:
         self.layers = [init]
         self._prefixes: list = []
         self._relations: dict = {}
+        self._writes: dict = {}
         self._level_table = None
         # _max_utility's results by node, kept across calls (the sets asked
         # about share most of their nodes); each entry holds its node, so
@@ -345,7 +346,12 @@ class Reachability:
     def state(self, true: Iterable[clingo.Symbol]):
         """The set holding one state (its true variables given)."""
         true = set(true)
-        return self._cube([(v, v in true) for v in self.model.variables])
+        return self._values(true, self.model.variables)
+
+    def _values(self, true, variables, after: bool = False):
+        """The cube giving (non-derived) variables their values in a state (true ones given)."""
+        prefix = "y" if after else "x"
+        return self.bdd.cube({f"{prefix}{self.index[v]}": v in true for v in variables})
 
     # -- images -------------------------------------------------------------------
 
@@ -558,7 +564,7 @@ class Reachability:
         variables = self.model.variables
         for group, (relation, qvars, rename) in zip(self._groups, self._images):
             written = [variables[int(x[1:])] for x in qvars]
-            after = self._cube([(v, v in state) for v in written], after=True)
+            after = self._values(state, written, after=True)
             before = self.bdd.exist(list(rename), relation & after)
             if before & self.bdd.exist(qvars, full) & layer == self.bdd.false:
                 continue
@@ -572,8 +578,10 @@ class Reachability:
         """An action of ``actions`` and a state of ``layer`` from which it leads
         to the state ``full``."""
         for action in actions:
+            if not self._may_lead_to(action, state):
+                continue
             relation, written = self._relation(action)
-            after = self._cube([(v, v in state) for v in written], after=True)
+            after = self._values(state, written, after=True)
             qvars = [f"x{self.index[v]}" for v in written]
             rest = self.bdd.exist(qvars, full)   # the variables the action leaves alone
             before = self.bdd.exist([f"y{self.index[v]}" for v in written], relation & after)
@@ -585,6 +593,32 @@ class Reachability:
                                  if values[f"x{self.index[v]}"])
                 return action.name, true
         return None
+
+    def _may_lead_to(self, action: GroundAction, state: frozenset[clingo.Symbol]) -> bool:
+        """A necessary condition, on the state after it, for an action to lead to
+        a state (a quick filter before the diagrams decide): its unconditional
+        effects hold there unless another effect may undo them (true wins), and
+        its preconditions on (state) variables it does not write hold there."""
+        written = self._written(action)
+        for variable, value in written["fixed"]:
+            if (variable in state) != value:
+                return False
+        for variable, value in action.pre:
+            if variable in self.index and variable not in written["all"] \
+                    and (variable in state) != value:
+                return False
+        return True
+
+    def _written(self, action: GroundAction) -> dict:
+        """Per action: the variables it writes, and the values its effects surely set."""
+        found = self._writes.get(action.name)
+        if found is None:
+            adds = {e.variable for e in action.effects if e.value}
+            fixed = {(e.variable, e.value) for e in action.effects if not e.condition
+                     and (e.value or e.variable not in adds)}
+            found = {"all": {e.variable for e in action.effects}, "fixed": fixed}
+            self._writes[action.name] = found
+        return found
 
     def _relation(self, action: GroundAction):
         """The transition relation of one action over the variables it writes."""
