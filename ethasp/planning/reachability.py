@@ -405,10 +405,10 @@ class Reachability:
     def _joined(self, first, second):
         """One relation for two clusters: each keeps the variables only the other writes."""
         def keep(parts, names):
-            relation = parts[0]
+            frame = self.bdd.true        # small: one equivalence per variable
             for x in names:
-                relation &= self.bdd.var(f"y{x[1:]}").equiv(self.bdd.var(x))
-            return relation
+                frame &= self.bdd.var(f"y{x[1:]}").equiv(self.bdd.var(x))
+            return parts[0] & frame
 
         written = sorted(set(first[1]) | set(second[1]), key=lambda x: int(x[1:]))
         relation = keep(first, [x for x in written if x not in first[1]]) | \
