@@ -152,3 +152,21 @@ def test_budget_until_stops_on_its_condition():
     child = parent.until(lambda: False).until(lambda: False)
     parent.cancel()
     assert child.expired()
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(min_value=0, max_value=10**9), st.booleans(), st.booleans())
+def test_bidirectional_layers_prove_the_shortest_length_and_read_a_shortest_plan(
+        seed, conditional, derived):
+    """Forward layers and backward layers from the goal states (pre-images):
+    where they first meet is the oracle's shortest length, the plan read off
+    through both is valid, and `complete` only when no goal state is reachable."""
+    spec = random_model(seed, conditional=conditional, derived=derived, far_goal=seed % 2 == 1)
+    model = Model.from_string(spec.to_asp())
+    if model.planner.is_fact("unreachable_goal"):
+        return
+    layers = Layers(Atoms(model.planner), Budget(None), bidirectional=True).start()
+    try:
+        check_against_oracle(spec, finished(layers), model)
+    finally:
+        layers.stop()

@@ -104,21 +104,23 @@ def test_a_budget_stops_the_engine_without_a_claim():
 
 
 @settings(max_examples=60, deadline=None)
-@given(st.integers(min_value=0, max_value=10**9), st.sampled_from([1, 2, 16]))
-def test_every_state_has_a_shortest_path_and_each_layer_its_best(seed, cluster):
+@given(st.integers(min_value=0, max_value=10**9), st.sampled_from([1, 2, 16]),
+       st.sampled_from([0, 5_000]))
+def test_every_state_has_a_shortest_path_and_each_layer_its_best(seed, cluster, merge):
     """Paths to every reachable state (actions in clusters of 1, 2 or 16
-    written variables, so that a predecessor is looked for cluster by cluster)
-    and the best state of each layer and each prefix, asked one after another
-    (the engine remembers utilities between queries), against the oracle."""
+    written variables, merged again into joint relations or not, so that a
+    predecessor is looked for cluster by cluster) and the best state of each
+    layer and each prefix, asked one after another (the engine remembers
+    utilities between queries), against the oracle."""
     import ethasp.planning.reachability as reachability
 
     spec = spec_of(seed)
-    saved = reachability.CLUSTER_VARIABLES
-    reachability.CLUSTER_VARIABLES = cluster
+    saved = reachability.CLUSTER_VARIABLES, reachability.MERGE_NODES
+    reachability.CLUSTER_VARIABLES, reachability.MERGE_NODES = cluster, merge
     try:
         r = Reachability(ground(spec))
     finally:
-        reachability.CLUSTER_VARIABLES = saved
+        reachability.CLUSTER_VARIABLES, reachability.MERGE_NODES = saved
     assert r.run()
     distances = spec.distances()
     for k, layer in enumerate(r.layers):

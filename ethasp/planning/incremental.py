@@ -82,11 +82,14 @@ def _switch_literal(location, switch: clingo.Symbol):
     return ast.Literal(location, ast.Sign.NoSign, atom)
 
 
+_PLACED = (ast.ASTType.Rule, ast.ASTType.Minimize, ast.ASTType.Heuristic)
+
+
 def _place(statement, step_part: str, switch: clingo.Symbol | None, where: str,
-           base_part: str = "base"):
-    """The part of a statement, the part's parameters, and the statement to add there."""
-    if statement.ast_type not in (ast.ASTType.Rule, ast.ASTType.Minimize,
-                                  ast.ASTType.Heuristic):
+           base_part: str = "base", kind=None):
+    """The part of a statement (of type ``kind``, if known), the part's
+    parameters, and the statement to add there."""
+    if (statement.ast_type if kind is None else kind) not in _PLACED:
         return base_part, (), statement
     body = list(statement.body)
     time_kind, input_name, mapping, drop = None, None, {}, None
@@ -104,6 +107,8 @@ def _place(statement, step_part: str, switch: clingo.Symbol | None, where: str,
         elif name in INPUTS and input_name is None:
             input_name = name
             mapping[variable] = VALUE
+    if not mapping and switch is None:
+        return base_part, (), statement      # nothing to rewrite
     if drop is not None:
         del body[drop]
     for variable, parameter in mapping.items():
@@ -134,11 +139,12 @@ def add_encoding(builder: ast.ProgramBuilder, path: Path | None, step_part: str 
     params: dict[str, tuple[str, ...]] = {}
 
     def collect(statement):
-        if statement.ast_type == ast.ASTType.Program:
+        kind = statement.ast_type
+        if kind == ast.ASTType.Program:
             if statement.name != "base" or statement.parameters:
                 raise InputError(f"{where}: encodings for multi-shot solving must not use #program")
             return
-        part, parameters, placed = _place(statement, step_part, switch, where, base_part)
+        part, parameters, placed = _place(statement, step_part, switch, where, base_part, kind)
         parts[part].append(placed)
         params[part] = parameters
 

@@ -301,8 +301,8 @@ def _shortest(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
                     "the goal holds in the initial state"))
             if status.complete:
                 return SearchResult(NONE, horizon=horizon, proof=(
-                    "exact reachability computed every reachable state, and none is a goal "
-                    "state"))
+                    "exact reachability layers ran out of new states without meeting a goal "
+                    "state: no goal state is reachable"))
             if status.bound > bound:
                 bound = status.bound
                 why = f"exact reachability found no goal state within {steps(bound - 1)}"
@@ -403,8 +403,8 @@ def _any_plan(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
                                     proof="a plan read off exact reachability layers")
             if status.complete:
                 return SearchResult(NONE, horizon=horizon, optimal=False, proof=(
-                    "exact reachability computed every reachable state, and none is a goal "
-                    "state"))
+                    "exact reachability layers ran out of new states without meeting a goal "
+                    "state: no goal state is reachable"))
             if status.bound > bound:
                 bound = status.bound
                 why = f"exact reachability found no goal state within {steps(bound - 1)}"
