@@ -431,23 +431,30 @@ class Reachability:
                 return int(self.bdd.statistics()["n_nodes"])
         return len(self.bdd)
 
+    def _next_layer(self, frontier, reached, image, budget: Budget | None):
+        """The states one step from ``frontier`` by ``image`` (per cluster), less
+        those ``reached``; None (and :attr:`stopped` says why) if the budget or
+        the node limit stopped it."""
+        new = self.bdd.false
+        for count, parts in enumerate(self._images, start=1):
+            new |= image(frontier, parts)
+            if count % CHECK_EVERY == 0 or count == len(self._images):
+                if budget is not None and budget.expired():
+                    self.stopped = budget.why_stopped()
+                    return None
+        if self.nodes() > self.node_limit:
+            self.stopped = f"more than {self.node_limit} diagram nodes"
+            return None
+        return new & ~reached
+
     def expand(self, budget: Budget | None = None) -> bool:
         """Compute the next layer; False (and :attr:`stopped` says why) if the
         budget or the node limit stopped it, True otherwise."""
         if self.complete:
             return True
-        frontier = self.layers[-1]
-        new = self.bdd.false
-        for count, parts in enumerate(self._images, start=1):
-            new |= self._image(frontier, parts)
-            if count % CHECK_EVERY == 0 or count == len(self._images):
-                if budget is not None and budget.expired():
-                    self.stopped = budget.why_stopped()
-                    return False
-        if self.nodes() > self.node_limit:
-            self.stopped = f"more than {self.node_limit} diagram nodes"
+        new = self._next_layer(self.layers[-1], self.reached, self._image, budget)
+        if new is None:
             return False
-        new &= ~self.reached
         if new == self.bdd.false:
             self.complete = True
             return True
@@ -480,18 +487,9 @@ class Reachability:
         """Compute the next backward layer; as :meth:`expand`."""
         if self.back_complete:
             return True
-        frontier = self.back_layers[-1]
-        new = self.bdd.false
-        for count, parts in enumerate(self._images, start=1):
-            new |= self._preimage(frontier, parts)
-            if count % CHECK_EVERY == 0 or count == len(self._images):
-                if budget is not None and budget.expired():
-                    self.stopped = budget.why_stopped()
-                    return False
-        if self.nodes() > self.node_limit:
-            self.stopped = f"more than {self.node_limit} diagram nodes"
+        new = self._next_layer(self.back_layers[-1], self.back_reached, self._preimage, budget)
+        if new is None:
             return False
-        new &= ~self.back_reached
         if new == self.bdd.false:
             self.back_complete = True
             return True
