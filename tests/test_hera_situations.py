@@ -445,3 +445,12 @@ def test_plan_search_sees_the_events_that_exact_reachability_does_not_model(
     assert validate(undone, result.plan).valid
     if not satisficing:
         assert [str(a) for a in result.plan.actions] == ["set", "set", "mark"]
+
+
+def test_an_event_step_beyond_ten_thousand_is_refused():
+    """Plan search grounds every step up to the last event: a step is at most
+    10,000, so that a far time point cannot make a search ground for ever."""
+    base = "variable(x). action(a). eff(a,x,true). goal(x,true). event(e). "
+    Model.from_string(base + "event_at(e,10000).")
+    with pytest.raises(InputError, match="from 1 to 10000"):
+        Model.from_string(base + "event_at(e,10001).")

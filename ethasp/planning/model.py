@@ -70,7 +70,7 @@ def _describe(problem: clingo.Symbol) -> str:
     if name == "undeclared_event":
         return f"unknown event {args[0]} in {args[1]} (declare it with event({args[0]}))"
     if name == "bad_time":
-        return f"an event's step must be an integer from 1 to 1000000 in {args[0]}"
+        return f"an event's step must be an integer from 1 to 10000 in {args[0]}"
     if name == "derived_in_event":
         return (f"derived variable {args[0]} in {args[1]} (events read and set state "
                 "variables only)")
