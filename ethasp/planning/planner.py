@@ -518,8 +518,7 @@ class Planner:
         if fluents > MUTEX_MAX_FLUENTS:
             self._mutexes = None       # never
             return False
-        self._ground([(MUTEX, [])] + [(MUTEX_STEP, [clingo.Number(t)])
-                                      for t in range(1, self.grounded + 1)])
+        self._ground_from_now(MUTEX, MUTEX_STEP)
         self._mutexes = True
         return True
 
@@ -536,10 +535,15 @@ class Planner:
         if self.has_events or len(self.search_atoms("usable", 1)) > CANONICAL_MAX_ACTIONS:
             self._canonical = None     # never
             return False
-        self._ground([(CANONICAL, [])] + [(CANONICAL_STEP, [clingo.Number(t)])
-                                          for t in range(1, self.grounded + 1)])
+        self._ground_from_now(CANONICAL, CANONICAL_STEP)
         self._canonical = True
         return True
+
+    def _ground_from_now(self, part: str, step_part: str) -> None:
+        """Ground an optional part and its step part for every step so far
+        (:meth:`ground_to` grounds the step part of later steps)."""
+        self._ground([(part, [])] + [(step_part, [clingo.Number(t)])
+                                     for t in range(1, self.grounded + 1)])
 
     def _register(self, name: str, value: clingo.Symbol,
                   facts: Sequence[clingo.Symbol] = ()) -> None:
