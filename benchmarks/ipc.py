@@ -29,7 +29,6 @@ from __future__ import annotations
 
 import argparse
 import compileall
-import importlib.util
 import json
 import os
 import re
@@ -40,6 +39,8 @@ import tempfile
 import time
 from dataclasses import dataclass
 from pathlib import Path
+
+from fast_downward import fast_downward_driver
 
 ROOT = Path(__file__).resolve().parent.parent
 FD_SEARCH = {"fd-opt": "astar(lmcut())", "fd-sat": "lazy_greedy([ff()])"}
@@ -110,18 +111,6 @@ def run_ethasp(instance: Instance, satisficing: bool, cap: float) -> Run:
     data = json.loads(done.stdout)
     length = len(data["plan"]) if data.get("plan") is not None else None
     return Run(length, seconds, data["status"])
-
-
-def fast_downward_driver() -> Path | None:
-    """The driver script of the up-fast-downward package, if it is installed."""
-    spec = importlib.util.find_spec("up_fast_downward")
-    if spec is None or not spec.submodule_search_locations:
-        return None
-    for location in spec.submodule_search_locations:
-        driver = Path(location) / "downward" / "fast-downward.py"
-        if driver.is_file():
-            return driver
-    return None
 
 
 def run_fast_downward(driver: Path, instance: Instance, search: str, cap: float) -> Run:

@@ -18,7 +18,6 @@ Usage: python benchmarks/pddl_vs_fast_downward.py [--time-limit SECONDS] [--quic
 from __future__ import annotations
 
 import argparse
-import importlib.util
 import json
 import os
 import random
@@ -28,6 +27,8 @@ import tempfile
 import time
 from dataclasses import dataclass
 from pathlib import Path
+
+from fast_downward import fast_downward_driver
 
 ROOT = Path(__file__).resolve().parent.parent
 PDDL = ROOT / "asp" / "pddl"
@@ -116,18 +117,6 @@ def run_ethasp(instance: Instance, time_limit: float) -> Run:
     if data["status"] != "found":
         return Run(None, seconds, data["status"])
     return Run(len(data["plan"]), seconds)
-
-
-def fast_downward_driver() -> Path | None:
-    """The driver script of the up-fast-downward package, if it is installed."""
-    spec = importlib.util.find_spec("up_fast_downward")
-    if spec is None or not spec.submodule_search_locations:
-        return None
-    for location in spec.submodule_search_locations:
-        driver = Path(location) / "downward" / "fast-downward.py"
-        if driver.is_file():
-            return driver
-    return None
 
 
 def run_fast_downward(driver: Path, instance: Instance, time_limit: float) -> Run:
