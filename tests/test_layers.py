@@ -170,3 +170,39 @@ def test_bidirectional_layers_prove_the_shortest_length_and_read_a_shortest_plan
         check_against_oracle(spec, finished(layers), model)
     finally:
         layers.stop()
+
+
+@pytest.mark.parametrize("seed", [5, 8, 13, 21, 34, 55, 89, 144])
+def test_plain_search_solves_with_two_threads_once_the_layers_give_up(seed, monkeypatch):
+    """Layers that give up leave their core to a second solver thread: the
+    search still proves shortest plans, and the grounding goes back to one
+    thread (later searches on it answer the same every time)."""
+    if not layers_module.can_fork():
+        pytest.skip("no child processes here")
+    spec = random_model(seed, max_variables=6, max_actions=6, far_goal=True)
+    model = Model.from_string(spec.to_asp())
+    planner = model.planner
+    if planner.is_fact("unreachable_goal"):
+        pytest.skip("relaxed reachability answers this one")
+    original = Layers.__init__
+
+    def giving_up(self, *args, **kwargs):   # the node limit is passed with the first layer
+        original(self, *args, **{**kwargs, "node_limit": 0})
+
+    counts = []
+    threads = type(planner).threads
+    monkeypatch.setattr(Layers, "__init__", giving_up)
+    monkeypatch.setattr(search_module, "LAYERS_AT_ONCE_ACTIONS", 0)   # waited for at the start
+    monkeypatch.setattr(search_module, "_cores", lambda: 2)
+    monkeypatch.setattr(type(planner), "threads",
+                        lambda self, count: (counts.append(count), threads(self, count)))
+    result = find_plan(model, max_horizon=20)
+    expected = spec.shortest_plan_length()
+    if expected is None:
+        assert result.status == "none", result
+    else:
+        assert result.status == "found" and result.optimal, result
+        assert len(result.plan) == expected and spec.is_plan([str(a) for a in result.plan])
+    assert counts[0] == 2 or result.horizon == 0          # the layers gave up first
+    assert counts[-1] == 1 and planner._threads == 1
+    assert str(planner.ctl.configuration.solve.parallel_mode).startswith("1")

@@ -281,6 +281,7 @@ class Planner:
         self._searching = False
         self._mutexes: bool | None = False   # grounded (True), not yet, or never (None)
         self._canonical: bool | None = False  # the same for the canonical order
+        self._threads = 1             # solver threads (see threads())
         self.grounded = -1            # step and check parts grounded up to this time
         self._loopfree = 0            # loopfree parts grounded up to this time
         self._inputs: dict[str, list[clingo.Symbol]] = {name: [] for name in incremental.INPUTS}
@@ -693,6 +694,16 @@ class Planner:
             return Outcome(None, found[-1] if found else [], costs[0] if costs else [])
         return Outcome(result.satisfiable, found[-1] if found else [],
                        costs[0] if costs else [], found)
+
+    @_locked
+    def threads(self, count: int) -> None:
+        """Solve with this many threads from now on (clasp's competing
+        portfolio: the first thread to decide a horizon decides it).  More
+        than one makes the plan found depend on the race, so searches that
+        promise the same answer every time (restrictions, questions) keep one."""
+        if count != self._threads:
+            self.ctl.configuration.solve.parallel_mode = str(count)
+            self._threads = count
 
     @_locked
     def simple_path_exists(self, length: int, setting: Setting, budget: Budget) -> bool | None:
