@@ -86,7 +86,8 @@ def test_the_vocabulary_is_not_reserved_and_the_time_domain_is():
     assert ("ceff", 4) in MODEL_VOCABULARY and ("cpre", 4) in MODEL_VOCABULARY
     assert set(PDDL_VOCABULARY) == {("pddl_subtype", 2), ("pddl_object", 2), ("pddl_add", 2),
                                     ("pddl_del", 2), ("pddl_candidate", 1),
-                                    ("pddl_schema_instance", 1), ("pddl_static_failure", 3)}
+                                    ("pddl_schema_instance", 1), ("pddl_static_failure", 3),
+                                    ("pddl_static", 1)}
 
 
 def test_every_predicate_crossing_into_python_is_vocabulary_or_reserved():

@@ -415,6 +415,32 @@ def test_a_changed_predicate_is_not_static():
     assert ground_model(program)["action"] == {"action(grab(left,b1))", "action(grab(left,b2))"}
 
 
+@pytest.mark.parametrize("annotation", [
+    "eff(grab(left,b2),near(b2,left),true).",
+    "ceff(grab(left,b1),k,near(b2,left),true). cpre(grab(left,b1),k,free(left),true).",
+    "action(push(b2)). eff(push(b2),near(b2,left),true).",
+    "pddl_add(grab(left,b1),ball(left)).",
+])
+def test_an_annotation_that_changes_a_static_atom_is_refused(tmp_path, annotation):
+    """Pruning by static preconditions trusts that no action changes them: an
+    annotation file's effect on a static atom (here near(b2,left), which would
+    make grab(left,b2) applicable, though the translation dropped it) is
+    refused with one line, never planned with silently."""
+    files = []
+    for name, text in (("d.pddl", UNTYPED), ("p.pddl", UNTYPED_PROBLEM),
+                       ("extra.lp", annotation)):
+        (tmp_path / name).write_text(text)
+        files.append(str(tmp_path / name))
+    with pytest.raises(InputError, match="which no action of the PDDL domain changes"):
+        Model.load(files)
+    run = ethasp("plan", *files)
+    assert run.returncode == 2 and len(run.stderr.strip().splitlines()) == 1, run.stderr
+    assert "no action of the PDDL domain changes" in run.stderr
+    # an effect on a changed predicate, and a fact on a static one, are fine
+    (tmp_path / "extra.lp").write_text("init(near(b2,left)). eff(grab(left,b1),on_floor(b2),false).")
+    assert find_plan(Model.load(files)).status == "found"
+
+
 def test_validation_names_a_failing_static_precondition():
     """An instance of an action schema whose static precondition fails is no
     action; validating a plan that names it says which precondition fails."""

@@ -83,6 +83,10 @@ def _describe(problem: clingo.Symbol) -> str:
     if name == "bad_plan":
         return (f"{args[0]} does not describe a plan (one length N >= 0, one action at each "
                 "step 1..N)")
+    if name == "static_written":
+        return (f"{args[1]} changes {args[0]}, which no action of the PDDL domain changes: the "
+                "translation keeps only the action instances whose preconditions on such "
+                "atoms hold initially (give the effect in the domain instead)")
     if name == "override_without_condition":
         return f"{args[0]} names a condition that no cpre/4 has"
     return str(problem)

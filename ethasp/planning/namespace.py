@@ -87,6 +87,8 @@ PDDL_VOCABULARY: dict[tuple[str, int], str] = {
     ("pddl_object", 2): "pddl_object(X,T): object X is declared of type T",
     ("pddl_add", 2): "pddl_add(A,V): an add effect",
     ("pddl_del", 2): "pddl_del(A,V): a delete effect",
+    ("pddl_static", 1): "pddl_static(V): V is an atom of a static predicate (no action of "
+                        "the domain changes it)",
     ("pddl_candidate", 1): "pddl_candidate(A): a term of a plan that is no action (validation)",
     ("pddl_schema_instance", 1): "pddl_schema_instance(A): candidate A is an instance of an "
                                  "action schema",

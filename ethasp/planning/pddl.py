@@ -23,7 +23,9 @@ plain conjunct also goes into the body of the ``action/1`` rule, as
 does not exist.  Per action schema, ``pddl_schema_instance/1`` and
 ``pddl_static_failure/3`` rules over ``pddl_candidate/1`` tell a validation
 why a term is no action (``encodings/planning/static.lp``); in the model they
-derive nothing.
+derive nothing.  ``pddl_static/1`` names the atoms of static predicates:
+an annotation file that gives an effect on one is refused
+(``encodings/planning/check.lp``), as the pruning would be wrong for it.
 
 The translation also writes ``variable/1`` (``derived/1`` for derived
 predicates) rules for every predicate, ``pddl_object/2`` and
@@ -366,7 +368,12 @@ class _Translator:
         for predicate, params in sorted(self.domain.predicates.items()):
             scope, names, typing = self.bind(Scope(), params)
             kind = "derived" if predicate in self.derived else "variable"
-            self.emit(rule(f"{kind}({term_of(pddl_name_to_asp(predicate), names)})", typing))
+            atom = term_of(pddl_name_to_asp(predicate), names)
+            self.emit(rule(f"{kind}({atom})", typing))
+            if pddl_name_to_asp(predicate) in self.static:
+                # Pruning trusts that nothing changes it: check.lp refuses an
+                # annotation file's effect on it.
+                self.emit(rule(f"pddl_static({atom})", [f"variable({atom})"]))
         for definition in self.domain.derived:
             if definition.predicate not in self.domain.predicates:
                 scope, names, typing = self.bind(Scope(), definition.params)
