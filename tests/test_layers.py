@@ -186,7 +186,7 @@ def test_plain_search_solves_with_two_threads_once_the_layers_give_up(seed, monk
         pytest.skip("relaxed reachability answers this one")
     original = Layers.__init__
 
-    def giving_up(self, *args, **kwargs):   # the node limit is passed with the first layer
+    def giving_up(self, *args, **kwargs):   # a node limit of 0: they give up at once
         original(self, *args, **{**kwargs, "node_limit": 0})
 
     counts = []
