@@ -21,10 +21,16 @@ pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
 HANG = 60
 
 
+def _as_at_a_terminal() -> None:
+    # A shell without job control starts background jobs with SIGINT ignored,
+    # and a child inherits that: a test run so would test nothing.
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def start(*arguments: str) -> subprocess.Popen:
     return subprocess.Popen([sys.executable, "-m", "ethasp.interfaces.cli", *arguments],
                             stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True)
+                            stderr=subprocess.PIPE, text=True, preexec_fn=_as_at_a_terminal)
 
 
 def wait_for_line(process: subprocess.Popen, fragment: str) -> list[str]:
