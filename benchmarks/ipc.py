@@ -113,6 +113,19 @@ def run_ethasp(instance: Instance, satisficing: bool, cap: float) -> Run:
     return Run(length, seconds, data["status"])
 
 
+def _fast_downward_outcome(code: int) -> str:
+    """What a Fast Downward exit code without a plan means (its driver's codes):
+    proven unsolvable, an incomplete search that gave up, or input it refused
+    (a feature its translator or the search does not support)."""
+    if code in (10, 11):
+        return "no plan"
+    if code == 12:
+        return "gave up"
+    if code in (31, 33, 34, 36, 37):
+        return "refused"
+    return f"error {code}"
+
+
 def run_fast_downward(driver: Path, instance: Instance, search: str, cap: float) -> Run:
     with tempfile.TemporaryDirectory() as work:
         plan_file = Path(work) / "plan"
@@ -122,7 +135,7 @@ def run_fast_downward(driver: Path, instance: Instance, search: str, cap: float)
         if done is None:
             return Run(None, seconds, "timeout")
         if not plan_file.is_file():
-            return Run(None, seconds, "no plan")
+            return Run(None, seconds, _fast_downward_outcome(done.returncode))
         steps = [line for line in plan_file.read_text().splitlines()
                  if line.strip() and not line.startswith(";")]
         return Run(len(steps), seconds, "found")

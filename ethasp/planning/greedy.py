@@ -23,8 +23,16 @@ variables that never change).  It runs in a child process beside the
 solver (see :class:`Greedy`).
 
 States are Python integers (bit i: variable i is true), so a state is
-hashed and compared as one number.  Models with derived variables are left
-to the solver (the engine would have to evaluate axioms in every state).
+hashed and compared as one number.  Derived variables take the bits after
+the state variables: a state keeps only its state variables, and the
+derived ones are computed where a state is expanded, group by group of
+mutually dependent variables in the order of their dependencies, each from
+false to its least fixpoint (the stratified semantics the encodings give
+them, ``encodings/planning/transition.lp``).  In the relaxed task an axiom
+is a relaxed action of no cost, and so is its negation: a derived variable
+becomes false once each of its axioms has a literal whose opposite is
+reached (every reachable state where it is false has such literals, so a
+relaxed dead end stays a real one).
 """
 
 from __future__ import annotations
@@ -36,12 +44,15 @@ import clingo
 
 from ethasp.planning.budget import Budget
 from ethasp.planning.layers import Layers
+from ethasp.planning.reachability import dependency_groups
 
 # States generated beyond which the search gives up (memory).
 STATE_LIMIT = 2_000_000
 # Why a search without a plan stopped when it expanded every reachable state
 # (but relaxed dead ends, from which no goal state is reachable either).
 EXHAUSTED = "every reachable state expanded without a goal state"
+# The step of a relaxed action that is an axiom (no action, no cost).
+AXIOM = -1
 # Expansions between two checks of the budget.
 CHECK_EVERY = 64
 # Turns in a row the queue of helpful actions gets whenever the estimate
@@ -85,10 +96,13 @@ class Task:
 
     def __init__(self, model):
         self.variables = list(model.variables)
-        index = {v: i for i, v in enumerate(self.variables)}
+        self.derived = sorted(model.axioms, key=str)
+        index = {v: i for i, v in enumerate(self.variables + self.derived)}
         self.index = index
+        self.base = (1 << len(self.variables)) - 1      # the bits of the state variables
         self.steps: list[Step] = []
-        relaxed: list[tuple[tuple[int, ...], tuple[int, ...], int]] = []  # (needs, adds, step)
+        # (needs, adds, step); step AXIOM for an axiom
+        relaxed: list[tuple[tuple[int, ...], tuple[int, ...], int]] = []
 
         def literal(variable, value: bool) -> int:
             return 2 * index[variable] + (1 if value else 0)
@@ -124,9 +138,28 @@ class Task:
                     plain_adds.append(literal(effect.variable, effect.value))
             relaxed.append((needs, tuple(plain_adds), number))
             self.steps.append(Step(action.name, pos, neg, add, delete, tuple(conditional)))
+        # Derived variables by groups, dependencies first: (bit, axioms' masks).
+        depends = {d: {v for body in bodies for v, _ in body if v in model.axioms}
+                   for d, bodies in model.axioms.items()}
+        self.strata = [[(1 << index[d], [masks(body) for body in model.axioms[d]])
+                        for d in group] for group in dependency_groups(depends)]
+        # Relaxed axioms: a derived variable becomes true by one of its axioms,
+        # and false once every axiom has a literal whose opposite is reached
+        # (an extra literal per axiom, numbered after the variables' ones).
+        self.literals = 2 * len(index)
+        for derived in self.derived:
+            falsified = []
+            for body in model.axioms[derived]:
+                relaxed.append((tuple(literal(v, b) for v, b in body),
+                                (literal(derived, True),), AXIOM))
+                falsified.append(self.literals)
+                for v, b in body:
+                    relaxed.append(((literal(v, not b),), (self.literals,), AXIOM))
+                self.literals += 1
+            relaxed.append((tuple(falsified), (literal(derived, False),), AXIOM))
         self.relaxed = relaxed
         self.needs_count = [len(set(needs)) for needs, _, _ in relaxed]
-        self.needed_by: list[list[int]] = [[] for _ in range(2 * len(self.variables))]
+        self.needed_by: list[list[int]] = [[] for _ in range(self.literals)]
         for r, (needs, _, _) in enumerate(relaxed):
             for lit in set(needs):
                 self.needed_by[lit].append(r)
@@ -141,6 +174,23 @@ class Task:
             if s.pos:
                 low = (s.pos & -s.pos).bit_length() - 1
                 self._by_bit.setdefault(low, []).append(s)
+
+    def full(self, state: int) -> int:
+        """A state with the bits of its derived variables set (see the module
+        docstring)."""
+        for group in self.strata:
+            changed = True
+            while changed:
+                changed = False
+                for bit, bodies in group:
+                    if state & bit:
+                        continue
+                    for pos, neg in bodies:
+                        if state & pos == pos and not state & neg:
+                            state |= bit
+                            changed = True
+                            break
+        return state
 
     def is_goal(self, state: int) -> bool:
         return state & self.goal_pos == self.goal_pos and not state & self.goal_neg
@@ -157,13 +207,13 @@ class Task:
         return found
 
     def heuristic(self, state: int) -> tuple[int | None, set[int]]:
-        """The FF estimate of a state (None: the goal is relaxed unreachable) and
-        the helpful actions: those of the relaxed plan applicable in the state."""
-        n = len(self.variables)
-        reached = bytearray(2 * n)
-        supporter = [-1] * (2 * n)
+        """The FF estimate of a (full) state (None: the goal is relaxed
+        unreachable) and the helpful actions: those of the relaxed plan
+        applicable in the state."""
+        reached = bytearray(self.literals)
+        supporter = [-1] * self.literals
         frontier = []
-        for i in range(n):
+        for i in range(len(self.index)):
             lit = 2 * i + ((state >> i) & 1)
             reached[lit] = 1
             frontier.append(lit)
@@ -205,7 +255,7 @@ class Task:
                 if supporter[need] >= 0 and need not in seen:
                     seen.add(need)
                     agenda.append(need)
-        actions = {relaxed[r][2] for r in chosen}
+        actions = {relaxed[r][2] for r in chosen} - {AXIOM}
         helpful = {a for a in actions if self.steps[a].applicable(state)}
         return len(actions), helpful
 
@@ -235,18 +285,19 @@ def greedy_plan(task: Task, budget: Budget | None = None,
         if state in closed:
             continue
         closed.add(state)
-        if task.is_goal(state):
+        full = task.full(state)
+        if task.is_goal(full):
             return _path(task, parents, state), ""
         expansions += 1
         if expansions % CHECK_EVERY == 0 and budget is not None and budget.expired():
             return None, budget.why_stopped()
-        h, helpful = task.heuristic(state)
+        h, helpful = task.heuristic(full)
         if h is None:
             continue                      # a dead end, even relaxed
         if best is None or h < best:
             best, boost = h, boost + BOOST
-        for step in task.applicable(state):
-            successor = step.apply(state)
+        for step in task.applicable(full):
+            successor = step.apply(full) & task.base
             if successor in parents:
                 continue
             number = position[id(step)]
@@ -280,9 +331,6 @@ class Greedy(Layers):
 
         atoms = self._atoms() if callable(self._atoms) else self._atoms
         self.model = search_model(atoms)
-        if self.model.axioms:
-            publish(stopped="greedy search does not evaluate derived variables")
-            return
         plan, why = greedy_plan(Task(self.model), self._budget)
         if plan is None and why == EXHAUSTED:
             publish(complete=True)

@@ -117,7 +117,7 @@ class Best:
     layer: int
 
 
-def _groups(depends: dict) -> list[list]:
+def dependency_groups(depends: dict) -> list[list]:
     """The strongly connected groups of a dependency graph, dependencies first
     (Tarjan's algorithm, iterative)."""
     index: dict = {}
@@ -315,7 +315,7 @@ class Reachability:
         axioms = self.model.axioms
         depends = {d: {v for body in bodies for v, _ in body if v in axioms}
                    for d, bodies in axioms.items()}
-        for group in _groups(depends):
+        for group in dependency_groups(depends):
             for derived in group:
                 self._derived[derived] = self.bdd.false
             changed = True

@@ -129,7 +129,7 @@ class _Exact:
         self.atoms: Atoms | None = None
         if not self.usable:
             return
-        if greedy and read_plan and not planner.get("derived", 1):
+        if greedy and read_plan:
             # Any-plan search: a greedy forward search proposes a plan (or
             # proves that there is none) instead of the layers.
             from ethasp.planning.greedy import Greedy
