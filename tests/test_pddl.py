@@ -405,6 +405,47 @@ def test_negative_static_preconditions_decide_which_actions_exist():
     assert ground_model(program)["action"] == {"action(grab(left,b2))"}
 
 
+LINKED = """
+(define (domain links)
+  (:requirements :adl :derived-predicates)
+  (:predicates (link ?x ?y) (on ?x) (lit ?x))
+  (:derived (lit ?x) (exists (?y) (and (link ?y ?x) (on ?y))))
+  (:action switch :parameters (?x) :precondition (forall (?y) (imply (link ?y ?x) (lit ?y)))
+    :effect (on ?x)))
+"""
+
+LINKED_PROBLEM = """
+(define (problem three) (:domain links)
+  (:objects a b c)
+  (:init (link a b) (link b c) (on a))
+  (:goal (on c)))
+"""
+
+
+def test_static_literals_decide_which_axioms_exist(tmp_path):
+    """As for actions: an axiom instance (of a derived predicate, or of the
+    auxiliary variable of a quantified precondition) whose literal on a static
+    predicate fails initially never holds, so it is not written."""
+    program = translated(LINKED, LINKED_PROBLEM)
+    assert "init(link(Y,X))" in program
+    ground = clingo.Control(logger=lambda code, message: None)
+    for name in ("planning/pddl.lp", "planning/model.lp"):
+        ground.load(str(ENCODINGS / name))
+    ground.add("base", [], program)
+    ground.ground([("base", [])])
+    axioms = sorted(str(atom.symbol) for atom in ground.symbolic_atoms.by_signature("axiom", 2))
+    # one instance per link (of 9 pairs), for lit/1 and for the auxiliary
+    # variable of switch's forall (a link into its object from a dark one)
+    assert axioms == ["axiom(formula_1(b),(1,a))", "axiom(formula_1(c),(1,b))",
+                      "axiom(lit(b),(1,1,a))", "axiom(lit(c),(1,1,b))"], axioms
+    files = []
+    for name, text in (("d.pddl", LINKED), ("p.pddl", LINKED_PROBLEM)):
+        (tmp_path / name).write_text(text)
+        files.append(tmp_path / name)
+    result = find_plan(Model.load(files))       # switch c: lit(b) holds (a is on)
+    assert result.status == "found" and [str(a) for a in result.plan] == ["switch(c)"]
+
+
 def test_a_changed_predicate_is_not_static():
     """An effect, even a conditional one, makes a predicate not static."""
     domain = UNTYPED.replace(

@@ -23,7 +23,10 @@ plain conjunct also goes into the body of the ``action/1`` rule, as
 does not exist.  Per action schema, ``pddl_schema_instance/1`` and
 ``pddl_static_failure/3`` rules over ``pddl_candidate/1`` tell a validation
 why a term is no action (``encodings/planning/static.lp``); in the model they
-derive nothing.  ``pddl_static/1`` names the atoms of static predicates:
+derive nothing.  The same goes for axioms (of derived predicates, and of
+the auxiliary derived variables below): an axiom instance whose static
+literal fails is not written.  ``pddl_static/1`` names the atoms of static
+predicates:
 an annotation file that gives an effect on one is refused
 (``encodings/planning/check.lp``), as the pruning would be wrong for it.
 
@@ -345,7 +348,13 @@ class _Translator:
         return head
 
     def axiom(self, head: str, name: str, alt: Conjunction, body: Iterable[str]) -> None:
-        body = [*body, *alt.body, *alt.comparisons]
+        # A literal on a static predicate holds in every state exactly when it
+        # holds initially: an instance of the axiom whose static literal fails
+        # never holds, so it is not written (as for actions); axiom_pre/4 keeps
+        # the literal.
+        static = [f"init({atom})" if value == "true" else f"not init({atom})"
+                  for atom, value in alt.literals if atom.split("(")[0] in self.static]
+        body = [*body, *alt.body, *alt.comparisons, *static]
         self.emit(rule(f"axiom({head},{name})", body))
         for atom, value in alt.literals:
             self.emit(rule(f"axiom_pre({head},{name},{atom},{value})", body))
