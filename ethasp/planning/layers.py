@@ -78,17 +78,23 @@ def search_model(atoms: Atoms) -> GroundModel:
     """The search model of a planner's ground atoms (see the module docstring)."""
     from ethasp.planning.reachability import from_atoms
 
+    # (A symbol's arguments are read once each: every read crosses into clingo.)
     usable = {atom.arguments[0] for atom in atoms.usable}
-    reachable = {(atom.arguments[0], _value(atom.arguments[1])) for atom in atoms.reachable}
+    reachable = set()
+    for atom in atoms.reachable:
+        variable, value = atom.arguments
+        reachable.add((variable, _value(value)))
     derived = [atom.arguments[0] for atom in atoms.get("derived", 1)]
-    fluents = [atom.arguments[0] for atom in atoms.get("variable", 1)
-               if (atom.arguments[0], True) in reachable
-               and (atom.arguments[0], False) in reachable]
+    variables = [atom.arguments[0] for atom in atoms.get("variable", 1)]
+    fluents = [v for v in variables if (v, True) in reachable and (v, False) in reachable]
     moving = set(fluents) | set(derived)
     # The value every other state variable has in every reachable state.
-    fixed = {atom.arguments[0]: value for atom in atoms.get("variable", 1)
-             for value in (True, False)
-             if atom.arguments[0] not in moving and (atom.arguments[0], value) in reachable}
+    fixed = {}
+    for variable in variables:
+        if variable not in moving:
+            for value in (True, False):
+                if (variable, value) in reachable:
+                    fixed[variable] = value
 
     def keeps(variable, value) -> bool | None:
         """True: the literal holds everywhere; False: nowhere; None: it depends."""
