@@ -43,6 +43,11 @@ LAYERS_AFTER = 0.03
 # search: there the layers often find a shortest plan before the solver has
 # refuted the first few horizons.
 LAYERS_AT_ONCE_ACTIONS = 32
+# ... and so do models of at least this many state variables: reading their
+# atoms in this process (to start the layers later) would cost more than
+# starting a child process that reads them (PDDL tasks declare an atom for
+# every typed combination of a predicate's arguments).
+LAYERS_AT_ONCE_VARIABLES = 1000
 # Seconds the solver waits, at the start of a search, for an engine started
 # with it (layers, greedy search) to finish: where it finishes that soon, the
 # solver's work would only have taken a core from it (the machine may have
@@ -109,7 +114,8 @@ def plans_of(models: list) -> list[Plan]:
 class _Exact:
     """Exact layers (:mod:`ethasp.planning.layers`) beside a search, started once
     the solver has worked :data:`LAYERS_AFTER` seconds (with the search, for
-    models of at least :data:`LAYERS_AT_ONCE_ACTIONS` ground actions), for
+    models of at least :data:`LAYERS_AT_ONCE_ACTIONS` ground actions or
+    :data:`LAYERS_AT_ONCE_VARIABLES` state variables), for
     searches with the goal and without utility thresholds or states to avoid
     (the layers know the model's plans, and every plan a setting allows is one
     of them)."""
@@ -137,8 +143,9 @@ class _Exact:
             reader = (lambda: Atoms(planner)) if layers_module.can_fork() else Atoms(planner)
             self.greedy = Greedy(reader, budget, read_plan=True).start()
             return
-        if len(planner.get("action", 1)) >= LAYERS_AT_ONCE_ACTIONS \
-                and layers_module.can_fork():
+        large = (len(planner.get("action", 1)) >= LAYERS_AT_ONCE_ACTIONS
+                 or len(planner.get("variable", 1)) >= LAYERS_AT_ONCE_VARIABLES)
+        if large and layers_module.can_fork():
             # Started now, before any solve: the child process reads the
             # ground atoms itself while this process goes on grounding.
             self.layers = Layers(lambda: Atoms(planner), budget, read_plan=read_plan).start()
