@@ -54,6 +54,11 @@ LAYERS_AT_ONCE_VARIABLES = 1000
 # fewer free cores than processes).
 HEAD_START = 0.3
 
+# Seconds a solve takes before the h^2 mutexes are grounded while the layers
+# still work: often they end the search first, and the grounding (which
+# cannot be interrupted) would only delay the end (freecell p01: 0.7 s).
+MUTEX_AFTER_LAYERS = 0.25
+
 # Solver threads for plain plan search once the layers have given up (their
 # core is free): clasp's competing portfolio, about 1.3x to 1.8x faster on
 # the hard horizons of depots.
@@ -203,6 +208,9 @@ class _Exact:
             # Never while the greedy search works: at the large horizons of
             # any-plan search their grounding takes seconds, uninterrupted.
             return float("inf")
+        status = self.status()
+        if status is not None and status.working:
+            return MUTEX_AFTER_LAYERS
         return MUTEX_AFTER
 
     def watch(self, horizon: int) -> Budget:
