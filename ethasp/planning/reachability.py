@@ -355,33 +355,32 @@ class Reachability:
 
     # -- images -------------------------------------------------------------------
 
-    def _after(self, action: GroundAction, variable: clingo.Symbol):
-        """The value of a written variable after the action, over the values before."""
-        adds, deletes = self.bdd.false, self.bdd.false
+    def _after_values(self, action: GroundAction) -> dict[int, object]:
+        """The value after the action of each variable it writes (by index),
+        over the values before: set where an effect setting it true fires,
+        else kept where none setting it false fires."""
+        bdd = self.bdd
+        changes: dict[int, list] = {}
         for effect in action.effects:
-            if effect.variable == variable:
-                fires = self._cube(effect.condition)
-                if effect.value:
-                    adds |= fires
-                else:
-                    deletes |= fires
-        return adds | (self._var(variable) & ~deletes)
+            entry = changes.setdefault(self.index[effect.variable], [bdd.false, bdd.false])
+            entry[0 if effect.value else 1] |= self._cube(effect.condition)
+        return {i: adds | (bdd.var(f"x{i}") & ~deletes) for i, (adds, deletes) in changes.items()}
 
     def _cluster(self, actions: list[GroundAction]):
         """The transition relation of a cluster of actions over the variables they
         write (before: x, after: y), and what an image under it quantifies and renames."""
-        written = sorted({e.variable for a in actions for e in a.effects},
-                         key=self.index.__getitem__)
-        relation = self.bdd.false
+        index, bdd = self.index, self.bdd
+        written = sorted({index[e.variable] for a in actions for e in a.effects})
+        unchanged = {i: bdd.var(f"y{i}").equiv(bdd.var(f"x{i}")) for i in written}
+        relation = bdd.false
         for action in actions:
-            own = {e.variable for e in action.effects}
+            after = self._after_values(action)
             step = self._cube(action.pre)
-            for variable in written:
-                after = self._after(action, variable) if variable in own else self._var(variable)
-                step &= self._var(variable, after=True).equiv(after)
+            for i in written:
+                step &= bdd.var(f"y{i}").equiv(after[i]) if i in after else unchanged[i]
             relation |= step
-        qvars = [f"x{self.index[v]}" for v in written]
-        rename = {f"y{self.index[v]}": f"x{self.index[v]}" for v in written}
+        qvars = [f"x{i}" for i in written]
+        rename = {f"y{i}": f"x{i}" for i in written}
         return relation, qvars, rename
 
     def _merge(self, limit: int) -> None:
@@ -622,9 +621,11 @@ class Reachability:
         """The transition relation of one action over the variables it writes."""
         if action.name not in self._relations:
             written = sorted({e.variable for e in action.effects}, key=self.index.__getitem__)
+            after = self._after_values(action)
             relation = self._cube(action.pre)
             for variable in written:
-                relation &= self._var(variable, after=True).equiv(self._after(action, variable))
+                i = self.index[variable]
+                relation &= self.bdd.var(f"y{i}").equiv(after[i])
             self._relations[action.name] = (relation, written)
         return self._relations[action.name]
 
