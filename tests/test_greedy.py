@@ -1,7 +1,8 @@
 """Faster plan search: the greedy forward search of any-plan search
 (ethasp.planning.greedy), the trace of a plan over the facts of its own
-actions, plans read from answer sets without the typed vocabulary, and exact
-layers started with the search; against the oracle and on IPC instances."""
+actions, and plans read from answer sets without the typed vocabulary;
+against the oracle and on IPC instances (exact layers started early:
+test_layers.py)."""
 
 from pathlib import Path
 
@@ -10,7 +11,6 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-import ethasp.planning.search as search_module
 from ethasp import Model, find_plan, validate
 from ethasp.planning.budget import Budget
 from ethasp.planning.greedy import EXHAUSTED, Greedy, Task, greedy_plan
@@ -127,25 +127,3 @@ def test_plan_from_symbols_orders_by_step_and_ignores_other_atoms():
     symbols = [clingo.parse_term(text) for text in
                ("occurs(b,2)", "holds(x,1)", "occurs(push(m),1)", "occurs(c,10)", "occurs(d,3)")]
     assert str(Plan.from_symbols(symbols)) == "push(m) b d c"
-
-
-# -- exact layers started with the search -----------------------------------------
-
-@settings(max_examples=40, deadline=None)
-@given(st.integers(min_value=0, max_value=10**9), st.booleans())
-def test_shortest_plans_with_layers_started_with_the_search(seed, conditional):
-    spec = random_model(seed, conditional=conditional, far_goal=seed % 3 == 0)
-    model = Model.from_string(spec.to_asp())
-    saved = search_module.LAYERS_AT_ONCE_ACTIONS
-    search_module.LAYERS_AT_ONCE_ACTIONS = 1
-    try:
-        result = find_plan(model, max_horizon=20)
-    finally:
-        search_module.LAYERS_AT_ONCE_ACTIONS = saved
-    expected = spec.shortest_plan_length()
-    if expected is None:
-        assert result.status == "none", result
-    else:
-        assert result.status == "found" and result.optimal, result
-        assert len(result.plan) == expected
-        assert spec.is_plan([str(a) for a in result.plan])

@@ -96,19 +96,23 @@ def test_search_model_drops_what_never_changes():
     assert [(str(v), b) for v, b in ground.goal] == [("far", True)]
 
 
-@settings(max_examples=60, deadline=None)
+@pytest.mark.parametrize("knob, value", [("LAYERS_AFTER", 0.0),           # after the first solve
+                                          ("LAYERS_AT_ONCE_ACTIONS", 1)])  # before any solve
+@settings(max_examples=50, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9), st.booleans())
-def test_plan_search_with_layers_at_once_finds_shortest_plans(seed, conditional):
-    """The layers start with the search: their bounds and plans must agree with
-    the solver's, whichever proves first."""
+def test_plan_search_with_layers_started_early_finds_shortest_plans(knob, value, seed,
+                                                                     conditional):
+    """The layers start early (after the first solve, or with the search in a
+    child process): their bounds and plans must agree with the solver's,
+    whichever proves first."""
     spec = random_model(seed, conditional=conditional, far_goal=seed % 3 == 0)
     model = Model.from_string(spec.to_asp())
-    saved = search_module.LAYERS_AFTER
-    search_module.LAYERS_AFTER = 0.0
+    saved = getattr(search_module, knob)
+    setattr(search_module, knob, value)
     try:
         result = find_plan(model, max_horizon=20)
     finally:
-        search_module.LAYERS_AFTER = saved
+        setattr(search_module, knob, saved)
     expected = spec.shortest_plan_length()
     if expected is None:
         assert result.status == "none", result

@@ -43,7 +43,7 @@ from dataclasses import dataclass
 import clingo
 
 from ethasp.planning.budget import Budget
-from ethasp.planning.layers import Layers
+from ethasp.planning.layers import Layers, search_model
 from ethasp.planning.reachability import dependency_groups
 
 # States generated beyond which the search gives up (memory).
@@ -327,8 +327,6 @@ class Greedy(Layers):
     ``stopped``."""
 
     def _work(self, publish) -> None:
-        from ethasp.planning.layers import search_model
-
         atoms = self._atoms() if callable(self._atoms) else self._atoms
         self.model = search_model(atoms)
         plan, why = greedy_plan(Task(self.model), self._budget)

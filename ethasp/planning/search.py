@@ -123,7 +123,9 @@ class _Exact:
     :data:`LAYERS_AT_ONCE_VARIABLES` state variables), for
     searches with the goal and without utility thresholds or states to avoid
     (the layers know the model's plans, and every plan a setting allows is one
-    of them)."""
+    of them).  With ``greedy`` (any-plan search) and ``read_plan`` (plain
+    search), the greedy forward search (:mod:`ethasp.planning.greedy`) runs
+    instead of the layers, started with the search."""
 
     def __init__(self, planner: Planner, setting: Setting, budget: Budget, read_plan: bool,
                  greedy: bool = False):
@@ -400,8 +402,8 @@ def any_plan(planner: Planner, setting: Setting, budget: Budget,
     (no restriction, no question constraint) a greedy forward search
     (:mod:`ethasp.planning.greedy`) runs beside it in a child process and
     may deliver a plan (or the proof that none exists) first; otherwise exact
-    layers run beside it as in :func:`shortest`.  A plan from either engine is checked by its trace.
-    ``none`` is proven as by :func:`shortest`: relaxed or exact
+    layers run beside it as in :func:`shortest`.  A plan from either engine is
+    checked by its trace.  ``none`` is proven as by :func:`shortest`: relaxed or exact
     reachability, or a refuted horizon without a simple path of its length.
     """
     if max_horizon < 0:
