@@ -422,6 +422,24 @@ LINKED_PROBLEM = """
 """
 
 
+@pytest.mark.parametrize("annotation", [
+    "pddl_static(free(left)).",                                # a changed atom called static
+    "pddl_candidate(grab(left,b2)).",
+    "pddl_static_failure(grab(left,b2),near(b2,left),true).",  # changing validation's words
+    "pddl_schema_instance(grab(left,b2)).",
+])
+def test_what_only_the_translation_writes_is_reserved(tmp_path, annotation):
+    """The atoms the pruning trusts and the rules validation explains with are
+    the translation's: an annotation file defining them is refused."""
+    files = []
+    for name, text in (("d.pddl", UNTYPED), ("p.pddl", UNTYPED_PROBLEM),
+                       ("extra.lp", annotation)):
+        (tmp_path / name).write_text(text)
+        files.append(str(tmp_path / name))
+    with pytest.raises(InputError, match=r"extra.lp:1: the model defines pddl_"):
+        Model.load(files)
+
+
 def test_static_literals_decide_which_axioms_exist(tmp_path):
     """As for actions: an axiom instance (of a derived predicate, or of the
     auxiliary variable of a quantified precondition) whose literal on a static

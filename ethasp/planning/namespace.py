@@ -98,6 +98,16 @@ PDDL_VOCABULARY: dict[tuple[str, int], str] = {
 
 VOCABULARY = {**MODEL_VOCABULARY, **PDDL_VOCABULARY}
 
+#: What only the translation writes: the static atoms its pruning trusts, and
+#: the rules that tell validation why a term is no action.  An annotation
+#: file defining them would make check.lp refuse what the domain changes, or
+#: change validation's words, so they are reserved for the
+#: files given with a PDDL task (the translation itself is not checked; a
+#: translation saved as an ASP model, which has no PDDL task behind it, may
+#: write them).
+TRANSLATION_ONLY = (("pddl_static", 1), ("pddl_candidate", 1), ("pddl_schema_instance", 1),
+                    ("pddl_static_failure", 3))
+
 # Encodings whose predicates depend on the model alone, so models may read them.
 MODEL_LAYER = ("planning/model.lp",)
 PDDL_LAYER = ("planning/pddl.lp",)
@@ -366,11 +376,13 @@ def _encoding_names(pddl: bool) -> list[str]:
 @lru_cache(maxsize=None)
 def reserved(pddl: bool = False) -> frozenset[tuple[str, int]]:
     """The predicates a model may not define: every predicate an encoding mentions,
-    except the vocabulary.  ``planning/pddl.lp`` counts only for PDDL tasks."""
+    except the vocabulary.  ``planning/pddl.lp`` counts only for PDDL tasks,
+    and so does :data:`TRANSLATION_ONLY` (reserved there)."""
     found: set[tuple[str, int]] = set()
     for name in _encoding_names(pddl):
         found |= mentioned(name)
-    return frozenset(found - set(VOCABULARY))
+    allowed = set(VOCABULARY) - (set(TRANSLATION_ONLY) if pddl else set())
+    return frozenset(found - allowed)
 
 
 def owner(signature: tuple[str, int], pddl: bool = True) -> Owner | None:
