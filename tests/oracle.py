@@ -10,6 +10,18 @@ variable both ways, true wins; a derived variable holds in a state when all
 conditions of one of its axioms hold there (axioms of a derived variable read
 only state variables and derived variables defined before it).  An effect
 counts for Caused(p) and for do-no-harm only when it fires.
+
+Models may also have exogenous events (HERA's events at time points): an
+event is due at a step T; after the action of step T, if its preconditions
+hold, each of its effects whose conditions hold fires (both read the state
+after the action); among the firing effects of one step on one variable, the
+greatest key wins (true between equal keys), and an event overrides the
+action.  Events happen after the plan's last action too: the final state is
+the state after the later of the plan's end and the last event.  So the
+search space is made of configurations (state, time), the time counting only
+up to the last event.  Caused(p) with events: some action's effect that fired
+at step S set p, and p held after S (its events included) and at every later
+step.
 """
 
 from __future__ import annotations
@@ -17,6 +29,17 @@ from __future__ import annotations
 import random
 from collections import deque
 from dataclasses import dataclass, field
+
+
+@dataclass
+class Event:
+    """An exogenous event: due at ``step``; happens when ``pre`` holds after the
+    action of that step; ``effects`` are (key, conditions, sets)."""
+
+    name: str
+    step: int
+    pre: dict[str, bool]
+    effects: list[tuple[int, dict[str, bool], dict[str, bool]]]
 
 
 @dataclass
@@ -34,8 +57,15 @@ class RandomModel:
         field(default_factory=dict)
     # derived variables, in order: each with its axioms (conditions)
     derived: dict[str, list[dict[str, bool]]] = field(default_factory=dict)
+    # exogenous events
+    events: list[Event] = field(default_factory=list)
 
     # -- semantics ------------------------------------------------------------
+
+    @property
+    def last_event(self) -> int:
+        """The last step at which an event is due (0 without events)."""
+        return max((event.step for event in self.events), default=0)
 
     def extended(self, state: frozenset) -> frozenset:
         """The state with the derived variables that hold in it."""
@@ -71,30 +101,96 @@ class RandomModel:
     def is_goal(self, state: frozenset) -> bool:
         return self.satisfies(state, self.goal)
 
-    def run(self, plan: list[str]) -> frozenset | None:
-        state = self.init
-        for action in plan:
-            if not self.applicable(state, action):
+    def happen(self, state: frozenset, t: int) -> frozenset:
+        """The state after the events due at step ``t``, from the state after
+        that step's action (if any)."""
+        winners: dict[str, tuple[int, bool]] = {}
+        for event in self.events:
+            if event.step != t or not all((v in state) == b for v, b in event.pre.items()):
+                continue
+            for key, conditions, sets in event.effects:
+                if all((v in state) == b for v, b in conditions.items()):
+                    for var, value in sets.items():
+                        if var not in winners or (key, value) > winners[var]:
+                            winners[var] = (key, value)
+        if not winners:
+            return state
+        return frozenset({v for v in state if v not in winners}
+                         | {v for v, (_, value) in winners.items() if value})
+
+    def step(self, state: frozenset, t: int, action: str | None) -> frozenset:
+        """The state after step ``t``: its action (None: an idle step after the
+        plan), then its events."""
+        after = self.apply(state, action) if action is not None else state
+        return self.happen(after, t)
+
+    def trajectory(self, plan: list[str]) -> list[frozenset] | None:
+        """The states of a plan: the initial one, then the state after each step,
+        up to the later of the plan's end and the last event (idle steps after
+        the plan); None if some action is inapplicable."""
+        states = [self.init]
+        for t in range(1, max(len(plan), self.last_event) + 1):
+            action = plan[t - 1] if t <= len(plan) else None
+            if action is not None and not self.applicable(states[-1], action):
                 return None
-            state = self.apply(state, action)
-        return state
+            states.append(self.step(states[-1], t, action))
+        return states
+
+    def first_failure(self, plan: list[str]) -> int | None:
+        """The first step (from 1) whose action is inapplicable, or None."""
+        state = self.init
+        for t, action in enumerate(plan, start=1):
+            if not self.applicable(state, action):
+                return t
+            state = self.step(state, t, action)
+        return None
+
+    def run(self, plan: list[str]) -> frozenset | None:
+        states = self.trajectory(plan)
+        return states[-1] if states is not None else None
 
     def is_plan(self, plan: list[str]) -> bool:
         final = self.run(plan)
         return final is not None and self.is_goal(final)
 
-    def distances(self) -> dict[frozenset, int]:
-        """Every reachable state with its distance from the initial state."""
-        dist = {self.init: 0}
-        queue = deque([self.init])
+    # Configurations (state, time): the time counts up to the last event only.
+
+    def successor(self, config: tuple[frozenset, int], action: str) -> tuple[frozenset, int]:
+        state, t = config
+        return self.step(state, t + 1, action), min(t + 1, self.last_event)
+
+    def finish(self, config: tuple[frozenset, int]) -> frozenset:
+        """The final state of a plan that ends in this configuration (the events
+        still due happen)."""
+        state, t = config
+        for later in range(t + 1, self.last_event + 1):
+            state = self.happen(state, later)
+        return state
+
+    def configurations(self) -> dict[tuple[frozenset, int], int]:
+        """Every reachable configuration with the length of a shortest action
+        sequence to it."""
+        start = (self.init, 0)
+        dist = {start: 0}
+        queue = deque([start])
         while queue:
-            state = queue.popleft()
+            config = queue.popleft()
             for action in self.actions:
-                if self.applicable(state, action):
-                    succ = self.apply(state, action)
+                if self.applicable(config[0], action):
+                    succ = self.successor(config, action)
                     if succ not in dist:
-                        dist[succ] = dist[state] + 1
+                        dist[succ] = dist[config] + 1
                         queue.append(succ)
+        return dist
+
+    def distances(self) -> dict[frozenset, int]:
+        """Every reachable state (final state of an action sequence) with the
+        length of a shortest action sequence that ends in it."""
+        dist: dict[frozenset, int] = {}
+        for config, d in self.configurations().items():
+            final = self.finish(config)
+            if final not in dist or d < dist[final]:
+                dist[final] = d
         return dist
 
     def shortest_plan_length(self) -> int | None:
@@ -114,66 +210,110 @@ class RandomModel:
 
     def effects_of(self, plan: list[str]) -> set[tuple[str, bool]]:
         """The effects of the plan's actions that fired (the plan applicable)."""
-        state, effects = self.init, set()
-        for action in plan:
-            effects |= set(self.firing(state, action))
-            state = self.apply(state, action)
+        states, effects = self.trajectory(plan), set()
+        for t, action in enumerate(plan):
+            effects |= set(self.firing(states[t], action))
         return effects
 
     def caused(self, plan: list[str]) -> set[tuple[str, bool]]:
-        """Caused(p): p holds in the final state and some action of the plan has p
-        as an effect (that fired)."""
-        final = self.run(plan)
-        return {(var, value) for var, value in self.effects_of(plan) if (var in final) == value}
+        """Caused(p): p holds in the final state and an effect of an action of the
+        plan that fired set p, p holding from the end of that step (its events
+        included) to the end."""
+        states = self.trajectory(plan)
+        result = set()
+        for t, action in enumerate(plan, start=1):
+            for var, value in self.firing(states[t - 1], action):
+                if all((var in later) == value for later in states[t:]):
+                    result.add((var, value))
+        return result
 
     def best_reachable_utility(self) -> int:
         return max(self.state_utility(state) for state in self.distances())
 
     def permissible(self, plan: list[str], principle: str) -> bool:
-        """Whether a plan is permissible under a principle, from the definitions."""
-        if principle == "deontology":
+        """Whether a plan is permissible under a principle, from the definitions:
+        the paper's three, and HERA's principles that have a restriction (of
+        HERA 0.22.3; hera-utilitarianism without alternatives permits every
+        plan)."""
+        if principle in ("deontology", "hera-deontology"):
             return not any(self.bad_action(action) for action in plan)
         if principle == "do-no-harm":
             return not any(self.bad_fact(var, value) for var, value in self.caused(plan))
         if principle == "utilitarianism":
             return self.state_utility(self.run(plan)) >= self.best_reachable_utility()
+        if principle in ("avoid-any-harm", "avoid-avoidable-harm"):
+            # Avoidable(p) of a final bad fact p holds iff the goal is reachable.
+            if principle == "avoid-avoidable-harm" and self.shortest_plan_length() is None:
+                return True
+            return not self.final_harm(self.run(plan))
+        if principle == "goal-deontology":
+            return not self.bad_goal()
+        if principle == "hera-utilitarianism":
+            return True
         raise ValueError(principle)
+
+    def final_harm(self, state: frozenset) -> bool:
+        """Does a bad fact hold in the state?"""
+        return any(self.bad_fact(var, var in state) for var in self.variables)
+
+    def bad_goal(self) -> bool:
+        """Is a fact of the goal bad?"""
+        return any(var in self.variables and self.bad_fact(var, value)
+                   for var, value in self.goal.items())
 
     def shortest_permissible_length(self, principles) -> int | None:
         """The length of a shortest plan permissible under all the principles, or None.
 
-        Breadth-first search over pairs (state, bad facts some action so far
-        had as effect); the pairs are finitely many, so None means no
-        permissible plan of any length.
+        Breadth-first search over (configuration, produced): the bad facts that
+        an action of the plan set and that have held since; the nodes are
+        finitely many, so None means no permissible plan of any length.
         """
         principles = set(principles)
         best = self.best_reachable_utility() if "utilitarianism" in principles else None
 
-        def accepted(state, effected) -> bool:
+        def carry(state, produced):
+            return frozenset(fact for fact in produced if (fact[0] in state) == fact[1])
+
+        if "goal-deontology" in principles and self.bad_goal():
+            return None
+        harmless = bool({"avoid-any-harm", "avoid-avoidable-harm"} & principles)
+
+        def accepted(node) -> bool:
+            config, produced = node
+            state = self.finish(config)
             if not self.is_goal(state):
                 return False
             if best is not None and self.state_utility(state) < best:
                 return False
+            if harmless and self.final_harm(state):
+                return False
             if "do-no-harm" in principles:
-                return not any((var in state) == value for var, value in effected)
+                # the flags that survive the events still due
+                t = config[1]
+                current = config[0]
+                for later in range(t + 1, self.last_event + 1):
+                    current = self.happen(current, later)
+                    produced = carry(current, produced)
+                return not produced
             return True
 
-        start = (self.init, frozenset())
+        start = ((self.init, 0), frozenset())
         dist = {start: 0}
         queue = deque([start])
         while queue:
             node = queue.popleft()
-            state, effected = node
-            if accepted(state, effected):
+            config, produced = node
+            if accepted(node):
                 return dist[node]
             for action in self.actions:
-                if not self.applicable(state, action):
+                if not self.applicable(config[0], action):
                     continue
-                if "deontology" in principles and self.bad_action(action):
+                if {"deontology", "hera-deontology"} & principles and self.bad_action(action):
                     continue
-                succ = (self.apply(state, action),
-                        effected | {(var, value) for var, value in self.firing(state, action)
-                                    if self.bad_fact(var, value)})
+                succ_config = self.successor(config, action)
+                fired = {(var, value) for var, value in self.firing(config[0], action)
+                         if self.bad_fact(var, value)}
+                succ = (succ_config, carry(succ_config[0], produced | fired))
                 if succ not in dist:
                     dist[succ] = dist[node] + 1
                     queue.append(succ)
@@ -196,6 +336,14 @@ class RandomModel:
             for k, conditions in enumerate(axioms):
                 lines.append(f"axiom({d},{k}).")
                 lines += [f"axiom_pre({d},{k},{v},{str(b).lower()})." for v, b in conditions.items()]
+        for event in self.events:
+            e = event.name
+            lines += [f"event({e}).", f"event_at({e},{event.step})."]
+            lines += [f"event_pre({e},{v},{str(b).lower()})." for v, b in event.pre.items()]
+            for k, conditions, sets in event.effects:
+                lines += [f"event_effect({e},{k},{v},{str(b).lower()})." for v, b in sets.items()]
+                lines += [f"event_condition({e},{k},{v},{str(b).lower()})."
+                          for v, b in conditions.items()]
         lines += [f"init({v})." for v in sorted(self.init)]
         lines += [f"goal({v},{str(b).lower()})." for v, b in self.goal.items()]
         lines += [f"utility({a},{u})." for a, u in self.action_utility.items()]
@@ -205,10 +353,12 @@ class RandomModel:
 
 def random_model(seed: int, max_variables: int = 4, max_actions: int = 4,
                  conditional: bool = False, derived: bool = False,
-                 far_goal: bool = False) -> RandomModel:
+                 far_goal: bool = False, events: bool = False) -> RandomModel:
     """A small random model; with ``conditional``, actions also get conditional
-    effects, and with ``derived``, derived variables that preconditions,
-    conditions and the goal may read (the model without them is the same).
+    effects, with ``derived``, derived variables that preconditions,
+    conditions and the goal may read, and with ``events``, one or two
+    exogenous events at steps 1 to 3, with preconditions and conditional
+    effects (the model without them is the same).
     With ``far_goal`` the goal is made of literals of a reachable state
     farthest from the initial state (so that plans are longer)."""
     rng = random.Random(seed)
@@ -232,6 +382,8 @@ def random_model(seed: int, max_variables: int = 4, max_actions: int = 4,
         _add_derived(spec, rng)
     if conditional:
         _add_conditional_effects(spec, rng)
+    if events:
+        _add_events(spec, rng)
     if far_goal:
         distances = spec.distances()
         far = max(distances.values())
@@ -269,6 +421,31 @@ def _add_conditional_effects(spec: RandomModel, rng: random.Random) -> None:
             effects.append((f"k{k}", conditions, sets))
         if effects:
             spec.ceff[a] = effects
+
+
+def _add_events(spec: RandomModel, rng: random.Random) -> None:
+    """One or two events at steps 1 to 3; conflicting effects (on one variable,
+    of one step) are allowed: the greatest key wins."""
+    for index in range(rng.randint(1, 2)):
+        pre = {v: rng.random() < 0.5
+               for v in rng.sample(spec.variables, rng.randint(0, min(1, len(spec.variables))))}
+        effects = []
+        for key in rng.sample(range(1, 4), rng.randint(1, 2)):
+            conditions = {v: rng.random() < 0.5
+                          for v in rng.sample(spec.variables,
+                                              rng.randint(0, min(1, len(spec.variables))))}
+            sets = {v: rng.random() < 0.5
+                    for v in rng.sample(spec.variables, rng.randint(1, min(2, len(spec.variables))))}
+            effects.append((key, conditions, sets))
+        spec.events.append(Event(f"e{index}", rng.randint(1, 3), pre, effects))
+
+
+def features(seed: int) -> dict[str, bool]:
+    """Which features a random model of this seed draws: each of conditional
+    effects, derived variables and events in half of the models (every
+    combination alike), so that property tests cover every feature together."""
+    return {"conditional": seed % 2 == 1, "derived": (seed // 2) % 2 == 1,
+            "events": (seed // 4) % 2 == 1}
 
 
 # -- the language L, read literally (section "Moral Action Query Language") ------
@@ -333,27 +510,27 @@ def random_formula(spec: RandomModel, rng: random.Random, depth: int = 3) -> tup
 def plan_through(spec: RandomModel, rng: random.Random, walk: int) -> list[str] | None:
     """A plan: a random walk of at most ``walk`` applicable actions, then a
     shortest path to a goal state (None if no goal state is reachable from there)."""
-    state, plan = spec.init, []
+    config, plan = (spec.init, 0), []
     for _ in range(walk):
-        options = [a for a in spec.actions if spec.applicable(state, a)]
+        options = [a for a in spec.actions if spec.applicable(config[0], a)]
         if not options:
             break
         action = rng.choice(options)
         plan.append(action)
-        state = spec.apply(state, action)
-    parent = {state: None}
-    queue = deque([state])
+        config = spec.successor(config, action)
+    parent = {config: None}
+    queue = deque([config])
     while queue:
         current = queue.popleft()
-        if spec.is_goal(current):
+        if spec.is_goal(spec.finish(current)):
             tail = []
             while parent[current] is not None:
                 current, action = parent[current]
                 tail.append(action)
             return plan + tail[::-1]
         for action in spec.actions:
-            if spec.applicable(current, action):
-                succ = spec.apply(current, action)
+            if spec.applicable(current[0], action):
+                succ = spec.successor(current, action)
                 if succ not in parent:
                     parent[succ] = (current, action)
                     queue.append(succ)

@@ -17,7 +17,7 @@ from ethasp.planning.greedy import EXHAUSTED, Greedy, Task, greedy_plan
 from ethasp.planning.layers import Atoms, search_model
 from ethasp.planning.plan import Plan
 from ethasp.planning.planner import TRACE_ENCODINGS, occurrences
-from oracle import random_model
+from oracle import features, random_model
 from test_layers import finished
 
 IPC = Path(__file__).resolve().parent / "data" / "ipc"
@@ -113,7 +113,8 @@ def test_any_plan_on_ipc_instances_is_a_valid_plan(domain):
        st.lists(st.integers(min_value=0, max_value=7), max_size=5))
 def test_trace_over_the_plans_actions_equals_trace_over_the_model(seed, conditional, derived,
                                                                    picks):
-    spec = random_model(seed, conditional=conditional, derived=derived)
+    spec = random_model(seed, conditional=conditional, derived=derived,
+                        events=features(seed)["events"])
     model = Model.from_string(spec.to_asp())
     names = spec.actions + ["nothing"]            # an unknown action too
     plan = Plan(tuple(clingo.Function(names[i % len(names)]) for i in picks))

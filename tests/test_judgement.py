@@ -224,3 +224,35 @@ def test_large_models_are_probed_by_short_searches_first():
     assert not judgement.permissible and judgement.status == "proven"
     assert judgement.proof.startswith("a state of utility 3 is reachable within ")
     assert model.planner.reachability_pending()          # no diagram was needed
+
+
+# -- utilitarianism with exogenous events: the upper bound counts what events do ----
+
+ARMED = ("variable(armed;happy). action(arm;idle). eff(arm,armed,true). event(e). "
+         "event_at(e,1). event_effect(e,1,happy,true). event_condition(e,1,armed,true). "
+         "utility(happy,true,5).")
+
+
+def test_the_relaxed_facts_include_what_events_may_set():
+    from conftest import only_answer
+
+    answer = only_answer(["planning/model.lp", "planning/relaxed.lp", "judgement/best.lp"],
+                         ARMED + "#show reachable/2.")
+    assert "reachable(happy,true)" in answer
+    assert "upper_bound(5)" in answer
+
+
+@pytest.mark.parametrize("source, plan, better", [
+    (ARMED, "idle", 5),
+    (str(MODELS / "hera" / "robot-and-frank.yaml"), "wait", 3),
+])
+def test_a_state_only_an_event_makes_better_decides_utilitarianism(source, plan, better):
+    """A better final state that only an event produces: the upper bound of the
+    relaxed facts must count it, so the verdict is impermissible, never a
+    proven "permissible" (a false proof)."""
+    model = (Model.load([source]) if source.endswith(".yaml")
+             else Model.from_string(source))
+    judgement = judge(model, Plan.parse(plan), ["utilitarianism"]).judgements[0]
+    assert (judgement.permissible, judgement.status) == (False, "proven"), judgement
+    assert judgement.compared.utility == better
+    assert "impermissible" in judgement.explanation.text

@@ -18,7 +18,7 @@ import ethasp.planning.search as search_module
 from ethasp import Model, find_plan, validate
 from ethasp.planning.budget import Budget
 from ethasp.planning.layers import Atoms, Layers, search_model
-from oracle import random_model
+from oracle import features, random_model
 
 WAIT = 60.0   # seconds a test waits for the layers at most (they take milliseconds)
 
@@ -105,7 +105,8 @@ def test_plan_search_with_layers_started_early_finds_shortest_plans(knob, value,
     """The layers start early (after the first solve, or with the search in a
     child process): their bounds and plans must agree with the solver's,
     whichever proves first."""
-    spec = random_model(seed, conditional=conditional, far_goal=seed % 3 == 0)
+    spec = random_model(seed, far_goal=seed % 3 == 0,
+                        **dict(features(seed), conditional=conditional))
     model = Model.from_string(spec.to_asp())
     saved = getattr(search_module, knob)
     setattr(search_module, knob, value)
@@ -120,6 +121,17 @@ def test_plan_search_with_layers_started_early_finds_shortest_plans(knob, value,
         assert result.status == "found", result
         assert len(result.plan) == expected and result.optimal
         assert spec.is_plan([str(a) for a in result.plan])
+
+
+def test_the_engines_refuse_a_model_with_events():
+    """The layers and the greedy search read the search model, which knows no
+    exogenous events: its atoms are refused, so neither engine runs there
+    (plan search with events is checked against the oracle above)."""
+    model = Model.from_string("variable(a;b). action(go). eff(go,a,true). event(e). "
+                              "event_at(e,1). event_effect(e,1,b,true). goal(b,true).")
+    with pytest.raises(ValueError, match="exogenous events"):
+        Atoms(model.planner)
+    assert not model.planner.exact_reachability
 
 
 def test_layers_bound_restricted_searches_without_reading_plans():

@@ -1,7 +1,8 @@
-"""Property tests: conditional effects and derived variables in the ASP model
-vocabulary (ceff/4, cpre/4, derived/1, axiom/2, axiom_pre/4) against the
-brute-force oracle (tests/oracle.py): shortest plans, validation, Caused, and
-HPlans under each principle (do-no-harm counts only effects that fire)."""
+"""Property tests: conditional effects, derived variables and exogenous events
+in the ASP model vocabulary (ceff/4, cpre/4, derived/1, axiom/2, axiom_pre/4,
+event/1, event_at/2, ...) against the brute-force oracle (tests/oracle.py):
+shortest plans, validation, Caused, and HPlans under each principle
+(do-no-harm counts only effects that fire)."""
 
 from __future__ import annotations
 
@@ -21,9 +22,11 @@ HORIZON = 40
 
 def spec_of(seed: int):
     """Models with conditional effects, half of them with derived variables,
-    half of them with goals that need longer plans."""
+    half of them with goals that need longer plans, half of them with
+    exogenous events."""
     return random_model(seed, max_variables=5, max_actions=5, conditional=True,
-                        derived=seed % 2 == 0, far_goal=seed % 4 < 2)
+                        derived=seed % 2 == 0, far_goal=seed % 4 < 2,
+                        events=(seed // 4) % 2 == 0)
 
 
 @settings(max_examples=150, deadline=None)
@@ -46,15 +49,11 @@ def test_validation_agrees_with_the_oracle(seed, choices):
     spec = spec_of(seed)
     plan = [spec.actions[i % len(spec.actions)] for i in choices]
     check = validate(Model.from_string(spec.to_asp()), Plan.parse(" ".join(plan)))
-    state, first = spec.init, None
-    for index, action in enumerate(plan, start=1):
-        if not spec.applicable(state, action):
-            first = index
-            break
-        state = spec.apply(state, action)
+    first = spec.first_failure(plan)
     assert check.failure_step == first, (plan, check, spec)
     assert check.valid == spec.is_plan(plan)
     if first is None:
+        state = spec.run(plan)
         expected = sorted(v if v in state else f"-{v}" for v in spec.variables)
         assert check.final_state == expected, (plan, check, spec)
 
@@ -68,7 +67,8 @@ def test_caused_counts_only_effects_that_fire(seed, walk):
     if plan is None:
         return
     occurs = "".join(f"occurs({a},{t}). " for t, a in enumerate(plan, start=1))
-    answer = answer_sets(["planning/model.lp", "planning/trace.lp"],
+    answer = answer_sets(["planning/model.lp", "planning/trace.lp",
+                          "planning/trace_events.lp"],
                          spec.to_asp() + occurs + "#show caused/2.")
     assert len(answer) == 1
     caused = {atom for atom in answer[0] if atom.startswith("caused(")}

@@ -1,6 +1,7 @@
-"""Property tests: contrast plans on random models meet the question's
-constraints, and the principle whenever it was not dropped (brute-force
-checks written from the definitions)."""
+"""Property tests: contrast plans on random models (with every feature:
+conditional effects, derived variables, exogenous events) meet the
+question's constraints, and the principle whenever it was not dropped
+(brute-force checks written from the definitions)."""
 
 import random
 
@@ -9,7 +10,7 @@ from hypothesis import strategies as st
 
 from ethasp import InputError, Model, Plan
 from ethasp.questions.contrast import ask
-from oracle import random_model
+from oracle import features, random_model
 
 PRINCIPLES = ["deontology", "utilitarianism", "do-no-harm"]
 
@@ -29,7 +30,7 @@ def meets(plan: list[str], kind: str, a: str, b: str | None) -> bool:
 @given(st.integers(min_value=0, max_value=10**9), st.sampled_from(PRINCIPLES),
        st.sampled_from(["why", "why-not", "rather-than", "before"]))
 def test_contrast_plans_meet_the_constraints(seed, under, kind):
-    spec = random_model(seed)
+    spec = random_model(seed, **features(seed))
     rng = random.Random(seed)
     length = spec.shortest_plan_length()
     if length is None:

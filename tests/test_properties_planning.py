@@ -1,16 +1,18 @@
-"""Property tests: plan search against a brute-force explicit-state search."""
+"""Property tests: plan search against a brute-force explicit-state search,
+on random models with every feature (conditional effects, derived variables,
+exogenous events)."""
 
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from ethasp import Model, find_plan, validate
-from oracle import random_model
+from oracle import features, random_model
 
 
 @settings(max_examples=200, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9))
 def test_plan_existence_and_shortest_length(seed):
-    spec = random_model(seed)
+    spec = random_model(seed, **features(seed))
     model = Model.from_string(spec.to_asp())
     result = find_plan(model, max_horizon=20)
     expected = spec.shortest_plan_length()
@@ -25,19 +27,13 @@ def test_plan_existence_and_shortest_length(seed):
 @settings(max_examples=200, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9), st.lists(st.integers(0, 3), max_size=5))
 def test_validation_agrees_with_the_oracle(seed, choices):
-    spec = random_model(seed)
+    spec = random_model(seed, **features(seed))
     plan = [spec.actions[i % len(spec.actions)] for i in choices]
     from ethasp import Plan
     check = validate(Model.from_string(spec.to_asp()), Plan.parse(" ".join(plan)))
     assert check.valid == spec.is_plan(plan)
     if spec.run(plan) is None:
-        state, first = spec.init, None
-        for index, action in enumerate(plan, start=1):
-            if not spec.applicable(state, action):
-                first = index
-                break
-            state = spec.apply(state, action)
-        assert check.failure_step == first
+        assert check.failure_step == spec.first_failure(plan)
     else:
         final = spec.run(plan)
         expected = sorted(v if v in final else f"-{v}" for v in spec.variables)

@@ -1,4 +1,6 @@
-"""Property tests: HModels (ethical plan generation) against a brute-force oracle.
+"""Property tests: HModels (ethical plan generation) against a brute-force
+oracle, on random models with every feature (conditional effects, derived
+variables, exogenous events).
 
 Soundness: every HPlan is a plan of the model and permissible under each
 principle asked for (Propositions 1 and 2).  Completeness: when a permissible
@@ -16,7 +18,7 @@ from ethasp.principles.restriction import plan_with_principles
 
 # The three principles of the paper (the oracle knows these).
 PRINCIPLES = ("deontology", "utilitarianism", "do-no-harm")
-from oracle import random_model
+from oracle import features, random_model
 
 SINGLE = [[name] for name in PRINCIPLES]
 PAIRS = [list(pair) for pair in itertools.combinations(PRINCIPLES, 2)]
@@ -28,7 +30,7 @@ HORIZON = 40
 
 
 def check_against_oracle(seed: int, principles: list[str]) -> None:
-    spec = random_model(seed)
+    spec = random_model(seed, **features(seed))
     result = plan_with_principles(Model.from_string(spec.to_asp()), principles,
                                   max_horizon=HORIZON)
     expected = spec.shortest_permissible_length(principles)
@@ -59,7 +61,7 @@ def test_hplans_of_several_principles_agree_with_the_oracle(seed, principles):
 @settings(max_examples=100, deadline=None)
 @given(SEEDS)
 def test_the_utilitarian_bound_is_the_proven_best_reachable_utility(seed):
-    spec = random_model(seed)
+    spec = random_model(seed, **features(seed))
     result = plan_with_principles(Model.from_string(spec.to_asp()), ["utilitarianism"],
                                   max_horizon=HORIZON)
     assert result.best.status == "proven", result

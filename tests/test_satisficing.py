@@ -16,7 +16,7 @@ from ethasp import InputError, Model, find_plan, plan_with_principles, validate
 from ethasp.principles.judgement import judge
 from ethasp.questions.contrast import ask
 from ethasp.questions.dialogue import Dialogue
-from oracle import random_model
+from oracle import features, random_model
 
 RESCUE = str(MODELS / "rescue.lp")
 DATA = Path(__file__).resolve().parent / "data" / "ipc"
@@ -54,7 +54,8 @@ def test_the_heuristic_removes_no_plan():
 @settings(max_examples=80, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9), st.booleans())
 def test_any_plan_is_a_plan_and_none_is_proven(seed, conditional):
-    spec = random_model(seed, conditional=conditional, far_goal=seed % 2 == 0)
+    spec = random_model(seed, far_goal=seed % 2 == 0,
+                        **dict(features(seed), conditional=conditional))
     model = Model.from_string(spec.to_asp())
     result = find_plan(model, max_horizon=20, satisficing=True)
     expected = spec.shortest_plan_length()
@@ -96,7 +97,7 @@ def test_satisficing_plans_under_principles_are_permissible(principle):
 @given(st.integers(min_value=0, max_value=10**9),
        st.sampled_from(["deontology", "do-no-harm"]))
 def test_satisficing_hplans_against_the_oracle(seed, principle):
-    spec = random_model(seed)
+    spec = random_model(seed, **features(seed))
     model = Model.from_string(spec.to_asp())
     result = plan_with_principles(model, [principle], max_horizon=12, satisficing=True)
     expected = spec.shortest_permissible_length([principle])

@@ -63,9 +63,17 @@ MODEL_ATOMS = (("variable", 1), ("action", 1), ("pre", 3), ("eff", 3), ("ceff", 
 
 class Atoms:
     """The ground atoms of a planner that the search model needs, read at once
-    (the planner's control serves one thread at a time)."""
+    (the planner's control serves one thread at a time).
+
+    The search model (and every engine that reads it: the exact layers, the
+    greedy search) knows actions, conditional effects and derived variables,
+    not exogenous events: the atoms of a model with events are refused
+    (ValueError), so that no engine's plan or bound is used there.
+    """
 
     def __init__(self, planner):
+        if planner.get("event_at", 2):
+            raise ValueError("the search model does not handle exogenous events")
         self.usable = planner.search_atoms("usable", 1)
         self.reachable = planner.search_atoms("reachable", 2)
         self.model = {name: planner.get(name, arity) for name, arity in MODEL_ATOMS}
