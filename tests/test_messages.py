@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import re
 
+import pytest
+
 from ethasp import Model, Plan, find_plan
 from ethasp.planning.budget import Budget
 from ethasp.principles.judgement import judge
@@ -85,3 +87,27 @@ def test_utilitarian_judgement_messages():
                     budget=cancelled()).judgements[0]
     assert stopped.status == "bounded" and stopped.permissible
     assert stopped.proof.endswith("; a better reachable state may exist")
+
+
+@pytest.mark.parametrize("search", ["plan", "satisficing", "deontology", "utilitarianism",
+                                    "do-no-harm", "best"])
+def test_a_cancelled_budget_starts_no_solve(search):
+    """A budget cancelled before the call stops every search before it solves
+    (whatever the load of the machine: no solve runs, so none can finish)."""
+    from ethasp.principles.utilitarianism import best_reachable
+
+    model = Model.load([MODELS / "rescue.lp"])
+    planner = model.planner
+    planner.ground_to(1)
+    solves = []
+    original = planner.ctl.solve
+    planner.ctl.solve = lambda *args, **kwargs: solves.append(args) or original(*args, **kwargs)
+    if search in ("plan", "satisficing"):
+        result = find_plan(model, budget=cancelled(), satisficing=search == "satisficing")
+    elif search == "best":
+        result = best_reachable(planner, cancelled())
+    else:
+        result = plan_with_principles(model, [search], budget=cancelled())
+    assert result.status == "bounded", result
+    assert "cancelled" in result.proof
+    assert solves == []

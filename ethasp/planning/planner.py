@@ -671,6 +671,8 @@ class Planner:
         return outcome
 
     def _solve(self, assumptions, budget: Budget, optimize: bool, models: int) -> Outcome:
+        if budget.expired():
+            return Outcome(None)        # cancelled or out of time: no solve starts
         config = self.ctl.configuration.solve
         config.opt_mode = "opt" if optimize else "ignore"
         config.models = "0" if optimize else str(models)

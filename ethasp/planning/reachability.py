@@ -434,6 +434,9 @@ class Reachability:
         """The states one step from ``frontier`` by ``image`` (per cluster), less
         those ``reached``; None (and :attr:`stopped` says why) if the budget or
         the node limit stopped it."""
+        if budget is not None and budget.expired():
+            self.stopped = budget.why_stopped()
+            return None
         new = self.bdd.false
         for count, parts in enumerate(self._images, start=1):
             new |= image(frontier, parts)

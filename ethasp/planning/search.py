@@ -304,6 +304,9 @@ def shortest(planner: Planner, setting: Setting, budget: Budget,
     """
     if max_horizon < 0:
         raise InputError("the maximal horizon must be at least 0")
+    if budget.expired():
+        return SearchResult(BOUNDED, horizon=start,
+                            proof=f"{budget.why_stopped()} before the search began")
     if setting.goal and planner.is_fact("unreachable_goal"):
         return SearchResult(NONE, horizon=0,
                             proof="the goal is unreachable even ignoring delete effects")
@@ -408,6 +411,9 @@ def any_plan(planner: Planner, setting: Setting, budget: Budget,
     """
     if max_horizon < 0:
         raise InputError("the maximal horizon must be at least 0")
+    if budget.expired():
+        return SearchResult(BOUNDED, horizon=start, optimal=False,
+                            proof=f"{budget.why_stopped()} before the search began")
     if setting.goal and planner.is_fact("unreachable_goal"):
         return SearchResult(NONE, horizon=0, optimal=False,
                             proof="the goal is unreachable even ignoring delete effects")
