@@ -128,3 +128,43 @@ def test_permissible_plan_search_stops_at_once(tmp_path):
     code, out, err = interrupt(process)
     assert code == 130 and out == ""
     assert_one_line(err, "ethasp: interrupted")
+
+
+# -- the watchdog of commands that overrun their time limit ---------------------------
+
+def test_the_server_and_the_dialogue_outlive_the_time_limit(monkeypatch):
+    """The watchdog ends a command that gives one answer and is stuck long after
+    its time limit; a server or a dialogue runs jobs, each under its own limit,
+    and is never ended by it."""
+    import time as clock
+
+    from ethasp.interfaces import cli
+    import ethasp.interfaces.web.server as server
+
+    monkeypatch.setattr(cli, "OVERRUN_GRACE", 0.0)
+    served = []
+
+    def serve(workspace, host, port, open_page):
+        clock.sleep(1.0)           # up ten times longer than 2 x the limit
+        served.append(port)
+        return 0
+
+    monkeypatch.setattr(server, "serve", serve)
+    assert cli.main(["serve", "trolley", "--time-limit", "0.05", "--port", "0"]) == 0
+    assert served == [0]
+    parser = cli.build_parser()
+    assert not parser.parse_args(["dialogue", "trolley"]).one_answer
+    for command in ("plan", "judge", "ask", "validate", "query"):
+        arguments = {"ask": ["--question", "why pull"], "query": ["Bad(pull)"]}
+        assert parser.parse_args([command, "trolley", *arguments.get(command, [])]).one_answer
+
+
+def test_a_command_stuck_after_its_time_limit_ends_in_one_line(monkeypatch, capsys):
+    import time as clock
+
+    from ethasp.interfaces import cli
+
+    monkeypatch.setattr(cli, "OVERRUN_GRACE", 0.0)
+    monkeypatch.setattr(cli, "find_plan", lambda *args, **kwargs: clock.sleep(5.0))
+    assert cli.main(["plan", "trolley", "--time-limit", "0.05"]) == 2
+    assert "no answer within the time limit" in capsys.readouterr().err

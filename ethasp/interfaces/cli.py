@@ -501,6 +501,7 @@ def _max_horizon(args: argparse.Namespace) -> int:
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="ethasp", description=DESCRIPTION,
                      formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.set_defaults(one_answer=True)
     parser.add_argument("--version", action=_Version, nargs=0,
                         help="show the program's version number and exit")
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
@@ -617,7 +618,7 @@ def build_parser() -> argparse.ArgumentParser:
                                     "given, and every contrast plan)")
     talk.add_argument("--reasons-limit", type=_reasons, default=None, metavar="N",
                       help="at most N reasons of each kind per judgement")
-    talk.set_defaults(run=command_dialogue)
+    talk.set_defaults(run=command_dialogue, one_answer=False)
 
     web = commands.add_parser(
         "serve", help="explore the dialogue on a local web page",
@@ -644,7 +645,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_search_arguments(web)
     web.add_argument("--reasons-limit", type=_reasons, default=None, metavar="N",
                      help="at most N reasons of each kind per judgement")
-    web.set_defaults(run=command_serve)
+    web.set_defaults(run=command_serve, one_answer=False)
     return parser
 
 
@@ -703,6 +704,9 @@ def _error(message: str) -> None:
 
 # A command that has not answered this long after its time limit is stuck where
 # clingo cannot be stopped (grounding that does not end): seconds = limit * 2 + this.
+# Only commands that give one answer are watched (``one_answer``): the dialogue
+# and the web page run jobs, each under the time limit of its own budget, and
+# stay up however long they are used.
 OVERRUN_GRACE = 10.0
 
 
@@ -761,8 +765,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                 done.set()
 
         limit = getattr(args, "time_limit", None)
-        overrun = None if not limit or args.run is command_dialogue \
-            else 2 * limit + OVERRUN_GRACE
+        overrun = 2 * limit + OVERRUN_GRACE if limit and args.one_answer else None
         started = time.monotonic()
         # (An Event, not Thread.join: an interrupted join can mark a running
         # thread as stopped.)
