@@ -34,8 +34,13 @@ def conditional_effects(variables, low: int, high: int, dense: bool):
 
 @st.composite
 def situations(draw, max_actions: int = 3, max_events: int = 2, max_plan: int = 3,
-               variables: list[str] | None = None, goal: bool | None = None):
-    """A HERA situation: actions, events, utilities, patients, goal, plan, initial state."""
+               variables: list[str] | None = None, goal: bool | None = None,
+               undefined: bool = False):
+    """A HERA situation: actions, events, utilities, patients, goal, plan, initial state.
+
+    With ``undefined``, ``initialState`` may leave out variables that the
+    situation never reads as false (in HERA they are then undefined until an
+    effect sets them; ethasp reads them as false, which agrees there)."""
     dense = draw(st.integers(0, 4)) > 0
     variables = variables or VARIABLES[:draw(st.integers(2, len(VARIABLES)))]
     count = draw(st.integers(1, max_actions))
@@ -85,4 +90,17 @@ def situations(draw, max_actions: int = 3, max_events: int = 2, max_plan: int = 
         situation["goal"] = dict(chosen)
     elif goal:
         situation["goal"] = draw(partial(variables, int(dense), 2))
+    if undefined:
+        read_false = set()
+        for part in actions + events:
+            read_false |= {v for v, b in part["preconditions"].items() if not b}
+            for effect in part["effects"]:
+                read_false |= {v for v, b in effect["condition"].items() if not b}
+        read_false |= {v for v, b in situation.get("goal", {}).items() if not b}
+        read_false |= {v for u in utilities for v, b in u["fact"].items() if not b}
+        read_false |= {v for sides in affects.values() for side in sides.values()
+                       for f in side for v, b in f.items() if not b}
+        left_out = [v for v in variables if v not in read_false]
+        for variable in draw(st.lists(st.sampled_from(left_out), unique=True)) if left_out else []:
+            del situation["initialState"][variable]
     return situation

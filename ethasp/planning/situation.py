@@ -54,17 +54,26 @@ test) lifts them.  An effect that a later one always overrides is kept with
 an impossible override condition (a literal contradicting its condition, or
 v and not v).
 
-What cannot be mapped gets one line (exit code 2): a variable that
-``initialState`` leaves undefined (HERA's states may lack a variable, so that
-neither of its values holds; ethasp's states give every variable a value), a
-truth value that is not a Boolean, an intrinsic value other than good, bad or
-neutral, a utility that is not an integer, a fact of several variables in
-``affects``, two actions or two events of one name, an event without its
-``name``, ``preconditions``, ``effects`` or ``timepoints`` (HERA would then
-ignore every event of the situation), and a plan naming an unknown action
-(HERA would drop it silently).  What HERA ignores is ignored with a warning
-on standard error: a utility of a fact of several variables (HERA never
-matches one), and a second utility of a fact (HERA uses the first).
+A variable that ``initialState`` leaves out (HERA's states may lack one: then
+neither of its values holds until an effect sets it) is read as false until
+an effect sets it, with a warning on standard error.  The reading gives
+HERA's answers wherever the situation never reads the fact "v is false" (no
+precondition, condition, goal, utility or patient's fact names it), as then
+"v is false" and "v is undefined" are told apart by nothing but the final
+state that ``validate`` prints; the warning names the places otherwise, where
+HERA's answers may differ (a condition "v is false" holds here, and fails in
+HERA, before an effect sets v).
+
+What cannot be mapped gets one line (exit code 2): a truth value that is not
+a Boolean, an intrinsic value other than good, bad or neutral, a utility that
+is not an integer, a fact of several variables in ``affects``, two actions
+or two events of one name, an event without its ``name``,
+``preconditions``, ``effects`` or ``timepoints`` (HERA would then ignore
+every event of the situation), and an alternative plan naming an unknown
+action.  What HERA ignores is ignored with a warning on standard error: a
+utility of a fact of several variables (HERA never matches one), a second
+utility of a fact (HERA uses the first), and an action of the situation's
+plan that is not an action of the situation (HERA drops it from the plan).
 """
 
 from __future__ import annotations
@@ -118,6 +127,10 @@ class _Reader:
     variables: dict[str, bool] = field(default_factory=dict)
     patients: set[str] = field(default_factory=set)
     warnings: list[str] = field(default_factory=list)
+    # Variables that initialState leaves out: where each is first named, and
+    # where the fact "v is false" is read (see the module docstring).
+    undefined: dict[str, str] = field(default_factory=dict)
+    read_false: dict[str, list[str]] = field(default_factory=dict)
 
     def warn(self, message: str) -> None:
         self.warnings.append(f"{self.where}: warning: {message}")
@@ -149,19 +162,37 @@ class _Reader:
             self.fail(f"{what} must be a list, not {type(value).__name__}")
         return value
 
-    def partial(self, value: Any, what: str, known: bool = True) -> list[Literal]:
-        """A partial state {v: b}: its literals (variables known from initialState)."""
+    def partial(self, value: Any, what: str, known: bool = True,
+                reads: bool = True) -> list[Literal]:
+        """A partial state {v: b}: its literals.  A variable that initialState
+        leaves out (``known``) is declared here, false initially; ``reads``
+        says whether the literals are read (conditions, goals, utilities,
+        patients' facts) rather than set (effects)."""
         literals = []
         for key, truth in self.mapping(value, what).items():
             variable = self.name(key, f"a variable in {what}")
             if not isinstance(truth, bool):
                 self.fail(f"{what}: the value of {variable} must be true or false, not {truth!r}")
             if known and variable not in self.variables:
-                self.fail(f"{what}: variable {variable} has no value in initialState (HERA "
-                          "leaves it undefined, so that neither of its values holds; ethasp's "
-                          "states give every variable a value: add it to initialState)")
+                self.variables[variable] = False
+                self.undefined[variable] = what
+                self.add("variable", name_term(variable))
+            if reads and not truth and variable in self.undefined:
+                self.read_false.setdefault(variable, []).append(what)
             literals.append((variable, truth))
         return literals
+
+    def warn_undefined(self) -> None:
+        """One warning per variable that initialState leaves out."""
+        for variable, first in self.undefined.items():
+            places = self.read_false.get(variable)
+            differ = (f"; HERA's answers may differ, as the situation reads "
+                      f"'{variable} is false' ({', '.join(dict.fromkeys(places))}), which "
+                      "holds here and fails in HERA before an effect sets it"
+                      if places else "")
+            self.warn(f"variable {variable} (in {first}) has no value in initialState: read "
+                      f"as false until an effect sets it (in HERA neither value holds until "
+                      f"then){differ}")
 
     def fact(self, value: Any, what: str) -> Literal:
         literals = self.partial(value, what)
@@ -208,6 +239,7 @@ class _Reader:
         for number, plan in enumerate(self.sequence(data.get("alternatives"), "alternatives"), 1):
             self.plan(plan, actions, f"alternative {number}", number)
         self.labels(data.get("labels"), actions)
+        self.warn_undefined()
 
     def actions(self, value: Any) -> set[str]:
         names: set[str] = set()
@@ -235,7 +267,7 @@ class _Reader:
         for index, effect in enumerate(self.sequence(value, f"the effects of {what}"), 1):
             effect = self.mapping(effect, f"effect {index} of {what}")
             condition = self.partial(effect.get("condition"), f"the condition of effect {index} of {what}")
-            sets = self.partial(effect.get("effect"), f"effect {index} of {what}")
+            sets = self.partial(effect.get("effect"), f"effect {index} of {what}", reads=False)
             result.append((condition, sets))
         return result
 
@@ -374,6 +406,10 @@ class _Reader:
         for step in self.sequence(value, what):
             name = self.name(step, f"an action of the {what}")
             if name not in actions:
+                if number is None:
+                    self.warn(f"the {what} names {name}, which is not an action of the "
+                              "situation: dropped from the plan (as HERA does)")
+                    continue
                 self.fail(f"the {what} names {name}, which is not an action of the situation")
             steps.append(name_term(name))
         if number is None:
