@@ -6,6 +6,8 @@ import subprocess
 import sys
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import clingo
 
@@ -282,3 +284,47 @@ def test_utilitarian_explanations_compare_with_a_state_that_differs_in_what_matt
     # the explanation compares with a state that differs in a valued fact.
     assert why.permissible and why.text.endswith(
         "is permissible because the intact door is better than the broken door.")
+
+
+# -- "truncated": only when a reason beyond the limit exists ----------------------------
+
+@pytest.mark.parametrize("principle, limit, truncated", [
+    ("deontology", 1, False),     # exactly one sufficient and one necessary reason
+    ("do-no-harm", 2, False),     # exactly two necessary reasons
+    ("do-no-harm", 1, True),
+])
+def test_reasons_are_truncated_only_when_more_exist(principle, limit, truncated):
+    model = Model.load([TROLLEY])
+    result = explain(model, Plan.parse("pull"), principle, limit=limit)
+    assert result.truncated is truncated
+    run = subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", "judge", str(TROLLEY),
+                          "--plan", "pull", "--principle", principle, "--reasons-limit",
+                          str(limit), "--json"], capture_output=True, text=True, cwd=ROOT)
+    assert json.loads(run.stdout)["judgements"][0]["reasons_truncated"] is truncated
+    text = subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", "judge", str(TROLLEY),
+                           "--plan", "pull", "--principle", principle, "--reasons-limit",
+                           str(limit)], capture_output=True, text=True, cwd=ROOT).stdout
+    assert ("limit reached" in text) is truncated
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(min_value=0, max_value=10**9),
+       st.sampled_from(["deontology", "do-no-harm", "utilitarianism"]))
+def test_truncated_says_whether_a_reason_beyond_the_limit_exists(seed, principle):
+    """With the limit at the number of reasons of each kind, nothing is
+    truncated; one less, and something is."""
+    import random
+
+    from oracle import features, plan_through, random_model
+
+    spec = random_model(seed, **features(seed))
+    plan = plan_through(spec, random.Random(seed), seed % 4)
+    if plan is None:
+        return
+    model = Model.from_string(spec.to_asp())
+    whole = explain(model, Plan.parse(" ".join(plan)), principle, limit=1000)
+    assert not whole.truncated
+    most = max(len(whole.sufficient_reasons), len(whole.necessary_reasons))
+    assert not explain(model, Plan.parse(" ".join(plan)), principle, limit=most).truncated
+    if most > 1:
+        assert explain(model, Plan.parse(" ".join(plan)), principle, limit=most - 1).truncated

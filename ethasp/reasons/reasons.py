@@ -82,17 +82,18 @@ def _literals(symbols: Iterable[clingo.Symbol]) -> list[Literal]:
 
 def _enumerate(ctl: clingo.Control, limit: int) -> tuple[list[list[clingo.Symbol]], bool]:
     """Up to ``limit`` subset-minimal answer sets (shown atoms) and whether
-    the enumeration was exhausted."""
+    they are all there are.  One more is asked for: clingo does not say
+    ``exhausted`` when it stops at its model limit, so only an answer set
+    beyond the ``limit`` proves that more exist."""
     config = ctl.configuration.solve
     config.opt_mode = "ignore"
     config.enum_mode = "domRec"
-    config.models = str(limit)
+    config.models = str(limit + 1)
     found: list[list[clingo.Symbol]] = []
     with ctl.solve(yield_=True) as handle:
         for answer in handle:
             found.append(list(answer.symbols(shown=True)))
-        exhausted = handle.get().exhausted
-    return found, exhausted
+    return found[:limit], len(found) <= limit
 
 
 def _optimum(ctl: clingo.Control) -> list[clingo.Symbol] | None:
