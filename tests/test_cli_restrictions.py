@@ -76,3 +76,57 @@ def test_api_rescue_under_every_principle():
     both = plan_with_principles(model, ["utilitarianism", "do_no_harm"])
     assert both.status == "found" and both.best.utility == 10
     assert {"put_down(p2,r4)", "put_down(p3,r4)"} <= set(map(str, both.plan))
+
+
+# -- the edges of the horizon (bounded only where the horizon cut the search) --------
+
+EDGE = ("variable(p;q). action(s1;s2). eff(s1,p,true). pre(s2,p,true). eff(s2,q,true). "
+        "goal(q,false). utility(p,true,-10). utility(q,true,5).")
+
+
+def test_states_closed_at_the_maximal_horizon_are_a_proof(tmp_path):
+    """The farthest reachable state is 2 steps away: with --max-horizon 2 the
+    layers up to 2 are closed under every action, which proves the best
+    reachable utility; no 'bounded'."""
+    path = tmp_path / "edge.lp"
+    path.write_text(EDGE)
+    for horizon in ("2", "3"):
+        data = json.loads(ethasp("plan", str(path), "--principle", "utilitarianism",
+                                 "--max-horizon", horizon, "--json").stdout)
+        assert data["status"] == "found" and data["plan"] == [], data
+        assert data["best_utility_status"] == "proven"
+    data = json.loads(ethasp("plan", str(path), "--principle", "utilitarianism",
+                             "--max-horizon", "1", "--json").stdout)
+    assert data["status"] == "bounded"          # layer 2 holds new states: cut by the horizon
+
+
+def test_plan_search_proves_none_at_the_maximal_horizon(tmp_path):
+    """No plan within 2 steps and no simple path of 3 steps: proven at the
+    maximal horizon 2 itself (here by the loop-free check: events keep the
+    exact layers out)."""
+    path = tmp_path / "none.lp"
+    path.write_text("variable(p;q;g). action(s1;s2). eff(s1,p,true). pre(s2,p,true). "
+                    "eff(s2,q,true). goal(g,true). event(e). event_at(e,1). "
+                    "event_effect(e,1,p,true). event_pre(e,q,true).")
+    data = json.loads(ethasp("plan", str(path), "--max-horizon", "2", "--json").stdout)
+    assert data["status"] == "none", data
+
+
+def test_a_bounded_hplan_is_reported_with_its_plan(tmp_path):
+    """Under utilitarianism a plan that reaches the best utility found, where
+    a better state is not excluded, is reported: status bounded, the plan,
+    its utility (the event due at step 8 keeps the loop-free proof beyond
+    the maximal horizon 5)."""
+    path = tmp_path / "never.lp"
+    path.write_text("variable(g;x;y;h). action(a;b;c). eff(a,x,true). pre(b,x,true). "
+                    "eff(b,g,true). eff(c,y,true). goal(g,true). utility(g,true,5). "
+                    "utility(h,true,10). event(e). event_at(e,8). event_pre(e,y,true). "
+                    "event_pre(e,x,false). event_effect(e,1,h,true). event_condition(e,1,g,true).")
+    run = ethasp("plan", str(path), "--principle", "utilitarianism", "--max-horizon", "5",
+                 "--json")
+    data = json.loads(run.stdout)
+    assert data["status"] == "bounded" and data["plan"] == ["a", "b"], data
+    assert data["utility"] == 5 and data["best_utility_status"] == "bounded"
+    text = ethasp("plan", str(path), "--principle", "utilitarianism", "--max-horizon", "5").stdout
+    assert text.startswith("bounded: plan of 2 steps, permissible under utilitarianism as far "
+                           "as searched (not proven): a b")

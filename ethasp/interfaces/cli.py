@@ -220,6 +220,13 @@ def command_plan_permissible(args: argparse.Namespace, model: Model) -> int:
         _draw(args, model, lambda pictures: pictures.report(report, f"{head}: {shown[0]}"))
     elif result.status == "none":
         lines = [f"no permissible plan exists: {result.proof}"]
+    elif result.plan is not None:
+        # Permissible as far as searched: the search could not exclude what
+        # would make it impermissible (a better reachable state).
+        shown = model.naming.actions(result.plan) if len(result.plan) else "(empty plan)"
+        lines = [f"bounded: plan of {steps(len(result.plan))}, permissible under {under} as far "
+                 f"as searched (not proven): {shown}",
+                 f"  final state utility {result.utility}; {result.proof}"]
     else:
         lines = [f"bounded: {result.proof}; a permissible plan may still exist"]
     if result.status != FOUND and result.best is not None and result.best.utility is not None:

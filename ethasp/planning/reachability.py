@@ -294,6 +294,7 @@ class Reachability:
         self.back_reached = self.bdd.false
         self.back_complete = False
         self.complete = False
+        self._next = None         # the next layer, computed by closed() but not yet added
         self.stopped = ""
 
     # -- diagrams of literals -----------------------------------------------------
@@ -454,7 +455,9 @@ class Reachability:
         budget or the node limit stopped it, True otherwise."""
         if self.complete:
             return True
-        new = self._next_layer(self.layers[-1], self.reached, self._image, budget)
+        new, self._next = self._next, None
+        if new is None:
+            new = self._next_layer(self.layers[-1], self.reached, self._image, budget)
         if new is None:
             return False
         if new == self.bdd.false:
@@ -463,6 +466,24 @@ class Reachability:
         self.reached |= new
         self.layers.append(new)
         return True
+
+    def closed(self, budget: Budget | None = None) -> bool | None:
+        """Are the states reached so far closed under every action (no state is
+        one step beyond them)?  Then :attr:`complete` is set: every reachable
+        state is known.  The next layer is computed to tell, kept for
+        :meth:`expand` and not added: a search bounded by a horizon asks this
+        at its last layer.  None if the budget or the node limit stopped it."""
+        if self.complete:
+            return True
+        if self._next is None:
+            self._next = self._next_layer(self.layers[-1], self.reached, self._image, budget)
+            if self._next is None:
+                return None
+        if self._next == self.bdd.false:
+            self._next = None
+            self.complete = True
+            return True
+        return False
 
     # -- backward: pre-images from a set of states --------------------------------
 

@@ -262,6 +262,13 @@ def _one_plan_wanted(setting: Setting) -> bool:
             and setting.other_state is None and not setting.optimize)
 
 
+def _searched(horizon: int) -> str:
+    """Why there is no plan: plans up to the horizon refuted, and no path one
+    step longer without a repeated state."""
+    return (f"no plan up to horizon {horizon}, and no path of {steps(horizon + 1)} without a "
+            "repeated state: every reachable state was searched")
+
+
 def _bound_proof(bound: int, why: str, horizon: int) -> str:
     """Why no plan has fewer than ``horizon`` steps, horizons below ``bound``
     refuted by ``why`` and the others by solves."""
@@ -372,19 +379,19 @@ def _shortest(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
             return SearchResult(FOUND, plan=plans[0], horizon=horizon,
                                 proof=_bound_proof(bound, why, horizon),
                                 plans=plans if all_plans else [])
-        if horizon in checkpoints and horizon > 0:
+        if horizon in checkpoints:
+            # No plan of at most h steps, and no simple path of h + 1 steps: every
+            # reachable state is within h steps of the initial one (a shortest
+            # path to a state is simple), so none is a goal state.
             began = time.monotonic()
-            exists = planner.simple_path_exists(horizon, setting, exact.watch(horizon))
+            exists = planner.simple_path_exists(horizon + 1, setting, exact.watch(horizon))
             exact.solved(time.monotonic() - began)
             if exists is None:
                 if budget.expired():
                     return SearchResult(BOUNDED, horizon=horizon,
                                         proof=f"{budget.why_stopped()} at horizon {horizon}")
             elif not exists:
-                return SearchResult(
-                    NONE, horizon=horizon,
-                    proof=f"no plan up to horizon {horizon}, and no path of {steps(horizon)} "
-                          "without a repeated state: every reachable state was searched")
+                return SearchResult(NONE, horizon=horizon, proof=_searched(horizon))
         if horizon >= max_horizon:
             return SearchResult(BOUNDED, horizon=max_horizon,
                                 proof=f"no plan up to horizon {max_horizon} (the maximal horizon)")
@@ -486,13 +493,10 @@ def _any_plan(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
         bound, why = horizon + 1, f"horizon {horizon} refuted"
         if horizon >= 4 * checked or horizon == max_horizon:
             checked = max(horizon, 1)
-            exists = planner.simple_path_exists(horizon, setting, exact.watch(horizon)) \
-                if horizon > 0 else True
+            exists = planner.simple_path_exists(horizon + 1, setting, exact.watch(horizon))
             if exists is False:
-                return SearchResult(
-                    NONE, horizon=horizon, optimal=False,
-                    proof=f"no plan up to horizon {horizon}, and no path of {steps(horizon)} "
-                          "without a repeated state: every reachable state was searched")
+                return SearchResult(NONE, horizon=horizon, optimal=False,
+                                    proof=_searched(horizon))
             if exists is None and budget.expired():
                 return SearchResult(BOUNDED, horizon=horizon, optimal=False,
                                     proof=f"{budget.why_stopped()} at horizon {horizon}")

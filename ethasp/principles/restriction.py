@@ -75,8 +75,13 @@ class HPlanResult:
     when asked for.  ``optimal`` is False for a plan of an any-plan search
     (``satisficing``): permissible, but not proven shortest.  ``status`` is
     ``found``, ``none`` (proven: no plan of the model is permissible under all
-    the principles) or ``bounded``; ``proof`` says why.  With utilitarianism, ``best`` is the best reachable state
-    found (the plans had to reach its utility), proven best or only bounded.
+    the principles) or ``bounded``; ``proof`` says why.  A ``bounded`` result
+    may still have a ``plan``: under utilitarianism, a plan that reaches the
+    best utility found, where a better reachable state is not excluded
+    (permissible as far as searched).  With utilitarianism, ``best`` is the
+    best reachable state found (the plans had to reach its utility), proven
+    best or only bounded, and ``utility`` the utility of the plan's final
+    state.
     """
 
     status: str
@@ -87,6 +92,7 @@ class HPlanResult:
     plans: list[Plan] = field(default_factory=list)
     best: BestReachable | None = None
     optimal: bool = True
+    utility: int | None = None
 
     def to_json(self) -> dict:
         data = {
@@ -99,11 +105,20 @@ class HPlanResult:
         }
         if self.plans:
             data["plans"] = [plan.to_list() for plan in self.plans]
+        if self.utility is not None:
+            data["utility"] = self.utility
         if self.best is not None:
             data["best_utility"] = self.best.utility
             data["best_utility_status"] = self.best.status
             data["best_reachable"] = self.best.to_json()
         return data
+
+
+def _final_utility(model: Model, plan: Plan) -> int:
+    """The utility of the plan's final state (its trace)."""
+    from ethasp.principles.judgement import final_utility
+
+    return final_utility(model, plan)
 
 
 def _check_plan(model: Model, plan: Plan, utility: int) -> None:
@@ -168,10 +183,12 @@ def plan_with_principles(model: Model, principles: Sequence[str],
             if actions is not None:
                 plan = Plan(tuple(actions))
                 _check_plan(model, plan, best.utility)
+                reason = (f"no plan has fewer than {steps(len(plan))}: {why}" if len(plan)
+                          else why)
                 return HPlanResult(FOUND, names, plan, len(plan),
-                                   f"a shortest {plans} permissible under {under}: no plan has "
-                                   f"fewer than {steps(len(plan))}: {why}", [], best,
-                                   optimal=not satisficing)
+                                   f"a shortest {plans} permissible under {under}: {reason}",
+                                   [], best, optimal=not satisficing,
+                                   utility=_final_utility(model, plan))
         distance, status, why = goal_distance(planner, best.utility, budget, max_horizon)
         if distance is None and status == PROVEN:
             return HPlanResult(NONE, names, None, best.searched,
@@ -185,16 +202,19 @@ def plan_with_principles(model: Model, principles: Sequence[str],
               if satisficing else
               shortest(planner, setting, budget, max_horizon, start, start_proof, all_plans, task))
     if result.status == FOUND and best is not None and best.status != PROVEN:
-        # A plan reaching the best utility found is no proof: a better state may exist.
+        # A plan reaching the best utility found is no proof: a better state may
+        # exist.  The plan is reported, bounded: permissible as far as searched.
         return HPlanResult(
-            BOUNDED, names, horizon=result.horizon, best=best,
-            proof=f"a plan of {steps(result.horizon)} reaches utility {best.utility}, but a "
+            BOUNDED, names, result.plan, result.horizon, best=best, optimal=result.optimal,
+            utility=_final_utility(model, result.plan),
+            proof=f"a plan of {steps(len(result.plan))} reaches utility {best.utility}, but a "
                   f"better reachable state is not excluded ({best.proof})")
     if result.status == FOUND:
         kind = f"a shortest {plans}" if result.optimal else f"a {plans}"
         return HPlanResult(FOUND, names, result.plan, result.horizon,
                            f"{kind}{permissible}: {result.proof}",
-                           result.plans, best, optimal=result.optimal)
+                           result.plans, best, optimal=result.optimal,
+                           utility=_final_utility(model, result.plan))
     if result.status == NONE:
         # With utilitarianism the search asked for utility >= best.utility, a lower
         # bound of the best reachable utility: no such goal state, no permissible plan.

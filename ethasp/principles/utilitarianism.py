@@ -165,6 +165,12 @@ def _expand(planner: Planner, budget: Budget, max_horizon: int,
         if r.complete:
             return r, ""
         if len(r.layers) > max_horizon:
+            # The last layer allowed: complete if no state lies beyond it.
+            closed = r.closed(budget)
+            if closed:
+                return r, ""
+            if closed is None:
+                return r, r.stopped
             return r, f"the layers of states reached within {steps(max_horizon)} (the maximal horizon)"
         budget.report(task, horizon=len(r.layers))
         if not r.expand(budget):
@@ -418,6 +424,8 @@ def _goal_distance(planner: Planner, utility: int, budget: Budget,
     goal = r.goal()
 
     def found(k: int) -> str:
+        if k == 0:
+            return f"the initial state is a goal state of utility {utility} or more"
         return (f"exact reachability: no goal state of utility {utility} or more is reachable "
                 f"in fewer than {steps(k)}")
 
