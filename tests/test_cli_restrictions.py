@@ -5,7 +5,7 @@ import subprocess
 import sys
 
 from conftest import MODELS, ROOT
-from ethasp import Model
+from ethasp import Model, Plan
 from ethasp.principles.restriction import plan_with_principles
 
 TROLLEY = str(MODELS / "trolley.lp")
@@ -130,3 +130,25 @@ def test_a_bounded_hplan_is_reported_with_its_plan(tmp_path):
     text = ethasp("plan", str(path), "--principle", "utilitarianism", "--max-horizon", "5").stdout
     assert text.startswith("bounded: plan of 2 steps, permissible under utilitarianism as far "
                            "as searched (not proven): a b")
+
+
+def test_a_restricted_search_that_only_the_engines_prove_none_is_proven():
+    """Every plan needs the bad action, and paths without repeated states are
+    longer than the maximal horizon: the loop-free threshold could not prove
+    "none", but the HModel of deontology lacks the bad action, and relaxed
+    reachability in it refutes the goal at once.  Likewise a question whose
+    constraint needs an action that only a long path makes applicable."""
+    ladder = " ".join(f"variable(s{i}). action(up{i}). pre(up{i},s{i},true). "
+                      f"eff(up{i},s{i},false). eff(up{i},s{i + 1},true)." for i in range(80))
+    text = ladder + " variable(s80). init(s0). variable(g). action(cheat). eff(cheat,g,true). " \
+                    "utility(cheat,-1). goal(g,true)."
+    model = Model.from_string(text)
+    result = plan_with_principles(model, ["deontology"], max_horizon=64)
+    assert result.status == "none", result
+    assert "unreachable even ignoring delete effects" in result.proof
+    assert plan_with_principles(model, []).status == "found"
+    from ethasp.questions.contrast import ask
+
+    answer = ask(model, "why cheat", plan=Plan.parse("cheat"), principle="deontology",
+                 under="deontology", max_horizon=64)
+    assert answer.status == "none" and answer.contrast is None

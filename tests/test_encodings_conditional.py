@@ -207,23 +207,26 @@ def test_mutexes_leave_out_variables_set_by_conditional_effects():
 
 def test_do_no_harm_counts_only_effects_that_fire():
     # The lamp is bad when on; a press that does not fire (wire cut) harms nothing.
+    from test_encodings_restrictions import hmodel, plans_of
+
     model = LAMP.replace("pre(finish,on,true).", "") + "utility(on,true,-1)."
     assert ("press", "finish") in plans(model, 2)
-    assert ("press", "finish") not in plans(model, 2, ["restrictions/do_no_harm.lp"])
-    assert ("cut", "press", "finish") in plans(model, 3, ["restrictions/do_no_harm.lp"])
-    shown = "#show produced/3."
-    answers = answer_sets(SEARCH + ["restrictions/do_no_harm.lp"],
-                          model + fixed(3) + ":- not occurs(cut,1). :- not occurs(press,2)."
-                          + shown)
-    assert answers and not any(atom.startswith("produced") for atom in answers[0])
+    restricted = hmodel(["do_no_harm"], model)
+    assert ("press", "finish") not in plans_of(restricted, 2)
+    assert ("cut", "press", "finish") in plans_of(restricted, 3)
+    answers = answer_sets(SEARCH, restricted + fixed(3) + ":- not occurs(cut,1). "
+                          ":- not occurs(press,2). #show holds/2.")
+    assert answers and not any("produced" in atom for atom in answers[0])
 
 
 def test_do_no_harm_an_overridden_delete_produces_nothing():
     # a deletes v and, if g holds, adds it back (true wins); "v is false" is bad.
+    from test_encodings_restrictions import hmodel, plans_of
+
     model = """variable(v;g). init(v;g). action(a). eff(a,v,false). ceff(a,k,v,true).
                cpre(a,k,g,true). eff(a,g,false). goal(g,false). utility(v,false,-1)."""
-    assert plans(model, 1, ["restrictions/do_no_harm.lp"]) == {("a",)}
+    assert plans_of(hmodel(["do_no_harm"], model), 1) == {("a",)}
     # without g, the delete wins and causes the bad fact
     model = model.replace("init(v;g).", "init(v). variable(h). init(h).") \
                  .replace("goal(g,false).", "goal(h,true).")
-    assert ("a",) not in plans(model, 1, ["restrictions/do_no_harm.lp"])
+    assert ("a",) not in plans_of(hmodel(["do_no_harm"], model), 1)

@@ -1,23 +1,40 @@
-"""Encoding-level tests of the restrictions (HModels): clingo with a fixed horizon."""
+"""Encoding-level tests of the restrictions: their HModels (restrictions/hmodel.lp
+and the restrictions' encodings, questions/restriction.lp) computed by clingo,
+then planned for with a fixed horizon, as on the clingo command line."""
 
-from conftest import MODELS, answer_sets
+from conftest import MODELS, answer_sets, only_answer
 
-SEARCH = ["planning/model.lp", "planning/relaxed.lp", "planning/transition.lp", "planning/goal.lp"]
+SEARCH = ["planning/model.lp", "planning/relaxed.lp", "planning/transition.lp",
+          "planning/events.lp", "planning/goal.lp"]
+COMPILE = ["planning/model.lp", "restrictions/hmodel.lp"]
 
 
 def fixed(horizon: int) -> str:
     return f"time(0..{horizon}). step(1..{horizon}). horizon({horizon}).\n"
 
 
-def plans(restrictions, model: str, horizon: int, files=SEARCH) -> set[tuple[str, ...]]:
+def hmodel(restrictions, model: str, inputs: str = "", questions: bool = False) -> str:
+    """The HModel's facts (the arguments of hmodel/1), as program text."""
+    files = COMPILE + [f"restrictions/{name}.lp" for name in restrictions]
+    if questions:
+        files.append("questions/restriction.lp")
+    answer = only_answer(files, model + inputs)
+    return "".join(f"{atom[len('hmodel('):-1]}.\n" for atom in sorted(answer))
+
+
+def plans_of(model: str, horizon: int, files=SEARCH, show: str = "") -> set[tuple[str, ...]]:
     """The action sequences of all answer sets (idle steps dropped)."""
-    files = list(files) + [f"restrictions/{name}.lp" for name in restrictions]
     result = set()
-    for answer in answer_sets(files, model + fixed(horizon)):
+    for answer in answer_sets(files, model + fixed(horizon) + show):
         steps = sorted((int(a.rsplit(",", 1)[1].rstrip(")")), a[len("occurs("):a.rindex(",")])
                        for a in answer if a.startswith("occurs("))
         result.add(tuple(name for _, name in steps))
     return result
+
+
+def plans(restrictions, model: str, horizon: int, inputs: str = "") -> set[tuple[str, ...]]:
+    """The plans of the HModel of the restrictions, of at most ``horizon`` steps."""
+    return plans_of(hmodel(restrictions, model, inputs), horizon)
 
 
 TROLLEY = (MODELS / "trolley.lp").read_text()
@@ -28,15 +45,35 @@ def test_trolley_under_each_principle():
     assert plans(["deontology"], TROLLEY, 1) == {("pull",), ("refrain",)}
     assert plans(["do_no_harm"], TROLLEY, 1) == {("refrain",)}
     # The best reachable state (five saved, one dies) has utility 5 - 1 = 4.
-    assert plans(["utilitarianism"], TROLLEY + "best_utility(4).", 1) == {("pull",)}
-    assert plans(["utilitarianism"], TROLLEY + "best_utility(5).", 1) == set()
-    assert plans(["utilitarianism", "do_no_harm"], TROLLEY + "best_utility(4).", 1) == set()
+    assert plans(["utilitarianism"], TROLLEY, 1, "best_utility(4).") == {("pull",)}
+    assert plans(["utilitarianism"], TROLLEY, 1, "best_utility(5).") == set()
+    assert plans(["utilitarianism", "do_no_harm"], TROLLEY, 1, "best_utility(4).") == set()
 
 
-def test_deontology_forbids_bad_actions_only():
+def test_the_hmodel_is_a_model_in_the_vocabulary():
+    text = hmodel(["do_no_harm", "utilitarianism"], TROLLEY, "best_utility(4).")
+    assert "goal_utility(4)." in text
+    assert "variable(ethasp(produced(one_will_die,true)))." in text
+    assert "eff(pull,ethasp(produced(one_will_die,true)),true)." in text
+    # and the model's own facts are all there
+    assert "eff(pull,one_will_die,true)." in text and "init(five_will_die)." in text
+
+
+def test_deontology_removes_the_bad_actions():
     model = """variable(g). action(lie;ask;praise). eff(lie,g,true). eff(ask,g,true).
                eff(praise,g,true). utility(lie,-1). utility(praise,2). goal(g,true)."""
+    text = hmodel(["deontology"], model)
+    assert "action(lie)." not in text and "eff(lie,g,true)." not in text
     assert plans(["deontology"], model, 1) == {("ask",), ("praise",)}
+
+
+def test_a_goal_utility_above_the_relaxed_upper_bound_is_unreachable():
+    # Relaxed, both the five and the one may live: 5 + 1 = 6 bounds every state.
+    for goal, unreachable in (("6", False), ("7", True)):
+        program = hmodel(["utilitarianism"], TROLLEY, f"best_utility({goal}).")
+        answer = only_answer(["planning/model.lp", "planning/relaxed.lp"],
+                             program + "#show unreachable_goal/0. #show upper_bound/1.")
+        assert answer == {"upper_bound(6)"} | ({"unreachable_goal"} if unreachable else set())
 
 
 FISH = """variable(alive(fish); fed). init(alive(fish)). action(cook; buy).
@@ -65,15 +102,16 @@ HEAL = """variable(hurt; done). action(harm; heal).
           eff(harm, hurt, true).
           pre(heal, hurt, true). eff(heal, hurt, false). eff(heal, done, true).
           goal(done, true). utility(hurt, true, -1)."""
+PRODUCED = "ethasp(produced(hurt,true))"
 
 
 def test_do_no_harm_an_undone_harm_is_not_caused():
     assert plans(["do_no_harm"], HEAL, 2) == {("harm", "heal")}
-    shown = "#show produced/3. #show reset/3."
-    answers = answer_sets(SEARCH + ["restrictions/do_no_harm.lp"], HEAL + fixed(2) + shown)
+    answers = answer_sets(SEARCH, hmodel(["do_no_harm"], HEAL) + fixed(2)
+                          + ":- not occurs(harm,1). #show holds/2.")
     assert len(answers) == 1
-    assert {"produced(hurt,true,1)", "reset(hurt,true,2)"} <= answers[0]
-    assert "produced(hurt,true,2)" not in answers[0]
+    # the flag is set by the harm and reset by the healing
+    assert f"holds({PRODUCED},1)" in answers[0] and f"holds({PRODUCED},2)" not in answers[0]
 
 
 def test_do_no_harm_a_harm_redone_is_caused():
@@ -83,14 +121,77 @@ def test_do_no_harm_a_harm_redone_is_caused():
     assert ("harm", "heal", "redo") in plans([], model, 3)
 
 
-def test_produced_flags_are_part_of_the_state_for_the_loop_free_check():
+def test_the_produced_flags_are_state_variables_for_the_loop_free_check():
     # With p true initially, "on" sets p again: only the produced flag changes.
     model = """variable(p). init(p). action(on; off). eff(on, p, true). eff(off, p, false).
-               goal(p, false). utility(p, true, -1). simple_path(c)."""
-    loopfree = ["planning/model.lp", "planning/relaxed.lp", "planning/transition.lp", "planning/loopfree.lp"]
-    assert answer_sets(loopfree, model + fixed(2)) == []
-    assert answer_sets(loopfree + ["restrictions/do_no_harm.lp"], model + fixed(2)) != []
-    assert answer_sets(loopfree + ["restrictions/do_no_harm.lp"], model + fixed(3)) == []
+               goal(p, false). utility(p, true, -1)."""
+    loopfree = ["planning/model.lp", "planning/relaxed.lp", "planning/transition.lp",
+                "planning/loopfree.lp"]
+    assert answer_sets(loopfree, model + "simple_path(c)." + fixed(2)) == []
+    compiled = hmodel(["do_no_harm"], model) + "simple_path(c)."
+    assert answer_sets(loopfree, compiled + fixed(2)) != []
+    assert answer_sets(loopfree, compiled + fixed(3)) == []
+
+
+# Events: a fact set by an action and undone, or kept, by an event.
+STORM = """variable(wet; out; g). action(go; stay). eff(go, out, true). eff(stay, g, true).
+           pre(stay, out, true). eff(go, wet, false). goal(g, true).
+           event(rain). event_at(rain, 1). event_pre(rain, out, true).
+           event_effect(rain, 1, wet, true). init(wet). utility(wet, false, -1)."""
+
+
+def test_do_no_harm_an_event_undoes_what_the_action_did():
+    # go dries (wet false: bad), the rain at step 1 makes wet again: not caused.
+    assert plans(["do_no_harm"], STORM, 2) == {("go", "stay")}
+    dry = STORM.replace("event_effect(rain, 1, wet, true).", "event_effect(rain, 1, out, true).")
+    assert plans(["do_no_harm"], dry, 2) == set()
+
+
+def test_do_no_harm_an_overridden_delete_that_an_event_completes_is_caused():
+    # a deletes v and adds it back (true wins); the event at step 1 then deletes v:
+    # the delete of a fired, and "v is false" holds from step 1 on (trace_events.lp).
+    model = """variable(v;g). init(v). action(a). eff(a,v,false). ceff(a,k,v,true).
+               eff(a,g,true). goal(g,true). utility(v,false,-1).
+               event(e). event_at(e,1). event_effect(e,1,v,false)."""
+    assert plans([], model, 1) == {("a",)}
+    assert plans(["do_no_harm"], model, 1) == set()
+    caused = only_answer(["planning/model.lp", "planning/trace.lp", "planning/trace_events.lp"],
+                         model + "occurs(a,1). #show caused/2.")
+    assert "caused(v,false)" in caused
+
+
+def test_avoid_any_harm_adds_the_opposite_goals():
+    text = hmodel(["avoid_any_harm"], FISH)
+    assert "goal(alive(fish),true)." in text
+    assert plans(["avoid_any_harm"], FISH, 1) == {("buy",)}
+
+
+def test_goal_deontology_with_a_bad_goal_has_no_plan():
+    model = "variable(g). action(a). eff(a,g,true). goal(g,true). utility(g,true,-1)."
+    text = hmodel(["goal_deontology"], model)
+    assert "goal(ethasp(unreachable),true)." in text
+    assert plans(["goal_deontology"], model, 3) == set()
+
+
+# -- questions ---------------------------------------------------------------------------
+
+ROUTES = """variable(g; x). action(a; b; c). eff(a, g, true). eff(b, x, true).
+            pre(c, x, true). eff(c, g, true). goal(g, true)."""
+
+
+def question_plans(model: str, contrasts: str, horizon: int) -> set[tuple[str, ...]]:
+    return plans_of(hmodel([], model, contrasts, questions=True), horizon)
+
+
+def test_question_constraints_as_hmodels():
+    assert question_plans(ROUTES, "contrast(q,unused(a)).", 2) == {("b", "c")}
+    assert question_plans(ROUTES, "contrast(q,used(b)).", 2) == {("b", "c"), ("b", "a"),
+                                                                  ("a", "b")}
+    assert question_plans(ROUTES, "contrast(q,before(b,a)).", 2) == {("b", "a")}
+    # some b before some a: b a, not a b
+    found = question_plans(ROUTES, "contrast(q,before(b,a)).", 3)
+    assert ("a", "b", "a") in found and ("a", "b") not in found and ("b", "c") not in found
+    assert question_plans(ROUTES, "contrast(q,used(b)). contrast(q,unused(b)).", 3) == set()
 
 
 def test_utilitarianism_accepts_every_best_goal_state():
@@ -98,4 +199,4 @@ def test_utilitarianism_accepts_every_best_goal_state():
     model = """variable(a; b; g). action(x; y; z).
                eff(x, a, true). eff(x, g, true). eff(y, b, true). eff(y, g, true).
                eff(z, g, true). utility(a, true, 2). utility(b, true, 2). goal(g, true)."""
-    assert plans(["utilitarianism"], model + "best_utility(2).", 1) == {("x",), ("y",)}
+    assert plans(["utilitarianism"], model, 1, "best_utility(2).") == {("x",), ("y",)}

@@ -245,3 +245,29 @@ def test_facts_reach_clingo_as_symbols_not_text(trolley_path):
     ctl = model.planner.program(["planning/model.lp"], symbols=[clingo.Function("mine", [odd])])
     names = {atom.symbol.name for atom in ctl.symbolic_atoms}
     assert "evil" not in names and "mine" in names
+
+
+def test_the_encodings_predicates_are_kept_per_content_of_the_encodings(tmp_path, monkeypatch):
+    """Grounding every encoding alone (to learn what it mentions) happens once
+    per content of the encodings: the result is kept in the cache folder,
+    read back at the next start, and recomputed when the file is unreadable."""
+    from ethasp.planning import namespace
+
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
+    namespace._all_mentioned.cache_clear()
+    try:
+        first = namespace._all_mentioned()
+        (cache,) = (tmp_path / "ethasp").glob("namespace-*.json")
+        for name in ("planning/transition.lp", "restrictions/do_no_harm.lp"):
+            assert first[name] == namespace._ground_alone(name)
+        namespace._all_mentioned.cache_clear()
+        grounded = []
+        monkeypatch.setattr(namespace, "_ground_alone",
+                            lambda name: grounded.append(name) or frozenset())
+        assert namespace._all_mentioned() == first and grounded == []   # read back
+        cache.write_text("{not json")
+        namespace._all_mentioned.cache_clear()
+        namespace._all_mentioned()
+        assert len(grounded) == len(first)                               # recomputed
+    finally:
+        namespace._all_mentioned.cache_clear()

@@ -100,6 +100,14 @@ class Task:
         index = {v: i for i, v in enumerate(self.variables + self.derived)}
         self.index = index
         self.base = (1 << len(self.variables)) - 1      # the bits of the state variables
+        # A goal utility (an HModel's): the utility of the state where every
+        # variable is false, and what each true variable adds to it.
+        self.goal_utility = model.goal_utility
+        self.utility_base = sum(model.weights.get((v, False), 0) for v in self.variables)
+        self.utility_gain = [(1 << i, model.weights.get((v, True), 0)
+                              - model.weights.get((v, False), 0))
+                             for i, v in enumerate(self.variables)
+                             if model.weights.get((v, True), 0) != model.weights.get((v, False), 0)]
         self.steps: list[Step] = []
         # (needs, adds, step); step AXIOM for an axiom
         relaxed: list[tuple[tuple[int, ...], tuple[int, ...], int]] = []
@@ -193,7 +201,12 @@ class Task:
         return state
 
     def is_goal(self, state: int) -> bool:
-        return state & self.goal_pos == self.goal_pos and not state & self.goal_neg
+        if state & self.goal_pos != self.goal_pos or state & self.goal_neg:
+            return False
+        if self.goal_utility is None:
+            return True
+        return (self.utility_base + sum(gain for bit, gain in self.utility_gain if state & bit)
+                >= self.goal_utility)
 
     def applicable(self, state: int) -> list[Step]:
         found = [s for s in self._unconditioned if not state & s.neg]

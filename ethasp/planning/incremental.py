@@ -28,6 +28,8 @@ Each part is grounded once per parameter value, never again.
 
 from __future__ import annotations
 
+import functools
+
 import re
 from collections import defaultdict
 from pathlib import Path
@@ -45,7 +47,7 @@ TIME = "t"
 VALUE = "x"
 
 # Inputs that parameterise parts (see the module docstring).
-INPUTS = ("question", "at_least", "best_utility", "other_state", "simple_path")
+INPUTS = ("question", "at_least", "other_state", "simple_path")
 
 
 def part_name(kind: str, input_name: str | None = None) -> str:
@@ -135,6 +137,31 @@ def add_encoding(builder: ast.ProgramBuilder, path: Path | None, step_part: str 
     with their parameters.
     """
     where = str(path) if path is not None else "<encoding>"
+    if text is None:
+        # An encoding file is split once per process (and per way of splitting
+        # it): every planner of the process (a model's, its HModels') adds the
+        # same statements.
+        parts, params = _split_file(str(path), step_part, switch, base_part)
+    else:
+        parts, params = _split(text, None, step_part, switch, base_part, on_message)
+    location = ast.Location(ast.Position(where, 1, 1), ast.Position(where, 1, 1))
+    for part, statements in parts.items():
+        builder.add(ast.Program(location, part, [ast.Id(location, p) for p in params[part]]))
+        for statement in statements:
+            builder.add(statement)
+    return dict(params)
+
+
+@functools.lru_cache(maxsize=None)
+def _split_file(path: str, step_part: str, switch: clingo.Symbol | None,
+                base_part: str) -> tuple[dict[str, list], dict[str, tuple[str, ...]]]:
+    """An encoding file's statements by part, and the parts' parameters."""
+    return _split(None, path, step_part, switch, base_part, None)
+
+
+def _split(text: str | None, path: str | None, step_part: str, switch: clingo.Symbol | None,
+           base_part: str, on_message) -> tuple[dict[str, list], dict[str, tuple[str, ...]]]:
+    where = path if path is not None else "<encoding>"
     parts: dict[str, list] = defaultdict(list)
     params: dict[str, tuple[str, ...]] = {}
 
@@ -151,13 +178,8 @@ def add_encoding(builder: ast.ProgramBuilder, path: Path | None, step_part: str 
     if text is not None:
         ast.parse_string(text, collect, logger=on_message)
     else:
-        ast.parse_files([str(path)], collect, logger=on_message)
-    location = ast.Location(ast.Position(where, 1, 1), ast.Position(where, 1, 1))
-    for part, statements in parts.items():
-        builder.add(ast.Program(location, part, [ast.Id(location, p) for p in params[part]]))
-        for statement in statements:
-            builder.add(statement)
-    return params
+        ast.parse_files([path], collect, logger=on_message)
+    return dict(parts), params
 
 
 def time_parts() -> dict[str, tuple[list[str], str]]:

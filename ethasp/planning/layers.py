@@ -58,7 +58,8 @@ def _value(symbol: clingo.Symbol) -> bool:
 
 # The ground atoms the search model is made of.
 MODEL_ATOMS = (("variable", 1), ("action", 1), ("pre", 3), ("eff", 3), ("ceff", 4), ("cpre", 4),
-               ("derived", 1), ("axiom", 2), ("axiom_pre", 4), ("init", 1), ("goal", 2))
+               ("derived", 1), ("axiom", 2), ("axiom_pre", 4), ("init", 1), ("goal", 2),
+               ("goal_utility", 1))
 
 
 class Atoms:
@@ -77,6 +78,9 @@ class Atoms:
         self.usable = planner.search_atoms("usable", 1)
         self.reachable = planner.search_atoms("reachable", 2)
         self.model = {name: planner.get(name, arity) for name, arity in MODEL_ATOMS}
+        # The utilities of facts, for a goal utility (an HModel's) only.
+        self.model["weight"] = (planner.get("weight", 2) if self.model["goal_utility"]
+                                else [])
 
     def get(self, name: str, arity: int) -> list[clingo.Symbol]:
         return self.model[name]
@@ -149,8 +153,23 @@ def search_model(atoms: Atoms) -> GroundModel:
     init = [atom.arguments[0] for atom in atoms.get("init", 1) if atom.arguments[0] in moving]
     actions = [atom.arguments[0] for atom in atoms.get("action", 1)
                if atom.arguments[0] in usable]
-    return from_atoms(fluents, actions, pre, eff, ceff, cpre, init, goal, {},
-                      axiom_pre, axioms, derived)
+    # A goal utility: the fixed variables' utilities are a constant; the
+    # fluents' utilities stay in the search model.
+    bounds = [atom.arguments[0].number for atom in atoms.get("goal_utility", 1)]
+    goal_utility, weights = None, {}
+    if bounds:
+        goal_utility = max(bounds)
+        for atom in atoms.get("weight", 2):
+            element, utility = atom.arguments
+            if element.name != "fact":
+                continue
+            variable, value = element.arguments[0], _value(element.arguments[1])
+            if variable in moving:
+                weights[(variable, value)] = utility.number
+            elif fixed.get(variable) == value:
+                goal_utility -= utility.number
+    return from_atoms(fluents, actions, pre, eff, ceff, cpre, init, goal, weights,
+                      axiom_pre, axioms, derived, goal_utility)
 
 
 def _import_diagrams() -> None:

@@ -29,7 +29,9 @@ class Source:
     text: str
     path: Path | None = None
     generated: bool = False   # written by ethasp (a translation), not by a user
-    kind: str = "asp"         # asp, pddl (a PDDL translation) or situation (a HERA situation)
+    kind: str = "asp"         # asp, pddl (a PDDL translation), situation (a HERA
+                              # situation) or hmodel (a restriction's, of facts)
+    facts: tuple[clingo.Symbol, ...] = ()   # ground facts, added without parsing
 
 
 def _describe(problem: clingo.Symbol) -> str:
@@ -87,6 +89,9 @@ def _describe(problem: clingo.Symbol) -> str:
         return (f"{args[1]} changes {args[0]}, which no action of the PDDL domain changes: the "
                 "translation keeps only the action instances whose preconditions on such "
                 "atoms hold initially (give the effect in the domain instead)")
+    if name == "reserved_name":
+        return (f"{args[0]} in {args[1]}: names of the form ethasp(...) are reserved for the "
+                "state variables that restrictions add to a model")
     if name == "override_without_condition":
         return f"{args[0]} names a condition that no cpre/4 has"
     return str(problem)
@@ -210,9 +215,21 @@ class Model:
         for source in self.sources:
             if source.path is not None:
                 ctl.load(str(source.path))
-            else:
+            elif source.text:
                 ctl.add("base", [], source.text)
+            if source.facts:
+                with ctl.backend() as backend:
+                    for fact in source.facts:
+                        backend.add_rule([backend.add_atom(fact)])
         return ctl
+
+    @classmethod
+    def of_facts(cls, name: str, facts: Sequence[clingo.Symbol], naming: Naming,
+                 kind: str = "hmodel") -> "Model":
+        """A model made of ground facts that ethasp itself computed (an HModel):
+        not parsed and not checked, as its facts come from a checked model."""
+        return cls([Source(name, "", generated=True, kind=kind, facts=tuple(facts))],
+                   naming=naming)
 
     @property
     def planner(self) -> "Planner":

@@ -32,6 +32,9 @@ encodings mention minus the model vocabulary.
 
 from __future__ import annotations
 
+import hashlib
+import json
+import os
 import re
 from dataclasses import dataclass
 from functools import lru_cache
@@ -357,14 +360,54 @@ def encoding_predicates() -> dict[str, dict[tuple[str, int], bool]]:
     return result
 
 
-@lru_cache(maxsize=None)
-def mentioned(name: str) -> frozenset[tuple[str, int]]:
-    """The predicates an encoding's program mentions (in any statement but #show),
-    from clingo's symbol table after grounding the encoding alone."""
+def _ground_alone(name: str) -> frozenset[tuple[str, int]]:
+    """The predicates in clingo's symbol table after grounding an encoding alone."""
     ctl = clingo.Control(["--warn=none"], logger=lambda code, message: None)
     ctl.load(str(ENCODINGS / name))
     ctl.ground([("base", [])])
     return frozenset((name_, arity) for name_, arity, _ in ctl.symbolic_atoms.signatures)
+
+
+def _cache_folder() -> Path:
+    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+    return Path(base) / "ethasp"
+
+
+@lru_cache(maxsize=None)
+def _all_mentioned() -> dict[str, frozenset[tuple[str, int]]]:
+    """:func:`mentioned` of every encoding, computed once per content of the
+    encodings: kept in the user's cache folder under a digest of every
+    encoding's name and text, so that a changed or new encoding is covered at
+    once, and an unchanged set costs no grounding at start-up.  (Without a
+    writable cache folder they are computed at every start.)"""
+    root = ENCODINGS.resolve()
+    names = sorted(path.resolve().relative_to(root).as_posix() for path in _encoding_files())
+    digest = hashlib.sha256()
+    for name in names:
+        digest.update(name.encode() + b"\0" + (ENCODINGS / name).read_bytes() + b"\0")
+    digest.update(clingo.__version__.encode())
+    cache = _cache_folder() / f"namespace-{digest.hexdigest()[:32]}.json"
+    try:
+        stored = json.loads(cache.read_text())
+        return {name: frozenset((p, a) for p, a in stored[name]) for name in names}
+    except (OSError, ValueError, KeyError, TypeError):
+        pass
+    result = {name: _ground_alone(name) for name in names}
+    try:
+        cache.parent.mkdir(parents=True, exist_ok=True)
+        temporary = cache.with_suffix(f".{os.getpid()}.tmp")
+        temporary.write_text(json.dumps({name: sorted(result[name]) for name in names}))
+        temporary.replace(cache)
+    except OSError:
+        pass
+    return result
+
+
+def mentioned(name: str) -> frozenset[tuple[str, int]]:
+    """The predicates an encoding's program mentions (in any statement but #show),
+    from clingo's symbol table after grounding the encoding alone."""
+    known = _all_mentioned()
+    return known[name] if name in known else _ground_alone(name)
 
 
 def _encoding_names(pddl: bool) -> list[str]:

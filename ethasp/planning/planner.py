@@ -15,14 +15,12 @@ Program parts of the control (``t`` a time, ``x`` an input value):
 * ``base``: the model's files, ``planning/model.lp`` and ``planning/check.lp``;
   the model's defects (``error/1``) and its ground vocabulary are read from
   it;
-* ``search``: what the searches need once (``planning/relaxed.lp``, the
-  bound of ``judgement/best.lp``);
+* ``search``: what the searches need once (``planning/relaxed.lp``);
 * ``step(t)`` and ``check(t)``: the time-indexed rules of
   ``planning/transition.lp``, ``planning/goal.lp`` (switched by
   ``require(goal)``), ``planning/satisficing.lp`` (a decision heuristic,
-  switched by ``require(satisficing)``), ``judgement/best.lp``,
-  ``reasons/other_state.lp`` and ``restrictions/P.lp`` (switched by
-  ``restriction(P)``);
+  switched by ``require(satisficing)``), ``judgement/best.lp`` and
+  ``reasons/other_state.lp``;
 * ``mutex`` and ``mutex_step(t)``: the h^2 mutexes of ``planning/mutex.lp``
   and their constraints, grounded (for every step so far and from then on)
   once a solve has been slow (:meth:`Planner.use_mutexes`);
@@ -32,8 +30,8 @@ Program parts of the control (``t`` a time, ``x`` an input value):
   slow (:meth:`Planner.use_canonical`);
 * ``question(x)``, ``question_step(x,t)``, ``question_check(x,t)``: one
   question of ``questions/questions.lp``, grounded when it is asked;
-* ``best_utility(x)``, ``at_least(x)``, ``other_state(x)`` and their ``_check``
-  parts: a utility threshold or a state to avoid, grounded when needed;
+* ``at_least(x)``, ``other_state(x)`` and their ``_check`` parts: a utility
+  threshold or a state to avoid, grounded when needed;
 * ``loopfree(t)`` and ``simple_path_step(x,t)``: the completeness threshold
   (``planning/loopfree.lp``), grounded when a proof needs it, for each set of
   questions asked.
@@ -73,7 +71,7 @@ ACTION_VOCABULARY = (("action", 1), ("pre", 3), ("eff", 3), ("cpre", 4), ("ceff"
 
 TRACE_ENCODINGS = ("planning/model.lp", "planning/trace.lp", "planning/trace_events.lp",
                    "judgement/judge.lp")
-BOUND_ENCODINGS = ("planning/model.lp", "planning/relaxed.lp", "judgement/best.lp")
+BOUND_ENCODINGS = ("planning/model.lp", "planning/relaxed.lp")
 
 LOOPFREE = "loopfree"
 SEARCH = "search"
@@ -81,7 +79,6 @@ SEARCH = "search"
 # Parts of the model's own base part and of the searches (relative to encodings/).
 MODEL_ENCODINGS = ("planning/model.lp", "planning/check.lp")
 SEARCH_ENCODINGS = ("planning/relaxed.lp", "planning/transition.lp", "planning/events.lp",
-                    "judgement/runs.lp",
                     "judgement/best.lp", "reasons/other_state.lp",
                     "questions/questions.lp")
 GOAL_ENCODING = "planning/goal.lp"
@@ -106,7 +103,6 @@ CANONICAL_MAX_ACTIONS = 1000
 CANONICAL_AFTER = 0.5
 CANONICAL_SWITCH = clingo.Function("require", [clingo.Function("canonical")])
 LOOPFREE_ENCODING = "planning/loopfree.lp"
-RESTRICTIONS = "restrictions"
 
 # The solver configuration of every search (it did best on the planning benchmarks).
 OPTIONS = ("--configuration=trendy", "--heuristic=Domain")
@@ -120,25 +116,10 @@ SATISFICING_SWITCH = clingo.Function("require", [clingo.Function("satisficing")]
 PAST = "past"
 
 
-def restriction_switch(principle: str) -> clingo.Symbol:
-    """The external atom that switches the restriction of a principle (ASP name)."""
-    return clingo.Function("restriction", [clingo.Function(principle)])
-
-
-@functools.cache
-def _restrictions() -> tuple[str, ...]:
-    return tuple(sorted(path.stem for path in (ENCODINGS / RESTRICTIONS).glob("*.lp")))
-
-
 @functools.cache
 def _time_atom(name: str, t: int) -> clingo.Symbol:
     """``horizon(t)`` or ``past(t)`` (made once)."""
     return clingo.Function(name, [clingo.Number(t)])
-
-
-def available_restrictions() -> list[str]:
-    """The principles (ASP names) with a restriction encoding."""
-    return list(_restrictions())
 
 
 def add_facts(ctl: clingo.Control, facts: Iterable) -> None:
@@ -214,12 +195,11 @@ class Constraint:
 class Setting:
     """What one solve asks of the model.
 
-    ``goal``: the goal must hold at the horizon; ``restrictions``: the
-    principles (ASP names) whose HModel restricts the plans; ``constraints``:
-    the question constraints imposed (of questions made by
-    :meth:`Planner.question`); ``best_utility``: the utilitarian restriction's
-    threshold; ``at_least``: the state at the horizon must be worth at least
-    this much; ``other_state``: a state (:meth:`Planner.avoid`) the state at
+    ``goal``: the goal must hold at the horizon; ``constraints``: the question
+    constraints imposed (of questions made by :meth:`Planner.question`; the
+    restrictions of principles, and the question constraints that compile,
+    are HModels of their own: :mod:`ethasp.principles.hmodel`);
+    ``at_least``: the state at the horizon must be worth at least this much; ``other_state``: a state (:meth:`Planner.avoid`) the state at
     the horizon must differ from; ``optimize``: find an optimal model of the
     objective (the utility of the state at the horizon, then goal states);
     ``satisficing``: the solver's decision heuristic for any-plan searches
@@ -231,9 +211,7 @@ class Setting:
     """
 
     goal: bool = True
-    restrictions: frozenset[str] = frozenset()
     constraints: frozenset[Constraint] = frozenset()
-    best_utility: int | None = None
     at_least: int | None = None
     other_state: int | None = None
     optimize: bool = False
@@ -337,7 +315,7 @@ class Planner:
 
     @_locked
     def bound(self) -> Answer:
-        """``upper_bound/1`` and ``best_fact/2`` of judgement/best.lp: no reachable
+        """``upper_bound/1`` and ``best_fact/2`` of planning/relaxed.lp: no reachable
         state is worth more than the upper bound (a small program of its own:
         no search needs to be grounded for it)."""
         if self._bound is None:
@@ -390,7 +368,8 @@ class Planner:
                 [(a.arguments[0], a.arguments[1], a.arguments[2], value(a.arguments[3]))
                  for a in self.get("axiom_pre", 4)],
                 [(a.arguments[0], a.arguments[1]) for a in self.get("axiom", 2)],
-                [a.arguments[0] for a in self.get("derived", 1)])
+                [a.arguments[0] for a in self.get("derived", 1)],
+                max((a.arguments[0].number for a in self.get("goal_utility", 1)), default=None))
         return self._ground_model
 
     def reachability_pending(self) -> bool:
@@ -436,8 +415,7 @@ class Planner:
         """Add and ground the searches' encodings (once, on the first search)."""
         if self._searching:
             return
-        switches = [GOAL_SWITCH, SATISFICING_SWITCH, CANONICAL_SWITCH] + [restriction_switch(p)
-                                                        for p in available_restrictions()]
+        switches = [GOAL_SWITCH, SATISFICING_SWITCH, CANONICAL_SWITCH]
         try:
             with clingo.ast.ProgramBuilder(self.ctl) as builder:
                 files = [(name, STEP, None, SEARCH) for name in SEARCH_ENCODINGS]
@@ -446,8 +424,6 @@ class Planner:
                 files.append((CANONICAL_ENCODING, CANONICAL_STEP, None, CANONICAL))
                 files.append((GOAL_ENCODING, STEP, GOAL_SWITCH, SEARCH))
                 files.append((SATISFICING_ENCODING, STEP, SATISFICING_SWITCH, SEARCH))
-                files += [(f"{RESTRICTIONS}/{principle}.lp", STEP, restriction_switch(principle),
-                           SEARCH) for principle in available_restrictions()]
                 files.append((LOOPFREE_ENCODING, LOOPFREE, None, SEARCH))
                 for name, step_part, switch, base_part in files:
                     self._parts.update(incremental.add_encoding(
@@ -608,12 +584,8 @@ class Planner:
         assign(SATISFICING_SWITCH, setting.satisficing)
         # Paths compare the states between the actions, which a swap changes.
         assign(CANONICAL_SWITCH, setting.canonical and simple_path is None)
-        for principle in available_restrictions():
-            assign(restriction_switch(principle), principle in setting.restrictions)
         wanted = {
             "question": {c.question for c in setting.constraints},
-            "best_utility": ({clingo.Number(setting.best_utility)}
-                             if setting.best_utility is not None else set()),
             "at_least": ({clingo.Number(setting.at_least)}
                          if setting.at_least is not None else set()),
             "other_state": ({clingo.Number(setting.other_state)}
@@ -641,8 +613,6 @@ class Planner:
             if constraint not in self._questions.get(constraint.question, ()):
                 raise ValueError(f"constraint {constraint} of an unknown question "
                                  f"{constraint.question} (see Planner.question)")
-        if setting.best_utility is not None:
-            self._threshold("best_utility", setting.best_utility)
         if setting.at_least is not None:
             self._threshold("at_least", setting.at_least)
 
@@ -710,9 +680,9 @@ class Planner:
     @_locked
     def simple_path_exists(self, length: int, setting: Setting, budget: Budget) -> bool | None:
         """Is there a path of ``length`` actions without a repeated state, under
-        the setting's restrictions (their step constraints; what holds only at a
-        horizon does not apply to a path), the state extended by what its
-        restrictions and questions track?  None if the budget stopped the check.
+        the setting's question constraints (their step constraints; what holds
+        only at a horizon does not apply to a path), the state extended by what
+        its questions track?  None if the budget stopped the check.
         """
         self._prepare(setting)
         self.ground_to(length)
@@ -815,7 +785,7 @@ class Planner:
     @_locked
     def search_atoms(self, name: str, arity: int) -> list[clingo.Symbol]:
         """The ground atoms of a predicate of the searches' static part (e.g.
-        ``upper_bound/1`` of judgement/best.lp)."""
+        ``upper_bound/1`` of planning/relaxed.lp)."""
         self._start_search()
         return sorted(atom.symbol for atom in self.ctl.symbolic_atoms.by_signature(name, arity))
 

@@ -100,11 +100,21 @@ class GroundModel:
     # Derived variables: each holds in a state where all literals of one of its
     # axioms hold (the least fixpoint, stratified by negation).
     axioms: dict[clingo.Symbol, list[tuple[Literal, ...]]] = field(default_factory=dict)
+    # An HModel's goal utility (goal_utility/1 of model.lp): goal states are
+    # also worth at least this much (None: no such goal).
+    goal_utility: int | None = None
 
     def utility(self, state: Iterable[clingo.Symbol]) -> int:
         """u(s): the sum of the utilities of the facts of a state (true variables given)."""
         true = set(state)
         return sum(self.weights.get((v, v in true), 0) for v in self.variables)
+
+    def is_goal(self, state: Iterable[clingo.Symbol]) -> bool:
+        """Does a state (true variables given) meet the goal?  (Literals on
+        state variables only: for tests and plans read off engines.)"""
+        true = set(state)
+        return (all((v in true) == b for v, b in self.goal if v not in self.axioms)
+                and (self.goal_utility is None or self.utility(true) >= self.goal_utility))
 
 
 @dataclass
@@ -341,8 +351,53 @@ class Reachability:
         return self._cube(literals)
 
     def goal(self):
-        """The goal states."""
-        return self._cube(self.model.goal)
+        """The goal states (worth at least the goal utility, if the model has one)."""
+        states = self._cube(self.model.goal)
+        if self.model.goal_utility is not None:
+            states &= self.at_least(self.model.goal_utility)
+        return states
+
+    def at_least(self, bound: int):
+        """The states worth at least ``bound``: a diagram over the weighted
+        variables, built top down in the diagrams' order with the utility still
+        needed (memoised; decided early where the variables below can no longer
+        miss or reach it)."""
+        by_level, _ = self._levels()
+        weighted = [(f"x{entry[0]}", entry[1], entry[2]) for entry in by_level
+                    if entry is not None and (entry[1] or entry[2])]
+        count = len(weighted)
+        most, least = [0] * (count + 1), [0] * (count + 1)
+        for i in range(count - 1, -1, -1):
+            _, w_false, w_true = weighted[i]
+            most[i] = most[i + 1] + max(w_false, w_true)
+            least[i] = least[i + 1] + min(w_false, w_true)
+        memo: dict[tuple[int, int], object] = {}
+
+        def known(i: int, need: int):
+            if need <= least[i]:
+                return self.bdd.true
+            if need > most[i]:
+                return self.bdd.false
+            return memo.get((i, need))
+
+        # Iteratively (long orders would overflow Python's recursion).
+        stack = [(0, bound)]
+        while stack:
+            i, need = stack[-1]
+            if known(i, need) is not None:
+                stack.pop()
+                continue
+            name, w_false, w_true = weighted[i]
+            high, low = known(i + 1, need - w_true), known(i + 1, need - w_false)
+            if high is None or low is None:
+                if high is None:
+                    stack.append((i + 1, need - w_true))
+                if low is None:
+                    stack.append((i + 1, need - w_false))
+                continue
+            stack.pop()
+            memo[(i, need)] = self.bdd.ite(self.bdd.var(name), high, low)
+        return known(0, bound)
 
     def state(self, true: Iterable[clingo.Symbol]):
         """The set holding one state (its true variables given)."""
@@ -808,7 +863,8 @@ def from_atoms(variables: Sequence[clingo.Symbol], actions: Sequence[clingo.Symb
                weights: dict[Literal, int],
                axiom_pre: Iterable[tuple[clingo.Symbol, clingo.Symbol, clingo.Symbol, bool]] = (),
                axioms: Iterable[tuple[clingo.Symbol, clingo.Symbol]] = (),
-               derived: Iterable[clingo.Symbol] = ()) -> GroundModel:
+               derived: Iterable[clingo.Symbol] = (),
+               goal_utility: int | None = None) -> GroundModel:
     """A ground model from the atoms of the model vocabulary (actions, then
     ``pre(A,V,B)``, ``eff(A,V,B)``, ``ceff(A,K,V,B)``, ``cpre(A,K,V,B)``, ...,
     ``axiom_pre(D,K,V,B)`` and ``axiom(D,K)`` of derived variables)."""
@@ -839,4 +895,4 @@ def from_atoms(variables: Sequence[clingo.Symbol], actions: Sequence[clingo.Symb
     for (name, _), body in sorted(bodies.items(), key=str):
         derived_axioms.setdefault(name, []).append(tuple(sorted(body, key=str)))
     return GroundModel(list(variables), ground, frozenset(init), list(goal), dict(weights),
-                       derived_axioms)
+                       derived_axioms, goal_utility)

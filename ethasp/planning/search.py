@@ -128,14 +128,14 @@ class _Exact:
     instead of the layers, started with the search."""
 
     def __init__(self, planner: Planner, setting: Setting, budget: Budget, read_plan: bool,
-                 greedy: bool = False):
+                 greedy: bool = False, threads: bool = True):
         self.planner = planner
         self.budget = budget
         self.read_plan = read_plan
+        self.threads = threads
         # The layers know the actions, not exogenous events.
-        self.usable = (setting.goal and setting.best_utility is None
-                       and setting.at_least is None and setting.other_state is None
-                       and planner.exact_reachability)
+        self.usable = (setting.goal and setting.at_least is None
+                       and setting.other_state is None and planner.exact_reachability)
         self.layers: Layers | None = None
         self.greedy: Layers | None = None
         self.solving = 0.0            # seconds spent in solves so far
@@ -236,8 +236,8 @@ class _Exact:
         """Did the layers give up (too many diagram nodes), leaving the core they
         took to a second solver thread?"""
         status = self.status()
-        return (self.read_plan and status is not None and bool(status.stopped)
-                and _cores() >= 2)
+        return (self.read_plan and self.threads and status is not None
+                and bool(status.stopped) and _cores() >= 2)
 
     def stop(self) -> None:
         for engine in (self.layers, self.greedy):
@@ -258,8 +258,8 @@ def _one_plan_wanted(setting: Setting) -> bool:
     that independent actions may be taken in one order, ``planning/
     canonical.lp``)?  Not with utility thresholds, states to avoid or
     optimisation (they read the states a plan passes)."""
-    return (setting.goal and setting.best_utility is None and setting.at_least is None
-            and setting.other_state is None and not setting.optimize)
+    return (setting.goal and setting.at_least is None and setting.other_state is None
+            and not setting.optimize)
 
 
 def _searched(horizon: int) -> str:
@@ -298,7 +298,8 @@ def _checked(planner: Planner, actions, engine: str) -> Plan:
 
 def shortest(planner: Planner, setting: Setting, budget: Budget,
              max_horizon: int = DEFAULT_MAX_HORIZON, start: int = 0, start_proof: str = "",
-             all_plans: bool = False, task: str = "plan search") -> SearchResult:
+             all_plans: bool = False, task: str = "plan search",
+             threads: bool = True) -> SearchResult:
     """A shortest plan under a setting, searching horizons ``start`` to ``max_horizon``.
 
     ``start`` must be a proven lower bound on the length of every plan under
@@ -307,7 +308,9 @@ def shortest(planner: Planner, setting: Setting, budget: Budget,
     bounds skip horizons, and for plain plan search (no restriction, no
     question constraint, one plan) a shortest plan read off them, checked by
     its trace, ends the search; where they give up, plain plan search solves
-    with :data:`SOLVER_THREADS` threads (one again when it ends).
+    with :data:`SOLVER_THREADS` threads (one again when it ends), unless
+    ``threads`` is False: searches that promise the same plan on every run
+    (in an HModel: restrictions, questions) keep one.
     """
     if max_horizon < 0:
         raise InputError("the maximal horizon must be at least 0")
@@ -321,8 +324,8 @@ def shortest(planner: Planner, setting: Setting, budget: Budget,
         return SearchResult(BOUNDED, horizon=max_horizon,
                             proof=f"every plan has more than {steps(max_horizon)} ({start_proof}), "
                                   "the maximal horizon")
-    plain = not setting.restrictions and not setting.constraints and not all_plans
-    exact = _Exact(planner, setting, budget, read_plan=plain)
+    plain = not setting.constraints and not all_plans
+    exact = _Exact(planner, setting, budget, read_plan=plain, threads=threads)
     if plain and _one_plan_wanted(setting):
         setting = replace(setting, canonical=True)
     try:
@@ -424,7 +427,7 @@ def any_plan(planner: Planner, setting: Setting, budget: Budget,
     if setting.goal and planner.is_fact("unreachable_goal"):
         return SearchResult(NONE, horizon=0, optimal=False,
                             proof="the goal is unreachable even ignoring delete effects")
-    plain = not setting.restrictions and not setting.constraints
+    plain = not setting.constraints
     exact = _Exact(planner, setting, budget, read_plan=plain, greedy=True)
     setting = replace(setting, satisficing=True,
                       canonical=plain and _one_plan_wanted(setting))

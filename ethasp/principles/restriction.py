@@ -2,19 +2,21 @@
 
 The constraint operator Pi x e of the paper (section "Ethical Plan
 Generation") restricts plan search so that every plan found, an *HPlan*, is a
-plan of the model that satisfies the principle e.  Each principle's
-restriction is an encoding in ``encodings/restrictions/``, grounded once in
-the model's planner and switched on for the searches that need it
-(:class:`ethasp.planning.planner.Setting`); several principles together
-restrict the search by all of them.
+plan of the model that satisfies the principle e.  The restriction of each
+principle (``encodings/restrictions/``) and of each question constraint
+(``encodings/questions/restriction.lp``) compiles into a planning model, the
+HModel (:mod:`ethasp.principles.hmodel`); several restrictions together make
+one HModel.  Its plans are the HPlans, and plan search in it is plain plan
+search, with every engine and every proof: relaxed reachability, exact
+layers, the greedy search, mutexes, the loop-free threshold.
 
 Utilitarianism needs the best utility of a reachable state first
 (:func:`ethasp.principles.utilitarianism.best_reachable`, exact reachability
-or clingo optimisation), proven best or only a lower bound.  The plan search
-then keeps the plans whose final state is at least that good
-(``best_utility/1``), starting at the length of a shortest path to such a
-goal state when exact reachability knows it, so that no shorter horizon is
-searched in vain; when no goal state is that good, no plan is permissible.
+or clingo optimisation), proven best or only a lower bound.  Its HModel's
+goal asks for a final state at least that good (``goal_utility/1``); when no
+goal state is that good, no plan is permissible (proven even where the bound
+is only a lower bound); a plan found is proven permissible only where the
+best utility is proven, and otherwise reported ``bounded``.
 
 Statuses are those of plan search: ``found`` (a shortest HPlan, permissible
 by a proof), ``none`` (proven: no permissible plan exists) or ``bounded``.
@@ -32,10 +34,10 @@ from ethasp.planning.budget import Budget
 from ethasp.planning.planner import Constraint, Setting
 from ethasp.planning.search import (BOUNDED, DEFAULT_MAX_HORIZON, DEFAULT_SATISFICING_HORIZON,
                                     FOUND, NONE, any_plan, shortest)
+from ethasp.principles.hmodel import Restriction, compiled, hmodel
 from ethasp.principles.principle import Principle, select_principles
 from ethasp.resources import ENCODINGS
-from ethasp.principles.utilitarianism import (PROVEN, BestReachable, best_reachable,
-                                              goal_distance, goal_plan)
+from ethasp.principles.utilitarianism import PROVEN, BestReachable, best_reachable
 
 RESTRICTIONS = "restrictions"
 
@@ -121,16 +123,6 @@ def _final_utility(model: Model, plan: Plan) -> int:
     return final_utility(model, plan)
 
 
-def _check_plan(model: Model, plan: Plan, utility: int) -> None:
-    """A plan found by exact reachability must be a plan whose final state is
-    worth ``utility`` or more (its trace, by the encodings)."""
-    from ethasp.planning.validation import validate
-    from ethasp.principles.judgement import final_utility
-
-    if not validate(model, plan).valid or final_utility(model, plan) < utility:
-        raise RuntimeError(f"exact reachability proposed {plan}, which the encodings refute")
-
-
 def plan_with_principles(model: Model, principles: Sequence[str],
                          max_horizon: int | None = None,
                          time_limit: float | None = None,
@@ -153,13 +145,9 @@ def plan_with_principles(model: Model, principles: Sequence[str],
     if max_horizon is None:
         max_horizon = DEFAULT_SATISFICING_HORIZON if satisficing else DEFAULT_MAX_HORIZON
     budget = budget or Budget(time_limit)
-    planner = model.planner
     chosen = _principles(principles)
     names = [principle.name for principle in chosen]
-    setting = Setting(restrictions=frozenset(p.asp_name for p in chosen),
-                      constraints=frozenset(constraints))
     best: BestReachable | None = None
-    start, start_proof = 0, ""
     plans = "plan meeting the question" if constraints else "plan"
     under = " and ".join(names)
     permissible = f" permissible under {under}" if names else ""
@@ -168,39 +156,24 @@ def plan_with_principles(model: Model, principles: Sequence[str],
     else:
         plans_are = f"{plans} is{permissible}"
     if any(principle.reads_alternatives for principle in chosen):
-        best = best_reachable(planner, budget, max_horizon)
+        best = best_reachable(model.planner, budget, max_horizon)
         if best.utility is None:
             return HPlanResult(BOUNDED, names, horizon=best.searched, best=best,
                                proof=f"no reachable state valued yet: {best.proof}")
-        setting = Setting(restrictions=setting.restrictions, constraints=setting.constraints,
-                          best_utility=best.utility)
-        pure = (not constraints and not all_plans
-                and all(principle.reads_alternatives for principle in chosen))
-        if pure and best.status == PROVEN:
-            # Exact reachability knows a shortest path to a best goal state: its
-            # plan is checked by the plan's trace, and no search is needed.
-            actions, status, why = goal_plan(planner, best.utility, budget, max_horizon)
-            if actions is not None:
-                plan = Plan(tuple(actions))
-                _check_plan(model, plan, best.utility)
-                reason = (f"no plan has fewer than {steps(len(plan))}: {why}" if len(plan)
-                          else why)
-                return HPlanResult(FOUND, names, plan, len(plan),
-                                   f"a shortest {plans} permissible under {under}: {reason}",
-                                   [], best, optimal=not satisficing,
-                                   utility=_final_utility(model, plan))
-        distance, status, why = goal_distance(planner, best.utility, budget, max_horizon)
-        if distance is None and status == PROVEN:
-            return HPlanResult(NONE, names, None, best.searched,
-                               f"no {plans_are}: no goal state is as "
-                               f"good as a best reachable state (utility {best.utility}); {why}",
-                               best=best)
-        if distance is not None:
-            start, start_proof = distance, why
+    # The HModel: a planning model of its own, planned for by every engine.
+    terms = [constraint.term for constraint in constraints]
+    restriction = Restriction.of([p.asp_name for p in chosen], [t for t in terms if compiled(t)],
+                                 best.utility if best is not None else None)
+    restricted = model if restriction.empty else hmodel(model, restriction)
+    planner = restricted.planner
+    rest = [t for t in terms if not compiled(t)]
+    # Constraints that no HModel writes are imposed on its search (in ASP).
+    setting = Setting(constraints=frozenset(planner.question(rest)) if rest else frozenset())
     task = f"plan search under {under}" if names else "plan search"
-    result = (any_plan(planner, setting, budget, max_horizon, start, start_proof, task)
+    result = (any_plan(planner, setting, budget, max_horizon, task=task)
               if satisficing else
-              shortest(planner, setting, budget, max_horizon, start, start_proof, all_plans, task))
+              shortest(planner, setting, budget, max_horizon, all_plans=all_plans, task=task,
+                       threads=restriction.empty))
     if result.status == FOUND and best is not None and best.status != PROVEN:
         # A plan reaching the best utility found is no proof: a better state may
         # exist.  The plan is reported, bounded: permissible as far as searched.

@@ -133,7 +133,7 @@ def _state(model_variables, best: Best) -> ReachableState:
 
 def upper_bound(planner: Planner) -> int:
     """No reachable state has a higher utility (per variable, the best utility of
-    a value reachable ignoring delete effects: ``upper_bound/1`` of best.lp)."""
+    a value reachable ignoring delete effects: ``upper_bound/1`` of relaxed.lp)."""
     atoms = unify([UpperBound], planner.bound().get("upper_bound", 1)).query(UpperBound).all()
     return next(iter(atoms)).bound
 
@@ -201,7 +201,7 @@ def _restriction(r: Reachability, within: str, other_than):
 
 def _bound_states(planner: Planner, r: Reachability):
     """The reachable states that attain the upper bound are those with every
-    ``best_fact/2`` of best.lp: a cube, cheap to test a layer against."""
+    ``best_fact/2`` of relaxed.lp: a cube, cheap to test a layer against."""
     atoms = unify([BestFact], planner.bound().get("best_fact", 2)).query(BestFact).all()
     facts = [(atom.variable.symbol, atom.value == "true") for atom in atoms]
     return r.condition(facts)

@@ -1,0 +1,121 @@
+"""HModels: restrictions compiled into planning models (the paper's Pi x e).
+
+A restriction (a principle's, or a constraint of a contrastive question) is
+a planning model: the paper defines the HModel of deontology as the model
+without the bad actions, that of utilitarianism as the model whose goal also
+asks for a best reachable state, that of do-no-harm as the model with
+variables that record what the plan produced.  Each restriction's encoding
+(``encodings/restrictions/P.lp`` for a principle P,
+``encodings/questions/restriction.lp`` for question constraints) says what
+it removes from the model and what it adds; ``encodings/restrictions/
+hmodel.lp`` writes the HModel's facts.  They are computed by one clingo call
+over the model's ground facts, and the HModel is a :class:`Model` of those
+facts, with its own planner (grounded once): plan search in it is plain plan
+search, with every engine (the encodings, relaxed reachability, exact layers,
+greedy search, mutexes), and its proofs ("none", lower bounds) are proofs
+about the restricted plans.
+
+HModels are kept per model and restriction, so that a dialogue asks each
+once.  The plans of an HModel are action sequences of the model: the HModel
+keeps the model's action names and adds only state variables named
+``ethasp(...)`` (a name models may not use), their effects and goals.
+"""
+
+from __future__ import annotations
+
+import threading
+import weakref
+from dataclasses import dataclass
+from typing import Iterable
+
+import clingo
+
+from ethasp.planning.model import Model
+
+HMODEL = "restrictions/hmodel.lp"
+QUESTIONS = "questions/restriction.lp"
+RESTRICTIONS = "restrictions"
+MODEL = "planning/model.lp"
+
+# Constraint terms of questions that questions/restriction.lp compiles.
+COMPILED_CONSTRAINTS = ("unused", "used", "before")
+
+
+@dataclass(frozen=True)
+class Restriction:
+    """What an HModel restricts: principles (ASP names), question constraint
+    terms and the best reachable utility (utilitarianism's input)."""
+
+    principles: tuple[str, ...] = ()
+    terms: tuple[clingo.Symbol, ...] = ()
+    best_utility: int | None = None
+
+    @classmethod
+    def of(cls, principles: Iterable[str] = (), terms: Iterable[clingo.Symbol] = (),
+           best_utility: int | None = None) -> "Restriction":
+        return cls(tuple(sorted(set(principles))), tuple(sorted(set(terms), key=str)),
+                   best_utility)
+
+    @property
+    def empty(self) -> bool:
+        return not self.principles and not self.terms
+
+    def describe(self) -> str:
+        parts = list(self.principles) + [str(term) for term in self.terms]
+        return ", ".join(parts) or "nothing"
+
+
+def compiled(term: clingo.Symbol) -> bool:
+    """Is a question constraint term one that questions/restriction.lp compiles?"""
+    return term.type == clingo.SymbolType.Function and term.name in COMPILED_CONSTRAINTS
+
+
+class _Registry:
+    """The HModels made so far, per model (kept while the model lives)."""
+
+    def __init__(self):
+        self.lock = threading.Lock()
+        self.by_model: dict[int, tuple[weakref.ref, dict[Restriction, Model]]] = {}
+
+    def of(self, model: Model) -> dict[Restriction, Model]:
+        key = id(model)
+        with self.lock:
+            entry = self.by_model.get(key)
+            if entry is None or entry[0]() is not model:
+                entry = (weakref.ref(model, lambda _, key=key: self._forget(key)), {})
+                self.by_model[key] = entry
+            return entry[1]
+
+    def _forget(self, key: int) -> None:
+        with self.lock:
+            self.by_model.pop(key, None)
+
+
+_REGISTRY = _Registry()
+
+
+def hmodel(model: Model, restriction: Restriction) -> Model:
+    """The HModel of the model under the restriction (made once per model and
+    restriction): a model whose plans are the model's plans that satisfy it."""
+    made = _REGISTRY.of(model)
+    planner = model.planner
+    with planner.lock:       # one compilation per restriction, whichever thread asks
+        if restriction not in made:
+            made[restriction] = _compile(model, restriction)
+        return made[restriction]
+
+
+def _compile(model: Model, restriction: Restriction) -> Model:
+    encodings = [MODEL, HMODEL]
+    encodings += [f"{RESTRICTIONS}/{principle}.lp" for principle in restriction.principles]
+    inputs: list[clingo.Symbol] = []
+    if restriction.terms:
+        encodings.append(QUESTIONS)
+        question = clingo.Function("q")
+        inputs += [clingo.Function("contrast", [question, term]) for term in restriction.terms
+                   if compiled(term)]
+    if restriction.best_utility is not None:
+        inputs.append(clingo.Function("best_utility", [clingo.Number(restriction.best_utility)]))
+    answer = model.planner.solve_program(encodings, symbols=inputs)
+    facts = [atom.arguments[0] for atom in answer.get("hmodel", 1)]
+    return Model.of_facts(f"<HModel of {restriction.describe()}>", facts, model.naming)
