@@ -452,10 +452,11 @@ def test_intra_action_order_is_kept():
 @pytest.mark.parametrize("satisficing", [False, True])
 def test_plan_search_sees_the_events_that_exact_reachability_does_not_model(
         satisficing, monkeypatch):
-    """Exact reachability knows the actions alone: with events, plan search
-    must not take its layers' word (started at once here).  An event at step
-    2 reaches the goal (the empty plan is a plan), and another at step 1
-    undoes what an action did (so no 2-step plan works)."""
+    """The diagrams know the actions alone: with events, the layers beside plan
+    search (started at once here) are explicit ones of configurations, which
+    model them.  An event at step 2 reaches the goal (the empty plan is a
+    plan), and another at step 1 undoes what an action did (so no 2-step
+    plan works)."""
     from ethasp.planning import search
     from ethasp.planning.budget import Budget
     from ethasp.planning.planner import Setting
@@ -466,7 +467,7 @@ def test_plan_search_sees_the_events_that_exact_reachability_does_not_model(
     given_by_event = Model.from_string(
         "variable(g). action(wait). goal(g,true). "
         "event(e). event_at(e,2). event_effect(e,1,g,true).")
-    assert not search._Exact(given_by_event.planner, Setting(), Budget(), True).usable
+    assert search._Exact(given_by_event.planner, Setting(), Budget(), True).usable
     result = find_plan(given_by_event, satisficing=satisficing)
     assert result.status == FOUND and len(result.plan) == 0
     undone = Model.from_string(

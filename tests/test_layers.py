@@ -61,10 +61,13 @@ def check_against_oracle(spec, status, model):
         assert len(plan) == expected and spec.is_plan(plan)
 
 
-@settings(max_examples=60, deadline=None)
-@given(st.integers(min_value=0, max_value=10**9), st.booleans(), st.booleans())
-def test_layers_prove_the_shortest_length_and_read_a_shortest_plan(seed, conditional, derived):
-    spec = random_model(seed, conditional=conditional, derived=derived, far_goal=seed % 2 == 0)
+@settings(max_examples=80, deadline=None)
+@given(st.integers(min_value=0, max_value=10**9), st.booleans(), st.booleans(), st.booleans())
+def test_layers_prove_the_shortest_length_and_read_a_shortest_plan(seed, conditional, derived,
+                                                                   events):
+    """Diagrams, or explicit layers of configurations with events."""
+    spec = random_model(seed, conditional=conditional, derived=derived, far_goal=seed % 2 == 0,
+                        events=events)
     model = Model.from_string(spec.to_asp())
     if model.planner.is_fact("unreachable_goal"):
         return          # plan search answers this before any layer is computed
@@ -123,15 +126,22 @@ def test_plan_search_with_layers_started_early_finds_shortest_plans(knob, value,
         assert spec.is_plan([str(a) for a in result.plan])
 
 
-def test_the_engines_refuse_a_model_with_events():
-    """The layers and the greedy search read the search model, which knows no
-    exogenous events: its atoms are refused, so neither engine runs there
-    (plan search with events is checked against the oracle above)."""
+def test_models_with_events_get_explicit_layers():
+    """The diagrams know no exogenous events: they refuse a model with events,
+    and the layers beside plan search are then explicit ones of configurations
+    (state, time), which prove the same kinds of claims (checked against the
+    oracle above, as plan search with the layers started early)."""
+    from ethasp.planning.reachability import Reachability
+
     model = Model.from_string("variable(a;b). action(go). eff(go,a,true). event(e). "
-                              "event_at(e,1). event_effect(e,1,b,true). goal(b,true).")
+                              "event_at(e,2). event_effect(e,1,b,true). "
+                              "event_condition(e,1,a,true). goal(b,true).")
+    ground = search_model(Atoms(model.planner))
+    assert [str(event.name) for event in ground.events] == ["e"]
     with pytest.raises(ValueError, match="exogenous events"):
-        Atoms(model.planner)
-    assert not model.planner.exact_reachability
+        Reachability(ground)
+    status = run_layers(model)
+    assert status.goal_layer == 1 and [str(a) for a in status.plan] == ["go"]
 
 
 def test_layers_bound_restricted_searches_without_reading_plans():

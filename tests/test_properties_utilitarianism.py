@@ -117,12 +117,14 @@ def test_the_fallback_without_diagrams_is_right_when_it_claims(seed, walk):
     """With a node limit of 1, exact reachability gives up at once and clingo
     optimisation (upper bound, loop-free threshold) answers: right whenever it
     claims a proof, else bounded."""
+    import ethasp.planning.explicit as explicit
     import ethasp.planning.reachability as reachability
 
     spec = random_model(seed, max_variables=5, max_actions=5, **features(seed))
     plan = plan_through(spec, random.Random(seed), walk)
-    saved = reachability.DEFAULT_NODE_LIMIT
-    reachability.DEFAULT_NODE_LIMIT = 1
+    saved = reachability.DEFAULT_NODE_LIMIT, explicit.CONFIGURATION_LIMIT
+    reachability.DEFAULT_NODE_LIMIT = 1       # the diagrams give up at once,
+    explicit.CONFIGURATION_LIMIT = 1          # and so do the explicit layers (events)
     try:
         model = Model.from_string(spec.to_asp())
         best = best_reachable(model.planner, Budget(30))
@@ -145,4 +147,4 @@ def test_the_fallback_without_diagrams_is_right_when_it_claims(seed, walk):
         elif result.status == "none":
             assert expected is None
     finally:
-        reachability.DEFAULT_NODE_LIMIT = saved
+        reachability.DEFAULT_NODE_LIMIT, explicit.CONFIGURATION_LIMIT = saved

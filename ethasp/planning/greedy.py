@@ -200,6 +200,10 @@ class Task:
                             break
         return state
 
+    def utility(self, state: int) -> int:
+        """u(s) of a state (its bits), from the model's utilities of facts."""
+        return self.utility_base + sum(gain for bit, gain in self.utility_gain if state & bit)
+
     def is_goal(self, state: int) -> bool:
         if state & self.goal_pos != self.goal_pos or state & self.goal_neg:
             return False
@@ -342,6 +346,16 @@ class Greedy(Layers):
     def _work(self, publish) -> None:
         atoms = self._atoms() if callable(self._atoms) else self._atoms
         self.model = search_model(atoms)
+        if self.model.events:
+            # Exogenous events: the next state depends on the step, which the
+            # greedy search does not track; explicit layers of configurations
+            # (a shortest plan) instead.
+            from ethasp.planning import explicit
+
+            task = Task(self.model)
+            explicit.search(task, explicit.Events(self.model.events, task.index), self._budget,
+                            publish, self._stop.is_set)
+            return
         plan, why = greedy_plan(Task(self.model), self._budget)
         if plan is None and why == EXHAUSTED:
             publish(complete=True)

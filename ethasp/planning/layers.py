@@ -12,6 +12,9 @@ independent actions) and badly where they do well, so :class:`Layers`
 computes them in a thread of its own while the solver works on the
 horizons, and the search takes whichever proof comes first.
 
+Models with exogenous events get explicit layers of configurations instead
+(:mod:`ethasp.planning.explicit`): the diagrams know no events.
+
 The layers are computed over the *search model*: the actions that relaxed
 reachability finds usable (``usable/1`` of ``encodings/planning/
 relaxed.lp``) and the state variables that may take both values
@@ -59,22 +62,15 @@ def _value(symbol: clingo.Symbol) -> bool:
 # The ground atoms the search model is made of.
 MODEL_ATOMS = (("variable", 1), ("action", 1), ("pre", 3), ("eff", 3), ("ceff", 4), ("cpre", 4),
                ("derived", 1), ("axiom", 2), ("axiom_pre", 4), ("init", 1), ("goal", 2),
-               ("goal_utility", 1))
+               ("goal_utility", 1), ("event_at", 2), ("event_pre", 3), ("event_effect", 4),
+               ("event_condition", 4))
 
 
 class Atoms:
     """The ground atoms of a planner that the search model needs, read at once
-    (the planner's control serves one thread at a time).
-
-    The search model (and every engine that reads it: the exact layers, the
-    greedy search) knows actions, conditional effects and derived variables,
-    not exogenous events: the atoms of a model with events are refused
-    (ValueError), so that no engine's plan or bound is used there.
-    """
+    (the planner's control serves one thread at a time)."""
 
     def __init__(self, planner):
-        if planner.get("event_at", 2):
-            raise ValueError("the search model does not handle exogenous events")
         self.usable = planner.search_atoms("usable", 1)
         self.reachable = planner.search_atoms("reachable", 2)
         self.model = {name: planner.get(name, arity) for name, arity in MODEL_ATOMS}
@@ -169,7 +165,52 @@ def search_model(atoms: Atoms) -> GroundModel:
             elif fixed.get(variable) == value:
                 goal_utility -= utility.number
     return from_atoms(fluents, actions, pre, eff, ceff, cpre, init, goal, weights,
-                      axiom_pre, axioms, derived, goal_utility)
+                      axiom_pre, axioms, derived, goal_utility, _events(atoms, keeps, moving))
+
+
+def _events(atoms, keeps=lambda variable, value: None, moving=None) -> list:
+    """The exogenous events of a ground model (``atoms``: anything with the
+    planner's ``get``); for the search model, conditions on variables that
+    never change decided (``keeps``), effects on them dropped (relaxed
+    reachability counts what events may set, so an effect on a variable not
+    ``moving`` keeps its value).  ``moving`` None: every variable."""
+    from ethasp.planning.explicit import GroundEvent
+
+    steps: dict = {}
+    for atom in atoms.get("event_at", 2):
+        if atom.arguments[1].type == clingo.SymbolType.Number:
+            steps.setdefault(atom.arguments[0], []).append(atom.arguments[1].number)
+    if not steps:
+        return []
+    never: set = set()                  # events whose precondition never holds
+    pre: dict = {}
+    for atom in atoms.get("event_pre", 3):
+        event, variable, value = atom.arguments
+        holds = keeps(variable, _value(value))
+        if holds is None:
+            pre.setdefault(event, []).append((variable, _value(value)))
+        elif not holds:
+            never.add(event)
+    conditions: dict = {}
+    dead: set = set()                   # effects whose condition never holds
+    for atom in atoms.get("event_condition", 4):
+        event, key, variable, value = atom.arguments
+        holds = keeps(variable, _value(value))
+        if holds is None:
+            conditions.setdefault((event, key), []).append((variable, _value(value)))
+        elif not holds:
+            dead.add((event, key))
+    effects: dict = {}
+    for atom in atoms.get("event_effect", 4):
+        event, key, variable, value = atom.arguments
+        if (moving is None or variable in moving) and (event, key) not in dead:
+            effects.setdefault(event, []).append(
+                (key, tuple(sorted(conditions.get((event, key), []), key=str)), variable,
+                 _value(value)))
+    return [GroundEvent(event, tuple(sorted(set(times))), tuple(sorted(pre.get(event, []),
+                                                                       key=str)),
+                        tuple(sorted(effects.get(event, []), key=str)))
+            for event, times in sorted(steps.items(), key=str) if event not in never]
 
 
 def _import_diagrams() -> None:
@@ -316,6 +357,15 @@ class Layers:
     def _work(self, publish) -> None:
         atoms = self._atoms() if callable(self._atoms) else self._atoms
         self.model = search_model(atoms)
+        if self.model.events:
+            # Exogenous events: explicit layers of configurations (state, time).
+            from ethasp.planning import explicit
+            from ethasp.planning.greedy import Task
+
+            task = Task(self.model)
+            explicit.search(task, explicit.Events(self.model.events, task.index), self._budget,
+                            publish, self._stop.is_set)
+            return
         _import_diagrams()
         from ethasp.planning.reachability import Reachability
 

@@ -341,6 +341,7 @@ class Planner:
     def ground_model(self) -> GroundModel:
         """The model for the reachability engine, from the ground vocabulary."""
         if self._ground_model is None:
+            from ethasp.planning.layers import _events
             from ethasp.planning.reachability import from_atoms
 
             def value(symbol: clingo.Symbol) -> bool:
@@ -369,7 +370,8 @@ class Planner:
                  for a in self.get("axiom_pre", 4)],
                 [(a.arguments[0], a.arguments[1]) for a in self.get("axiom", 2)],
                 [a.arguments[0] for a in self.get("derived", 1)],
-                max((a.arguments[0].number for a in self.get("goal_utility", 1)), default=None))
+                max((a.arguments[0].number for a in self.get("goal_utility", 1)), default=None),
+                _events(self))
         return self._ground_model
 
     def reachability_pending(self) -> bool:

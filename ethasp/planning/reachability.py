@@ -103,6 +103,9 @@ class GroundModel:
     # An HModel's goal utility (goal_utility/1 of model.lp): goal states are
     # also worth at least this much (None: no such goal).
     goal_utility: int | None = None
+    # Exogenous events (ethasp.planning.explicit.GroundEvent): the engine of
+    # this module knows none; ethasp.planning.explicit serves models with them.
+    events: list = field(default_factory=list)
 
     def utility(self, state: Iterable[clingo.Symbol]) -> int:
         """u(s): the sum of the utilities of the facts of a state (true variables given)."""
@@ -270,6 +273,8 @@ class Reachability:
     """
 
     def __init__(self, model: GroundModel, node_limit: int = DEFAULT_NODE_LIMIT):
+        if model.events:
+            raise ValueError("exact reachability does not model exogenous events")
         self.model = model
         self.node_limit = node_limit
         module, compiled = _backend()
@@ -864,7 +869,7 @@ def from_atoms(variables: Sequence[clingo.Symbol], actions: Sequence[clingo.Symb
                axiom_pre: Iterable[tuple[clingo.Symbol, clingo.Symbol, clingo.Symbol, bool]] = (),
                axioms: Iterable[tuple[clingo.Symbol, clingo.Symbol]] = (),
                derived: Iterable[clingo.Symbol] = (),
-               goal_utility: int | None = None) -> GroundModel:
+               goal_utility: int | None = None, events: Sequence = ()) -> GroundModel:
     """A ground model from the atoms of the model vocabulary (actions, then
     ``pre(A,V,B)``, ``eff(A,V,B)``, ``ceff(A,K,V,B)``, ``cpre(A,K,V,B)``, ...,
     ``axiom_pre(D,K,V,B)`` and ``axiom(D,K)`` of derived variables)."""
@@ -895,4 +900,4 @@ def from_atoms(variables: Sequence[clingo.Symbol], actions: Sequence[clingo.Symb
     for (name, _), body in sorted(bodies.items(), key=str):
         derived_axioms.setdefault(name, []).append(tuple(sorted(body, key=str)))
     return GroundModel(list(variables), ground, frozenset(init), list(goal), dict(weights),
-                       derived_axioms, goal_utility)
+                       derived_axioms, goal_utility, list(events))

@@ -133,9 +133,9 @@ class _Exact:
         self.budget = budget
         self.read_plan = read_plan
         self.threads = threads
-        # The layers know the actions, not exogenous events.
+        # (With exogenous events, the layers are explicit ones of configurations.)
         self.usable = (setting.goal and setting.at_least is None
-                       and setting.other_state is None and planner.exact_reachability)
+                       and setting.other_state is None)
         self.layers: Layers | None = None
         self.greedy: Layers | None = None
         self.solving = 0.0            # seconds spent in solves so far

@@ -1,13 +1,16 @@
 """Reachable states of high utility, for utilitarianism: proofs, not bounds.
 
 Utilitarianism compares the final state of a plan with every reachable state
-(Definition 2 of the paper).  The states are never listed.  Two engines
-answer, the first that can:
+(Definition 2 of the paper).  Three engines answer, the first that can:
 
 * exact reachability (:mod:`ethasp.planning.reachability`): breadth-first
   layers of states, computed symbolically; every layer is exact, so a state
   better than a given utility is found at its shortest distance, and once no
   new state appears every reachable state is known (``proven``);
+* for models with exogenous events, which the diagrams do not model,
+  explicit breadth-first layers of configurations (state, time)
+  (:mod:`ethasp.planning.explicit`), with the same claims, up to a limit on
+  the configurations;
 * when its diagrams outgrow their limit, clingo optimisation over the
   planner's grounding (``encodings/judgement/best.lp``, a search without the
   goal, at horizons 0, 1, 2, 4, 8, ...), proven by the relaxed upper bound
@@ -207,10 +210,131 @@ def _bound_states(planner: Planner, r: Reachability):
     return r.condition(facts)
 
 
+# -- models with exogenous events: explicit layers of configurations ----------------
+
+def _configurations(planner: Planner):
+    """The explicit layers of the planner's ground model (events included), made once."""
+    if "configurations" not in planner.memo:
+        from ethasp.planning.explicit import Configurations, Events
+        from ethasp.planning.greedy import Task
+
+        ground = planner.ground_model()
+        task = Task(ground)
+        planner.memo["configurations"] = Configurations(task, Events(ground.events, task.index))
+    return planner.memo["configurations"]
+
+
+def _final_state(planner: Planner, layers, configuration) -> ReachableState:
+    """A configuration's final state, as a reachable state (shortest distance
+    of the configuration: its layer)."""
+    final = layers.events.finish(configuration)
+    variables = planner.ground_model().variables
+    index = layers.task.index
+    facts = [(v, bool(final >> index[v] & 1)) for v in variables]
+    distance = next(k for k, layer in enumerate(layers.layers) if configuration in layer)
+    return ReachableState(facts, layers.task.utility(final), distance)
+
+
+def _walk(planner: Planner, budget: Budget, max_horizon: int, visit, task: str) -> tuple[object, str]:
+    """Layer after layer of configurations until ``visit(k)`` is True, every
+    configuration is known, or a limit; return the layers and why they stopped
+    ('' when decided or complete)."""
+    layers = _configurations(planner)
+    k = 0
+    while True:
+        if k < len(layers.layers):
+            budget.report(task, horizon=k)
+            if visit(k):
+                return layers, ""
+            k += 1
+            continue
+        if layers.complete:
+            return layers, ""
+        if len(layers.layers) > max_horizon:
+            closed = layers.closed(budget)
+            if closed:
+                return layers, ""
+            if closed is None:
+                return layers, layers.stopped
+            return layers, (f"the configurations reached within {steps(max_horizon)} (the "
+                            "maximal horizon)")
+        if not layers.expand(budget):
+            return layers, layers.stopped
+
+
+def _best_explicit(planner: Planner, budget: Budget, max_horizon: int, within: str,
+                   other_than) -> BestReachable | None:
+    """The best reachable state of a model with events, by explicit layers;
+    None where they gave up (too many configurations) with time left."""
+    layers = _configurations(planner)
+    task = layers.task
+    # other_than: the states that agree with all these literals are left out.
+    pos = sum(1 << task.index[v] for v, b in other_than or () if b)
+    neg = sum(1 << task.index[v] for v, b in other_than or () if not b)
+    found: list = []        # (utility, goal, -layer, configuration)
+
+    def visit(k: int) -> bool:
+        for configuration in layers.layers[k]:
+            final = layers.events.finish(configuration)
+            if other_than is not None and final & pos == pos and not final & neg:
+                continue
+            goal = task.is_goal(task.full(final))
+            if within == "goal" and not goal:
+                continue
+            key = (task.utility(final), goal, -k)
+            if not found or key > found[0][:3]:
+                found[:] = [key + (configuration,)]
+        return False
+
+    layers, stopped = _walk(planner, budget, max_horizon, visit, "best reachable state")
+    searched = len(layers.layers) - 1
+    best = _final_state(planner, layers, found[0][3]) if found else None
+    if not stopped:
+        proof = ("every reachable state is known (explicit layers of configurations, exogenous "
+                 f"events included: no new one after {steps(searched)})")
+        if best is None:
+            return BestReachable(PROVEN, proof + "; none is in the set asked for", None, searched)
+        return BestReachable(PROVEN, proof, best, searched)
+    if stopped.startswith("more than") and not budget.expired():
+        return None         # the layers gave up: optimisation takes over
+    return BestReachable(BOUNDED, f"searched the states reached within {steps(searched)}; "
+                                  f"stopped: {stopped}", best, searched)
+
+
+def _better_explicit(planner: Planner, utility: int, budget: Budget,
+                     max_horizon: int) -> Comparison | None:
+    """Is a reachable state better than ``utility`` (a model with events, by
+    explicit layers)?  None where they gave up with time left."""
+    layers = _configurations(planner)
+    found: list = []
+
+    def visit(k: int) -> bool:
+        for configuration in layers.layers[k]:
+            if layers.task.utility(layers.events.finish(configuration)) > utility:
+                found.append(configuration)
+                return True
+        return False
+
+    layers, stopped = _walk(planner, budget, max_horizon, visit, "a better reachable state")
+    if found:
+        state = _final_state(planner, layers, found[0])
+        return Comparison(PROVEN, f"a state of utility {state.utility} is reachable in "
+                                  f"{steps(state.distance)}", better=state)
+    if not stopped:
+        best = _best_explicit(planner, budget, max_horizon, "all", None)
+        return Comparison(PROVEN, f"no reachable state is better: {best.proof}", best=best)
+    if stopped.startswith("more than") and not budget.expired():
+        return None         # the layers gave up: the threshold searches take over
+    searched = len(layers.layers) - 1
+    return Comparison(BOUNDED, f"no better state among those reached within {steps(searched)}; "
+                               f"stopped: {stopped}")
+
+
 def _best_exact(planner: Planner, budget: Budget, max_horizon: int, within: str,
                 other_than) -> BestReachable | None:
     if not planner.exact_reachability:
-        return None  # exogenous events: optimisation in ASP
+        # Exogenous events: explicit layers, else optimisation in ASP.
+        return _best_explicit(planner, budget, max_horizon, within, other_than)
     bound = upper_bound(planner)
     r = planner.reachability()
     restriction = _restriction(r, within, other_than)
@@ -291,7 +415,9 @@ def _better_state(planner: Planner, utility: int, budget: Budget,
             if outcome.satisfiable is None and budget.expired():
                 return Comparison(BOUNDED, f"{budget.why_stopped()} at horizon {horizon}")
     if not planner.exact_reachability:
-        return _better_by_search(planner, utility, budget, max_horizon)
+        compared = _better_explicit(planner, utility, budget, max_horizon)
+        return compared if compared is not None else \
+            _better_by_search(planner, utility, budget, max_horizon)
     found: list[Best] = []
 
     def decided(r: Reachability, k: int) -> bool:
@@ -415,56 +541,6 @@ def _better_by_search(planner: Planner, utility: int, budget: Budget,
     return Comparison(BOUNDED, f"no better state within {steps(horizon)} (the maximal horizon)")
 
 
-def _goal_distance(planner: Planner, utility: int, budget: Budget,
-                   max_horizon: int) -> tuple[int | None, str, str]:
-    """:func:`goal_distance`, under the planner's lock."""
-    if not planner.exact_reachability:
-        return None, BOUNDED, "exact reachability does not model exogenous events"
-    r = planner.reachability()
-    goal = r.goal()
-
-    def found(k: int) -> str:
-        if k == 0:
-            return f"the initial state is a goal state of utility {utility} or more"
-        return (f"exact reachability: no goal state of utility {utility} or more is reachable "
-                f"in fewer than {steps(k)}")
-
-    if utility >= upper_bound(planner):
-        # The states of that utility are a cube: a cheap test per layer.
-        wanted = goal & _bound_states(planner, r)
-        hit: list[int] = []
-
-        def first(r: Reachability, k: int) -> bool:
-            if r.layers[k] & wanted != r.bdd.false:
-                hit.append(k)
-                return True
-            return False
-
-        r, stopped = _expand(planner, budget, max_horizon, first, "a good goal state")
-        if hit:
-            return hit[0], PROVEN, found(hit[0])
-    else:
-        r, stopped = _expand(planner, budget, max_horizon, lambda r, k: False,
-                             "a good goal state")
-        last = len(r.layers) - 1
-        best = r.best_of(r.prefix(last) & goal)
-        if best is not None and best.utility >= utility:
-            # The best goal state of the prefixes only grows: binary search.
-            low, high = 0, best.layer
-            while low < high:
-                middle = (low + high) // 2
-                candidate = r.best_of(r.prefix(middle) & goal)
-                if candidate is not None and candidate.utility >= utility:
-                    high = middle
-                else:
-                    low = middle + 1
-            return low, PROVEN, found(low)
-    if not stopped:
-        return None, PROVEN, (f"no goal state of utility {utility} or more is reachable "
-                              "(exact reachability: every reachable state is known)")
-    return None, BOUNDED, stopped
-
-
 def best_reachable(planner: Planner, budget: Budget | None = None,
                    max_horizon: int = DEFAULT_MAX_HORIZON, within: str = "all",
                    other_than: list[tuple[clingo.Symbol, bool]] | None = None) -> BestReachable:
@@ -488,30 +564,3 @@ def better_state(planner: Planner, utility: int, budget: Budget | None = None,
     planner = getattr(planner, "planner", planner)
     with planner.lock:
         return _better_state(planner, utility, budget or Budget(), max_horizon)
-
-
-def goal_plan(planner: Planner, utility: int, budget: Budget | None = None,
-              max_horizon: int = DEFAULT_MAX_HORIZON):
-    """A shortest plan to a goal state of utility at least ``utility``, from
-    exact reachability: (actions, status, proof); actions None when there is
-    no such plan (status proven) or the engine stopped first (bounded)."""
-    planner = getattr(planner, "planner", planner)
-    with planner.lock:
-        distance, status, proof = _goal_distance(planner, utility, budget or Budget(),
-                                                          max_horizon)
-        if distance is None:
-            return None, status, proof
-        r = planner.reachability()
-        state = r.best_in_layer(distance, r.goal())
-        return r.path_to(state.state, distance), status, proof
-
-
-def goal_distance(planner: Planner, utility: int, budget: Budget | None = None,
-                  max_horizon: int = DEFAULT_MAX_HORIZON) -> tuple[int | None, str, str]:
-    """The length of a shortest path to a goal state of utility at least
-    ``utility``: (length, status, proof); length None with status proven when
-    no such state is reachable, with status bounded when the exact engine
-    stopped first."""
-    planner = getattr(planner, "planner", planner)
-    with planner.lock:
-        return _goal_distance(planner, utility, budget or Budget(), max_horizon)
