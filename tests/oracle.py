@@ -20,8 +20,8 @@ action.  Events happen after the plan's last action too: the final state is
 the state after the later of the plan's end and the last event.  So the
 search space is made of configurations (state, time), the time counting only
 up to the last event.  Caused(p) with events: some action's effect that fired
-at step S set p, and p held after S (its events included) and at every later
-step.
+and won at step S set p (p holds after the action), and p held after S (its
+events included) and at every later step.
 """
 
 from __future__ import annotations
@@ -217,13 +217,15 @@ class RandomModel:
 
     def caused(self, plan: list[str]) -> set[tuple[str, bool]]:
         """Caused(p): p holds in the final state and an effect of an action of the
-        plan that fired set p, p holding from the end of that step (its events
-        included) to the end."""
+        plan that fired and won set p (p holds after the action), p holding
+        from the end of that step (its events included) to the end."""
         states = self.trajectory(plan)
         result = set()
         for t, action in enumerate(plan, start=1):
+            after = self.apply(states[t - 1], action)
             for var, value in self.firing(states[t - 1], action):
-                if all((var in later) == value for later in states[t:]):
+                if (var in after) == value and all((var in later) == value
+                                                   for later in states[t:]):
                     result.add((var, value))
         return result
 
@@ -261,21 +263,41 @@ class RandomModel:
         return any(var in self.variables and self.bad_fact(var, value)
                    for var, value in self.goal.items())
 
+    def within(self, principles, horizon: int) -> str:
+        """What a brute-force search of ``horizon`` steps settles about the
+        plans permissible under the principles: "found" (one of at most
+        ``horizon`` steps exists), "none" (every node of the search, and for
+        utilitarianism every configuration of the model, is within
+        ``horizon`` steps, and no permissible plan is among them) or "open"
+        (the horizon cut it short)."""
+        principles = set(principles)
+        if "utilitarianism" in principles:
+            depth = max(self.configurations().values())
+            if depth > horizon:
+                return "open"
+        length, depth = self._permissible_search(principles)
+        if length is not None:
+            return "found" if length <= horizon else "open"
+        return "none" if depth <= horizon else "open"
+
     def shortest_permissible_length(self, principles) -> int | None:
-        """The length of a shortest plan permissible under all the principles, or None.
+        return self._permissible_search(set(principles))[0]
+
+    def _permissible_search(self, principles) -> tuple[int | None, int]:
+        """The length of a shortest plan permissible under all the principles, or
+        None; and the depth of the deepest node searched.
 
         Breadth-first search over (configuration, produced): the bad facts that
         an action of the plan set and that have held since; the nodes are
         finitely many, so None means no permissible plan of any length.
         """
-        principles = set(principles)
         best = self.best_reachable_utility() if "utilitarianism" in principles else None
 
         def carry(state, produced):
             return frozenset(fact for fact in produced if (fact[0] in state) == fact[1])
 
         if "goal-deontology" in principles and self.bad_goal():
-            return None
+            return None, 0
         harmless = bool({"avoid-any-harm", "avoid-avoidable-harm"} & principles)
 
         def accepted(node) -> bool:
@@ -304,20 +326,21 @@ class RandomModel:
             node = queue.popleft()
             config, produced = node
             if accepted(node):
-                return dist[node]
+                return dist[node], dist[node]
             for action in self.actions:
                 if not self.applicable(config[0], action):
                     continue
                 if {"deontology", "hera-deontology"} & principles and self.bad_action(action):
                     continue
                 succ_config = self.successor(config, action)
+                after = self.apply(config[0], action)
                 fired = {(var, value) for var, value in self.firing(config[0], action)
-                         if self.bad_fact(var, value)}
+                         if self.bad_fact(var, value) and (var in after) == value}
                 succ = (succ_config, carry(succ_config[0], produced | fired))
                 if succ not in dist:
                     dist[succ] = dist[node] + 1
                     queue.append(succ)
-        return None
+        return None, max(dist.values())
 
     # -- ASP ------------------------------------------------------------------
 

@@ -147,13 +147,20 @@ def test_do_no_harm_an_event_undoes_what_the_action_did():
     assert plans(["do_no_harm"], dry, 2) == set()
 
 
-def test_do_no_harm_an_overridden_delete_that_an_event_completes_is_caused():
-    # a deletes v and adds it back (true wins); the event at step 1 then deletes v:
-    # the delete of a fired, and "v is false" holds from step 1 on (trace_events.lp).
+def test_do_no_harm_an_overridden_delete_that_an_event_completes_is_not_caused():
+    # a deletes v and adds it back (true wins): its delete sets nothing; the event
+    # at step 1 then deletes v, and "v is false" holds from step 1 on, made by
+    # the event, not by a (planning/trace_events.lp).
     model = """variable(v;g). init(v). action(a). eff(a,v,false). ceff(a,k,v,true).
                eff(a,g,true). goal(g,true). utility(v,false,-1).
                event(e). event_at(e,1). event_effect(e,1,v,false)."""
     assert plans([], model, 1) == {("a",)}
+    assert plans(["do_no_harm"], model, 1) == {("a",)}
+    caused = only_answer(["planning/model.lp", "planning/trace.lp", "planning/trace_events.lp"],
+                         model + "occurs(a,1). #show caused/2.")
+    assert "caused(v,false)" not in caused
+    # without the add, the delete of a wins and causes it (the event keeps it)
+    model = model.replace("ceff(a,k,v,true).", "")
     assert plans(["do_no_harm"], model, 1) == set()
     caused = only_answer(["planning/model.lp", "planning/trace.lp", "planning/trace_events.lp"],
                          model + "occurs(a,1). #show caused/2.")

@@ -710,7 +710,8 @@ def _error(message: str) -> None:
 
 
 # A command that has not answered this long after its time limit is stuck where
-# clingo cannot be stopped (grounding that does not end): seconds = limit * 2 + this.
+# clingo cannot be stopped (the searches' groundings stop at the limit, but
+# not a model's own grounding, nor a program over one plan): seconds = limit + this.
 # Only commands that give one answer are watched (``one_answer``): the dialogue
 # and the web page run jobs, each under the time limit of its own budget, and
 # stay up however long they are used.
@@ -772,7 +773,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                 done.set()
 
         limit = getattr(args, "time_limit", None)
-        overrun = 2 * limit + OVERRUN_GRACE if limit and args.one_answer else None
+        overrun = limit + OVERRUN_GRACE if limit and args.one_answer else None
         started = time.monotonic()
         # (An Event, not Thread.join: an interrupted join can mark a running
         # thread as stopped.)
@@ -780,9 +781,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         try:
             while not done.wait(0.5):
                 if overrun is not None and time.monotonic() - started > overrun:
-                    _error(f"no answer within the time limit of {limit:g} s: still grounding "
-                           f"or solving after {overrun:g} s (clingo cannot stop grounding; "
-                           "does the model's grounding end?)")
+                    _error(f"no answer within the time limit of {limit:g} s: still working "
+                           f"after {overrun:g} s, where clingo cannot be stopped (the model's "
+                           "own grounding, or a program over one plan; does it end?)")
                     return _end(2, end_process)
         except KeyboardInterrupt:
             return _interrupted(args, done, end_process)

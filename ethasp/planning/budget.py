@@ -116,6 +116,8 @@ class Budget:
             return "the search was cancelled"
         if self._share:
             return "its share of the time was used"
+        if self.time_limit is None:
+            return "the search was stopped"
         return f"the time limit of {self.time_limit:g} s was reached"
 
     # -- progress -----------------------------------------------------------------
@@ -125,6 +127,17 @@ class Budget:
         """Tell the progress callback (if any) how a search goes."""
         if self.on_progress is not None:
             self.on_progress(Progress(task, horizon, best, bound, self.elapsed()))
+
+    def wait_event(self, event: threading.Event) -> bool:
+        """Wait for an event (work in another thread); False if the budget ran
+        out first."""
+        while True:
+            remaining = self.remaining()
+            step = POLL_SECONDS if remaining is None else min(POLL_SECONDS, remaining)
+            if event.wait(step):
+                return True
+            if self.expired():
+                return False
 
     def wait(self, handle) -> bool:
         """Wait for an asynchronous clingo solve handle; False if the budget ran out

@@ -231,6 +231,12 @@ class Outcome:
     models: list[list[clingo.Symbol]] = field(default_factory=list)
 
 
+class GroundingStopped(Exception):
+    """The budget ran out while clingo was grounding: the grounding goes on in
+    the background (clingo cannot interrupt it), and the planner waits for it
+    before its next use of the control."""
+
+
 def _locked(method):
     """Run a method under the planner's lock: clingo controls and diagram
     managers serve one thread at a time (the web page runs searches in
@@ -275,6 +281,8 @@ class Planner:
         self._action_atoms: dict[clingo.Symbol, list[clingo.Symbol]] | None = None
         self._state_text: str | None = None
         self._bound: Answer | None = None
+        # A grounding left running when a budget ran out: (done, failure).
+        self._pending: tuple[threading.Event, list] | None = None
         self.memo: dict = {}          # results of the layers above, by question asked
         try:
             with clingo.ast.ProgramBuilder(self.ctl) as builder:
@@ -309,6 +317,7 @@ class Planner:
         too), in the grounder's order (the same for the same model)."""
         key = (name, arity)
         if key not in self._atoms:
+            self._settle(None)
             self._atoms[key] = [atom.symbol for atom in
                                 self.ctl.symbolic_atoms.by_signature(name, arity)]
         return self._atoms[key]
@@ -413,8 +422,9 @@ class Planner:
 
     # -- grounding ------------------------------------------------------------------
 
-    def _start_search(self) -> None:
+    def _start_search(self, budget: Budget | None = None) -> None:
         """Add and ground the searches' encodings (once, on the first search)."""
+        self._settle(budget)
         if self._searching:
             return
         switches = [GOAL_SWITCH, SATISFICING_SWITCH, CANONICAL_SWITCH]
@@ -434,17 +444,56 @@ class Planner:
             for part, (parameters, text) in incremental.time_parts().items():
                 self.ctl.add(part, parameters, text)
             self.ctl.add(SEARCH, [], "time(0).\n" + "".join(f"#external {s}.\n" for s in switches))
-            self.ctl.ground([(SEARCH, []), (CHECK, [clingo.Number(0)])])
         except RuntimeError:
             self.messages.raise_first("grounding failed")
+        # What is grounded is noted before: a grounding stopped by the budget
+        # still completes in the background (see _ground).
         self._searching = True
         self.grounded = 0
         self._loopfree = 0
+        self._ground([(SEARCH, []), (CHECK, [clingo.Number(0)])], budget)
 
-    def _ground(self, parts) -> None:
-        try:
-            self.ctl.ground(parts)
-        except RuntimeError:
+    def _ground(self, parts, budget: Budget | None = None) -> None:
+        """Ground program parts.  Under a budget the grounding runs in a thread
+        of its own, so that the budget's limit holds while clingo grounds
+        (which it cannot interrupt): when the budget runs out first,
+        GroundingStopped is raised and the grounding completes in the
+        background (the callers note what is grounded before, and every use of
+        the control waits for it first, :meth:`_settle`)."""
+        self._settle(budget)
+        if budget is None:
+            try:
+                self.ctl.ground(parts)
+            except RuntimeError:
+                self.messages.raise_first("grounding failed")
+            return
+        done, failure = threading.Event(), []
+
+        def work() -> None:
+            try:
+                self.ctl.ground(parts)
+            except RuntimeError as error:
+                failure.append(error)
+            finally:
+                done.set()
+
+        self._pending = (done, failure)
+        threading.Thread(target=work, name="ethasp-grounding", daemon=True).start()
+        self._settle(budget)
+
+    def _settle(self, budget: Budget | None) -> None:
+        """Wait for a grounding left running (without a budget: as long as it
+        takes); GroundingStopped if the budget runs out first."""
+        pending = self._pending
+        if pending is None:
+            return
+        done, failure = pending
+        if budget is None:
+            done.wait()
+        elif not budget.wait_event(done):
+            raise GroundingStopped()
+        self._pending = None
+        if failure:
             self.messages.raise_first("grounding failed")
 
     def _input_parts(self, name: str, value: clingo.Symbol, times: Iterable[int]) -> list:
@@ -457,9 +506,10 @@ class Planner:
         return parts
 
     @_locked
-    def ground_to(self, horizon: int) -> None:
-        """Ground the step and check parts (and those of every input) up to ``horizon``."""
-        self._start_search()
+    def ground_to(self, horizon: int, budget: Budget | None = None) -> None:
+        """Ground the step and check parts (and those of every input) up to
+        ``horizon`` (GroundingStopped if the budget runs out first)."""
+        self._start_search(budget)
         parts = []
         for t in range(self.grounded + 1, horizon + 1):
             parts += [(STEP, [clingo.Number(t)]), (CHECK, [clingo.Number(t)])]
@@ -472,16 +522,20 @@ class Planner:
                     continue
                 for value in values:
                     parts += self._input_parts(name, value, [t])
+        grounded, self.grounded = self.grounded, max(self.grounded, horizon)
         if parts:
-            self._ground(parts)
-        self.grounded = max(self.grounded, horizon)
+            try:
+                self._ground(parts, budget)
+            except InputError:
+                self.grounded = grounded
+                raise
 
     @_locked
-    def use_mutexes(self) -> bool:
+    def use_mutexes(self, budget: Budget | None = None) -> bool:
         """Ground the h^2 mutexes (``planning/mutex.lp``) for every step so far
         and from now on, unless the model has more than MUTEX_MAX_FLUENTS state
         variables that may change; whether they are in use."""
-        self._start_search()
+        self._start_search(budget)
         if self._mutexes:
             return True
         if self._mutexes is None:
@@ -497,37 +551,37 @@ class Planner:
         if fluents > MUTEX_MAX_FLUENTS:
             self._mutexes = None       # never
             return False
-        self._ground_from_now(MUTEX, MUTEX_STEP)
         self._mutexes = True
+        self._ground_from_now(MUTEX, MUTEX_STEP, budget)
         return True
 
     @_locked
-    def use_canonical(self) -> bool:
+    def use_canonical(self, budget: Budget | None = None) -> bool:
         """Ground the canonical order of independent actions
         (``planning/canonical.lp``) for every step so far and from now on,
         unless the model has exogenous events or more than
         CANONICAL_MAX_ACTIONS usable actions; whether it is in use (a search
         imposes it with :attr:`Setting.canonical`)."""
-        self._start_search()
+        self._start_search(budget)
         if self._canonical is not False:
             return bool(self._canonical)
         if self.has_events or len(self.search_atoms("usable", 1)) > CANONICAL_MAX_ACTIONS:
             self._canonical = None     # never
             return False
-        self._ground_from_now(CANONICAL, CANONICAL_STEP)
         self._canonical = True
+        self._ground_from_now(CANONICAL, CANONICAL_STEP, budget)
         return True
 
-    def _ground_from_now(self, part: str, step_part: str) -> None:
+    def _ground_from_now(self, part: str, step_part: str, budget: Budget | None = None) -> None:
         """Ground an optional part and its step part for every step so far
         (:meth:`ground_to` grounds the step part of later steps)."""
         self._ground([(part, [])] + [(step_part, [clingo.Number(t)])
-                                     for t in range(1, self.grounded + 1)])
+                                     for t in range(1, self.grounded + 1)], budget)
 
     def _register(self, name: str, value: clingo.Symbol,
-                  facts: Sequence[clingo.Symbol] = ()) -> None:
+                  facts: Sequence[clingo.Symbol] = (), budget: Budget | None = None) -> None:
         """Ground the parts of one input value up to the horizon grounded so far."""
-        self._start_search()
+        self._start_search(budget)
         if value in self._inputs[name]:
             return
         parts = [(name, [value])]
@@ -535,8 +589,8 @@ class Planner:
         times = range(1, self._loopfree + 1) if name == "simple_path" else \
             range(0, self.grounded + 1)
         parts += self._input_parts(name, value, times)
-        self._ground(parts)
         self._inputs[name].append(value)
+        self._ground(parts, budget)
 
     # -- inputs ----------------------------------------------------------------------
 
@@ -567,8 +621,8 @@ class Planner:
             self._avoided[key] = number
         return self._avoided[key]
 
-    def _threshold(self, name: str, value: int) -> None:
-        self._register(name, clingo.Number(value))
+    def _threshold(self, name: str, value: int, budget: Budget | None = None) -> None:
+        self._register(name, clingo.Number(value), budget=budget)
 
     # -- solving ---------------------------------------------------------------------
 
@@ -610,13 +664,13 @@ class Planner:
             self.ctl.assign_external(atom, value)
             self._externals[atom] = value
 
-    def _prepare(self, setting: Setting) -> None:
+    def _prepare(self, setting: Setting, budget: Budget | None = None) -> None:
         for constraint in setting.constraints:
             if constraint not in self._questions.get(constraint.question, ()):
                 raise ValueError(f"constraint {constraint} of an unknown question "
                                  f"{constraint.question} (see Planner.question)")
         if setting.at_least is not None:
-            self._threshold("at_least", setting.at_least)
+            self._threshold("at_least", setting.at_least, budget)
 
     @_locked
     def solve(self, horizon: int, setting: Setting, budget: Budget,
@@ -626,25 +680,35 @@ class Planner:
         mutexes grounded for the next ones (:meth:`use_mutexes`), and one
         under a canonical setting that takes more than CANONICAL_AFTER (and
         ``mutex_after``) seconds the canonical order (:meth:`use_canonical`)."""
-        self._prepare(setting)
-        # A plan shorter than the last event ends after it: the goal and the
-        # state at the horizon are checked there (the steps between idle).
-        check = max(horizon, self.last_event)
-        self.ground_to(check)
+        try:
+            self._prepare(setting, budget)
+            # A plan shorter than the last event ends after it: the goal and the
+            # state at the horizon are checked there (the steps between idle).
+            check = max(horizon, self.last_event)
+            self.ground_to(check, budget)
+        except GroundingStopped:
+            return Outcome(None)        # the budget ran out while grounding
         assumptions = self._set(setting, check, horizon)
         began = time.monotonic()
         outcome = self._solve(assumptions, budget, setting.optimize, models)
         seconds = time.monotonic() - began
-        if seconds > mutex_after and self._mutexes is False:
-            self.use_mutexes()          # a hard search: the next solves get them
-        if seconds > max(mutex_after, CANONICAL_AFTER) and setting.canonical \
-                and self._canonical is False:
-            self.use_canonical()        # a harder one: worth its grounding
+        try:
+            if seconds > mutex_after and self._mutexes is False:
+                self.use_mutexes(budget)    # a hard search: the next solves get them
+            if seconds > max(mutex_after, CANONICAL_AFTER) and setting.canonical \
+                    and self._canonical is False:
+                self.use_canonical(budget)  # a harder one: worth its grounding
+        except GroundingStopped:
+            pass                        # the next solve waits for it, or stops
         return outcome
 
     def _solve(self, assumptions, budget: Budget, optimize: bool, models: int) -> Outcome:
         if budget.expired():
             return Outcome(None)        # cancelled or out of time: no solve starts
+        try:
+            self._settle(budget)
+        except GroundingStopped:
+            return Outcome(None)
         config = self.ctl.configuration.solve
         config.opt_mode = "opt" if optimize else "ignore"
         config.models = "0" if optimize else str(models)
@@ -676,6 +740,7 @@ class Planner:
         than one makes the plan found depend on the race, so searches that
         promise the same answer every time (restrictions, questions) keep one."""
         if count != self._threads:
+            self._settle(None)
             self.ctl.configuration.solve.parallel_mode = str(count)
             self._threads = count
 
@@ -686,21 +751,24 @@ class Planner:
         only at a horizon does not apply to a path), the state extended by what
         its questions track?  None if the budget stopped the check.
         """
-        self._prepare(setting)
-        self.ground_to(length)
-        if self._loopfree < length:
-            times = range(self._loopfree + 1, length + 1)
-            parts = [(LOOPFREE, [clingo.Number(t)]) for t in times]
-            for value in self._inputs["simple_path"]:
-                parts += self._input_parts("simple_path", value, times)
-            self._ground(parts)
-            self._loopfree = length
-        # One set of tracked facts per set of questions asked so far (a question
-        # asked later adds tracked facts, so it needs comparisons of its own).
-        key = tuple(sorted(self._questions, key=str))
-        if key not in self._configurations:
-            self._configurations[key] = clingo.Number(len(self._configurations) + 1)
-            self._register("simple_path", self._configurations[key])
+        try:
+            self._prepare(setting, budget)
+            self.ground_to(length, budget)
+            if self._loopfree < length:
+                times = range(self._loopfree + 1, length + 1)
+                parts = [(LOOPFREE, [clingo.Number(t)]) for t in times]
+                for value in self._inputs["simple_path"]:
+                    parts += self._input_parts("simple_path", value, times)
+                self._loopfree = length
+                self._ground(parts, budget)
+            # One set of tracked facts per set of questions asked so far (a question
+            # asked later adds tracked facts, so it needs comparisons of its own).
+            key = tuple(sorted(self._questions, key=str))
+            if key not in self._configurations:
+                self._configurations[key] = clingo.Number(len(self._configurations) + 1)
+                self._register("simple_path", self._configurations[key], budget=budget)
+        except GroundingStopped:
+            return None
         assumptions = self._set(setting, None, length, self._configurations[key])
         return self._solve(assumptions, budget, False, 1).satisfiable
 
@@ -783,6 +851,22 @@ class Planner:
             for answer in handle:
                 return Answer(list(answer.symbols(shown=True)))
         return Answer([])
+
+    @property
+    def grounding(self) -> bool:
+        """Is a grounding left running in the background (a budget ran out)?"""
+        return self._pending is not None and not self._pending[0].is_set()
+
+    @_locked
+    def prepare(self, budget: Budget | None = None) -> bool:
+        """Ground what every search needs first (relaxed reachability, the
+        searches' static part) under the budget; False if it ran out first
+        (the grounding then completes in the background)."""
+        try:
+            self._start_search(budget)
+        except GroundingStopped:
+            return False
+        return True
 
     @_locked
     def search_atoms(self, name: str, arity: int) -> list[clingo.Symbol]:

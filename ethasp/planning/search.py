@@ -194,6 +194,30 @@ class _Exact:
         """Did the greedy search expand every reachable state without a goal state?"""
         return self.greedy is not None and self.greedy.status.complete
 
+    def settle(self, horizon: int) -> bool:
+        """At the maximal horizon, with no plan of at most ``horizon`` steps: is
+        every reachable state (configuration) within ``horizon`` steps, so that
+        no plan exists at all?  The engine beside the search (started now if it
+        has not been) is waited for until it tells: the layers once they have
+        layer ``horizon + 1`` or know every state; the greedy search once it
+        has expanded every state or stopped.  False where it cannot tell
+        within the budget, or where no engine serves the setting."""
+        if not self.usable:
+            return False
+        self.start()
+        engine = self.greedy if self.greedy is not None else self.layers
+        if engine is None:
+            return False
+        while not self.budget.expired():
+            status = engine.status
+            if status.complete:
+                return True
+            if not status.working or status.bound > horizon + 1:
+                return False
+            engine.news.wait(0.05)
+            engine.news.clear()
+        return False
+
     def moot(self, horizon: int) -> bool:
         """Is a solve at this horizon made pointless by what the layers proved
         (or by a plan that the greedy search proposed)?"""
@@ -262,11 +286,24 @@ def _one_plan_wanted(setting: Setting) -> bool:
             and not setting.optimize)
 
 
+def _before(budget: Budget, planner: Planner) -> str:
+    """Why a search stopped before its first solve."""
+    grounding = " (while grounding its first parts)" if planner.grounding else ""
+    return f"{budget.why_stopped()} before the search began{grounding}"
+
+
 def _searched(horizon: int) -> str:
     """Why there is no plan: plans up to the horizon refuted, and no path one
     step longer without a repeated state."""
     return (f"no plan up to horizon {horizon}, and no path of {steps(horizon + 1)} without a "
             "repeated state: every reachable state was searched")
+
+
+def _settled(horizon: int) -> str:
+    """Why there is no plan, where the engine beside the search knew every
+    reachable state by the maximal horizon."""
+    return (f"no plan up to horizon {horizon} (the maximal horizon), and exact reachability "
+            "knows every reachable state: none is a goal state")
 
 
 def _bound_proof(bound: int, why: str, horizon: int) -> str:
@@ -314,9 +351,8 @@ def shortest(planner: Planner, setting: Setting, budget: Budget,
     """
     if max_horizon < 0:
         raise InputError("the maximal horizon must be at least 0")
-    if budget.expired():
-        return SearchResult(BOUNDED, horizon=start,
-                            proof=f"{budget.why_stopped()} before the search began")
+    if budget.expired() or not planner.prepare(budget):
+        return SearchResult(BOUNDED, horizon=start, proof=_before(budget, planner))
     if setting.goal and planner.is_fact("unreachable_goal"):
         return SearchResult(NONE, horizon=0,
                             proof="the goal is unreachable even ignoring delete effects")
@@ -396,6 +432,8 @@ def _shortest(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
             elif not exists:
                 return SearchResult(NONE, horizon=horizon, proof=_searched(horizon))
         if horizon >= max_horizon:
+            if exact.settle(max_horizon):
+                return SearchResult(NONE, horizon=horizon, proof=_settled(max_horizon))
             return SearchResult(BOUNDED, horizon=max_horizon,
                                 proof=f"no plan up to horizon {max_horizon} (the maximal horizon)")
         horizon += 1
@@ -421,9 +459,8 @@ def any_plan(planner: Planner, setting: Setting, budget: Budget,
     """
     if max_horizon < 0:
         raise InputError("the maximal horizon must be at least 0")
-    if budget.expired():
-        return SearchResult(BOUNDED, horizon=start, optimal=False,
-                            proof=f"{budget.why_stopped()} before the search began")
+    if budget.expired() or not planner.prepare(budget):
+        return SearchResult(BOUNDED, horizon=start, optimal=False, proof=_before(budget, planner))
     if setting.goal and planner.is_fact("unreachable_goal"):
         return SearchResult(NONE, horizon=0, optimal=False,
                             proof="the goal is unreachable even ignoring delete effects")
@@ -504,6 +541,9 @@ def _any_plan(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
                 return SearchResult(BOUNDED, horizon=horizon, optimal=False,
                                     proof=f"{budget.why_stopped()} at horizon {horizon}")
         if horizon >= max_horizon:
+            if exact.settle(max_horizon):
+                return SearchResult(NONE, horizon=horizon, optimal=False,
+                                    proof=_settled(max_horizon))
             return SearchResult(BOUNDED, horizon=max_horizon, optimal=False,
                                 proof=f"no plan up to horizon {max_horizon} (the maximal horizon)")
         horizon += 1
