@@ -133,6 +133,7 @@ class _Exact:
         self.budget = budget
         self.read_plan = read_plan
         self.threads = threads
+        self.max_horizon = DEFAULT_SATISFICING_HORIZON     # set by the search
         # (With exogenous events, the layers are explicit ones of configurations.)
         self.usable = (setting.goal and setting.at_least is None
                        and setting.other_state is None)
@@ -220,13 +221,17 @@ class _Exact:
 
     def moot(self, horizon: int) -> bool:
         """Is a solve at this horizon made pointless by what the layers proved
-        (or by a plan that the greedy search proposed)?"""
-        if self.greedy_plan() is not None or self.greedy_complete():
+        (or by a plan that the greedy search proposed, of at most
+        :attr:`max_horizon` steps)?"""
+        proposed = self.greedy_plan()
+        if (proposed is not None and len(proposed) <= self.max_horizon) \
+                or self.greedy_complete():
             return True
         status = self.status()
         if status is None:
             return False
-        return (status.plan is not None or status.complete or status.bound > horizon)
+        return ((status.plan is not None and len(status.plan) <= self.max_horizon)
+                or status.complete or status.bound > horizon)
 
     def mutex_after(self) -> float:
         """Seconds a solve takes before the h^2 mutexes are grounded."""
@@ -362,6 +367,7 @@ def shortest(planner: Planner, setting: Setting, budget: Budget,
                                   "the maximal horizon")
     plain = not setting.constraints and not all_plans
     exact = _Exact(planner, setting, budget, read_plan=plain, threads=threads)
+    exact.max_horizon = max_horizon
     if plain and _one_plan_wanted(setting):
         setting = replace(setting, canonical=True)
     try:
@@ -382,7 +388,7 @@ def _shortest(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
     while True:
         status = exact.status()
         if status is not None:
-            if status.plan is not None:
+            if status.plan is not None and len(status.plan) <= max_horizon:
                 plan = _layers_plan(planner, status)
                 return SearchResult(FOUND, plan=plan, horizon=len(plan), proof=(
                     f"no plan has fewer than {steps(len(plan))}: exact reachability found no "
@@ -466,6 +472,7 @@ def any_plan(planner: Planner, setting: Setting, budget: Budget,
                             proof="the goal is unreachable even ignoring delete effects")
     plain = not setting.constraints
     exact = _Exact(planner, setting, budget, read_plan=plain, greedy=True)
+    exact.max_horizon = max_horizon
     setting = replace(setting, satisficing=True,
                       canonical=plain and _one_plan_wanted(setting))
     try:
