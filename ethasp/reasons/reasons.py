@@ -49,12 +49,12 @@ from ethasp.principles.judgement import (Judgement, JudgementReport, evaluate, e
 from ethasp.principles.judgement import judge as judge_verdicts
 from ethasp.principles.principle import Principle, select_principles
 from ethasp.principles.utilitarianism import ReachableState, best_reachable
+from ethasp.reasons import DEFAULT_LIMIT
 from ethasp.reasons.explanation import Comparison, Explanation, Labels, Literal
 from ethasp.reasons.words import non_contrastive
 from ethasp.vocabulary import (ActionLabel, AgentLabel, ComparisonAtom, Conjunct, FactLabel,
                                Mention, PatientLabel, ReasonAtom, Verdict)
 
-DEFAULT_LIMIT = 10
 
 REASONS = ("reasons/literals.lp", "reasons/theory.lp", "reasons/evaluate.lp")
 NECESSARY = REASONS + ("reasons/necessary.lp", "reasons/relevance.lp")
