@@ -514,6 +514,14 @@ def command_serve(args: argparse.Namespace) -> int:
                  quiet=args.quiet)
 
 
+def command_completion(args: argparse.Namespace) -> int:
+    """ethasp completion bash|zsh: the completion script (ethasp/interfaces/completion.py)."""
+    from ethasp.interfaces.completion import script
+
+    sys.stdout.write(script(args.shell, build_parser()))
+    return 0
+
+
 def command_query(args: argparse.Namespace) -> int:
     from ethasp.principles.judgement import query
 
@@ -728,6 +736,16 @@ def build_parser() -> argparse.ArgumentParser:
                      help="print a line per HTTP request on standard error (off by default)")
     _add_reasons_limit(web, answers=True)
     web.set_defaults(run=command_serve)
+
+    shells = commands.add_parser(
+        "completion", help="print a shell completion script (bash, zsh)",
+        description="Print a script that completes ethasp's commands, options, principle "
+                    "names, bundled models and file names in bash or zsh. Install: "
+                    "'ethasp completion bash > ~/.local/share/bash-completion/completions/"
+                    "ethasp', or 'ethasp completion zsh > ~/.zfunc/_ethasp' with "
+                    "fpath+=(~/.zfunc) before compinit in ~/.zshrc (see docs/cli.md).")
+    shells.add_argument("shell", choices=("bash", "zsh"), help="the shell: bash or zsh")
+    shells.set_defaults(run=command_completion)
     return parser
 
 

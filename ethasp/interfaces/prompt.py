@@ -43,9 +43,11 @@ def answer_text(answer: Answer, naming) -> str:
     if answer.principle_dropped:
         lines.append(f"  the principle {answer.under} was dropped for the contrast: "
                      f"{answer.dropped_because}")
-    lines.append(f"  constraints: {', '.join(map(str, answer.constraints))}")
+    constraints = ", ".join(naming.constraint(c.term) for c in answer.constraints)
+    lines.append(f"  constraints: {constraints}")
     if answer.conflict:
-        lines.append(f"  conflicting constraints: {', '.join(map(str, answer.conflict))}")
+        lines.append(f"  conflicting constraints: "
+                     f"{', '.join(naming.constraint(c.term) for c in answer.conflict)}")
     difference = answer.difference
     if difference["original_only"] or difference["contrast_only"]:
         lines.append(f"  reasons only for the plan asked about: "
@@ -114,8 +116,9 @@ class Prompt:
             for number, step in enumerate(self.dialogue.steps, start=1):
                 own = [c for c in step.answer.constraints
                        if c.question == step.answer.constraints[-1].question]
+                naming = self.dialogue.model.naming
                 self.say(f"{number}. {step.question} (under {step.under}): "
-                         f"{', '.join(map(str, own))}")
+                         f"{', '.join(naming.constraint(c.term) for c in own)}")
         elif command == "undo":
             step = self.dialogue.undo()
             self.say(f"took back: {step.question}")

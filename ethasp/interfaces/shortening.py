@@ -10,7 +10,8 @@ two whole states.  The command line's text prints such reasons shortened
   117 shared], -deprived(bob) & … [4 more; 117 shared])``;
 * any literal longer than the width is cut with an ellipsis;
 * a reason shows as many literals as fit in the width, then ``… and N more``;
-* the reasons of one kind go on one line when they fit, else one per line.
+* the reasons of one kind go on one line when they fit (``ONE_LINE``
+  characters), else one per line.
 
 The text is that of :func:`ethasp.principles.formula.format_literal` (facts
 are ``v``/``-v`` or PDDL atoms); it is split at the top level of parentheses
@@ -21,7 +22,8 @@ from __future__ import annotations
 
 from typing import Sequence
 
-WIDTH = 100          # characters of a line of reasons
+WIDTH = 100          # characters of a line of reasons, when they are shortened
+ONE_LINE = 160       # the reasons of one kind stay on one line up to this length
 ELLIPSIS = "\u2026"
 
 
@@ -95,7 +97,10 @@ def shorten_literal(literal: str, width: int = WIDTH) -> str:
     """A literal of L in at most ``width`` characters (GEq: shared facts counted)."""
     if len(literal) <= width:
         return literal
-    return _cut(_geq(literal, width) or literal, width)
+    shorter = _geq(literal, width)
+    if shorter is not None:      # a little over is better than cutting its counts off
+        return _cut(shorter, width + width // 5)
+    return _cut(literal, width)
 
 
 def shorten_reason(reason: Sequence[str], width: int = WIDTH) -> str:
@@ -122,7 +127,7 @@ def reasons_lines(kind: str, reasons: Sequence[Sequence[str]], truncated: bool,
     more = " (limit reached; more may exist)" if truncated else ""
     whole = "; ".join("{" + ", ".join(reason) + "}" for reason in reasons) or "none"
     line = f"  {kind} reasons: {whole}{more}"
-    if len(line) <= width:
+    if len(line) <= max(width, ONE_LINE):
         return [line], False
     count = f"{len(reasons)}{'; limit reached, more may exist' if truncated else ''}"
     lines = [f"  {kind} reasons ({count}):"]

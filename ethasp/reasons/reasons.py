@@ -80,6 +80,14 @@ def _literals(symbols: Iterable[clingo.Symbol]) -> list[Literal]:
                   key=lambda lit: (str(lit.atom), lit.value))
 
 
+def _kind(literal: Literal) -> tuple:
+    """What a literal says, without what of: its operator, its value and, for
+    Good/Bad/Neutral, whether it is about an action or a fact."""
+    atom = literal.atom
+    element = atom.arguments[0].name if atom.name in ("good", "bad", "neutral") else ""
+    return atom.name, literal.value, element
+
+
 def _enumerate(ctl: clingo.Control, limit: int) -> tuple[list[list[clingo.Symbol]], bool]:
     """Up to ``limit`` subset-minimal answer sets (shown atoms) and whether
     the enumeration was exhausted."""
@@ -135,7 +143,9 @@ def _comparisons(symbols: Iterable[clingo.Symbol]) -> dict[clingo.Symbol, Compar
 
 def _labels_of(model: Model) -> Labels:
     planner = model.planner
-    return _labels([symbol for signature in LABELS for symbol in planner.get(*signature)])
+    labels = _labels([symbol for signature in LABELS for symbol in planner.get(*signature)])
+    labels.naming = model.naming
+    return labels
 
 
 def other_state(model: Model, plan: Plan, budget: Budget,
@@ -197,8 +207,20 @@ def explain(model: Model, plan: Plan, principle: str | Principle, limit: int = D
     necessary, necessary_done = (_enumerate(necessary_ctl, limit) if best is not None
                                  else ([], True))
     sufficient_ctl = model.planner.program(SUFFICIENT, program, OPTIONS, model=False)
-    sufficient, sufficient_done = _enumerate(sufficient_ctl, limit)
+    # One more than the limit allows: whether a single sufficient reason is the only one.
+    sufficient, sufficient_done = _enumerate(sufficient_ctl, max(limit, 2))
+    if len(sufficient) > limit:
+        sufficient, sufficient_done = sufficient[:limit], False
     words = sufficient[0] if sufficient else []
+    # The words say a reason whole when it is the only sufficient reason and its
+    # literals are all of one kind ("none of his 8 actions is inherently bad"):
+    # each of its literals is then a necessary reason, and naming one alone
+    # would read as if the others did not count.
+    spoken = literals
+    if sufficient_done and len(sufficient) == 1:
+        whole = _literals(sufficient[0])
+        if len(whole) > 1 and len({_kind(literal) for literal in whole}) == 1:
+            spoken = whole
     permissible = any(v.value == "true" and str(v.name.symbol) == chosen.asp_name
                       for v in unify([Verdict], answer.get("verdict", 2)).query(Verdict).all())
     conj: dict[clingo.Symbol, list[tuple[clingo.Symbol, str]]] = {}
@@ -208,7 +230,7 @@ def explain(model: Model, plan: Plan, principle: str | Principle, limit: int = D
         members.sort(key=lambda pair: str(pair[0]))
 
     def texts(reason: list[Literal]) -> list[str]:
-        return [format_literal(lit.term(), conj) for lit in reason]
+        return [format_literal(lit.term(), conj, model.naming) for lit in reason]
 
     explanation = Explanation(
         principle=chosen.name, plan=plan, permissible=permissible,
@@ -216,7 +238,7 @@ def explain(model: Model, plan: Plan, principle: str | Principle, limit: int = D
         necessary_reasons=[texts(_literals(s)) for s in necessary],
         chosen_reason=texts(literals), text="",
         truncated=not (necessary_done and sufficient_done),
-        alternative=compared, literals=literals, comparisons=_comparisons(words),
+        alternative=compared, literals=spoken, comparisons=_comparisons(words),
         labels=_labels_of(model))
     explanation.text = non_contrastive(explanation)
     memo[key] = explanation

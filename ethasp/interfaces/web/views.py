@@ -46,6 +46,9 @@ def _step_json(workspace: Workspace, number: int, step: Step) -> dict:
     data["original"]["shown"] = _actions(workspace, answer.original.plan)
     if answer.contrast is not None:
         data["contrast"]["shown"] = _actions(workspace, answer.contrast.plan)
+    naming = workspace.model.naming
+    data["constraints_shown"] = [naming.constraint(c.term) for c in answer.constraints]
+    data["conflict_shown"] = [naming.constraint(c.term) for c in answer.conflict]
     own = [str(c) for c in answer.constraints
            if answer.constraints and c.question == answer.constraints[-1].question]
     return {"number": number, "question": str(step.question), "under": step.under,
