@@ -456,6 +456,10 @@ def command_dialogue(args: argparse.Namespace) -> int:
     from ethasp.interfaces.prompt import Prompt
 
     _reasons_limit(args)
+    if args.json:
+        raise InputError("the dialogue prints text, not JSON: its answers are saved as JSON "
+                         "when it ends (--save FILE), and ethasp ask --json answers questions "
+                         "as JSON")
     if STDIN in args.model:
         raise InputError("the dialogue reads its commands from standard input, so its model "
                          "cannot come from there (-): give the model as a file")
@@ -475,9 +479,11 @@ def command_dialogue(args: argparse.Namespace) -> int:
     dialogue.model_files = files
     dialogue.on_progress = progress
     interactive = sys.stdin.isatty()
+    # At a terminal: editing keys, a history across runs, Tab completion.
+    editor = _line_editor(model) if interactive else None
 
     def read() -> str:
-        line = input("ethasp> " if interactive else "")
+        line = editor.read("ethasp> ") if editor is not None else input("")
         # Bytes that are not UTF-8 become U+FFFD, so that messages can show them.
         return line.encode("utf-8", "surrogateescape").decode("utf-8", "replace")
 
@@ -490,8 +496,28 @@ def command_dialogue(args: argparse.Namespace) -> int:
     if interactive:
         print("ethasp dialogue: type help for the commands, quit to end.")
     prompt = Prompt(dialogue, save, sys.stdout, load, progress)
-    args.on_interrupt = prompt.save_now      # Ctrl-C saves the dialogue first
+
+    def on_interrupt() -> str:               # Ctrl-C saves the dialogue first
+        if editor is not None:
+            editor.restore()
+            print(file=sys.stderr)           # off the line being edited
+        return prompt.save_now()
+
+    args.on_interrupt = on_interrupt
     return prompt.run(read)
+
+
+def _line_editor(model: Model):
+    """The dialogue's line editor (ethasp/interfaces/editing.py): it completes
+    commands, the model's actions and variables, and principle names."""
+    from ethasp.interfaces.completion import principle_names
+    from ethasp.interfaces.editing import Completer, LineEditor, history_path
+
+    naming, planner = model.naming, model.planner
+    actions = [naming.action(atom.arguments[0]) for atom in planner.get("action", 1)]
+    facts = [naming.fact(str(atom.arguments[0])) for atom in planner.get("variable", 1)]
+    return LineEditor(Completer(actions, facts, principle_names(restricting=True)),
+                      history_path())
 
 
 def command_serve(args: argparse.Namespace) -> int:
@@ -533,16 +559,25 @@ def command_query(args: argparse.Namespace) -> int:
 
 # -- parser -------------------------------------------------------------------
 
-MODEL_HELP = ("model files (ASP), or a PDDL domain and problem (.pddl) with ASP annotation "
-              "files, or a HERA situation (.yaml, .json), or the name of a bundled model; "
-              "- reads an ASP model from standard input")
+MODEL_FILES_HELP = ("model files (ASP), or a PDDL domain and problem (.pddl) with ASP "
+                    "annotation files, or a HERA situation (.yaml, .json), or the name of a "
+                    "bundled model")
+MODEL_HELP = MODEL_FILES_HELP + "; - reads an ASP model from standard input"
 
 
-def _add_model_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("model", nargs="+", metavar="MODEL", help=MODEL_HELP)
+def _add_model_arguments(parser: argparse.ArgumentParser, stdin: bool = True) -> None:
+    parser.add_argument("model", nargs="+", metavar="MODEL",
+                        help=MODEL_HELP if stdin else MODEL_FILES_HELP)
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.add_argument("--allow-scripts", action="store_true",
                         help="run #script blocks in model files (refused by default)")
+
+
+def _hide(parser: argparse.ArgumentParser, option: str) -> None:
+    """Leave an option out of --help (it is still read, to be refused in words)."""
+    for action in parser._actions:          # noqa: SLF001 (argparse keeps no public list)
+        if option in action.option_strings:
+            action.help = argparse.SUPPRESS
 
 
 TIME_LIMIT_HELP = (f"stop searching after SECONDS and answer 'bounded' (default "
@@ -693,7 +728,8 @@ def build_parser() -> argparse.ArgumentParser:
                     "about the current plan; their constraints accumulate; undo, switch "
                     "principle, save and load. Type help at the prompt. The dialogue is "
                     "saved when it ends (also on Ctrl-C or end of input).")
-    _add_model_arguments(talk)
+    _add_model_arguments(talk, stdin=False)   # standard input carries the commands
+    _hide(talk, "--json")                   # refused with a line that says why
     _add_plan_arguments(talk, required=False, what="the first plan")
     talk.add_argument("--principle", default="deontology", metavar="P",
                       help="the principle the first plan is made and judged under "
