@@ -11,6 +11,7 @@ from ethasp.questions.contrast import Answer
 from ethasp.questions.dialogue import Dialogue
 from ethasp.errors import InputError
 from ethasp.interfaces.progress import ProgressLine
+from ethasp.interfaces.shortening import shorten_literal
 
 HELP = """\
 Commands:
@@ -51,9 +52,14 @@ def answer_text(answer: Answer, naming) -> str:
     difference = answer.difference
     if difference["original_only"] or difference["contrast_only"]:
         lines.append(f"  reasons only for the plan asked about: "
-                     f"{', '.join(difference['original_only']) or 'none'}; "
-                     f"only for the contrast: {', '.join(difference['contrast_only']) or 'none'}")
+                     f"{_literals(difference['original_only'])}; "
+                     f"only for the contrast: {_literals(difference['contrast_only'])}")
     return "\n".join(lines)
+
+
+def _literals(literals: list[str]) -> str:
+    """Literals of reasons, long ones shortened (``--json`` has them whole)."""
+    return ", ".join(shorten_literal(literal) for literal in literals) or "none"
 
 
 def _verdict(side) -> str:
