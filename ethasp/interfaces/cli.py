@@ -44,9 +44,10 @@ eff/3, ceff/4, cpre/4, init/1, goal/2, utility/2, utility/3 (derived variables:
 derived/1, axiom/2, axiom_pre/4; events: event/1, event_at/2, ...), or a PDDL
 domain and problem (STRIPS, ADL, derived predicates) with ASP annotation files,
 or a HERA situation (.yaml, .json); the name of a bundled model (e.g. trolley)
-also works.  A model that comes with a plan (a situation's) is judged on it
-when --plan is not given.  Bad input gets one line on standard error and exit code 2;
-Ctrl-C one line and exit code 130."""
+also works, and - reads an ASP model from standard input.  A model that comes
+with a plan (a situation's) is judged on it when --plan is not given.  Bad
+input gets one line on standard error and exit code 2; Ctrl-C one line and exit
+code 130."""
 
 # Bounds of the numeric options (a larger value is refused, not wrapped).
 MAX_HORIZON = 1_000_000
