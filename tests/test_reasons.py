@@ -191,9 +191,9 @@ def test_paper_example_through_the_api():
     result = explain(model, Plan.parse("a1 a2 a3"), "deontology")
     assert sorted(result.sufficient_reasons) == [["Bad(a2)"], ["Bad(a3)"]]
     assert result.necessary_reasons == [["Bad(a2)", "Bad(a3)"]]
-    # without labels the words come from the terms
+    # without labels the words come from the terms; literals of one kind share a clause
     assert result.text == ("The agent can a1, then a2, then a3. Doing so is impermissible "
-                           "because action a2 is inherently bad and action a3 is inherently bad.")
+                           "because action a2 and action a3 are inherently bad.")
 
 
 def test_limit_truncates_lazily():

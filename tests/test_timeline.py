@@ -2,6 +2,7 @@
 and their pictures (ethasp.interfaces.svg, --svg on the command line)."""
 
 import json
+import re
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
@@ -205,3 +206,32 @@ def test_cli_version():
     assert run.returncode == 0 and run.stdout.startswith("ethasp ")
     from importlib.metadata import version
     assert run.stdout.split()[1] == version("ethasp")
+
+
+def test_long_names_are_wrapped_in_their_boxes_not_cut():
+    """A PDDL task's names are longer than a box: each box shows its name
+    whole over up to four lines, its tooltip too; the picture keeps its
+    viewBox, so that the page can scale it to its box."""
+    pddl = MODELS / "pddl"
+    care = Model.load([pddl / "care-domain.pddl", pddl / "care-problem.pddl",
+                       pddl / "care-utility.lp"])
+    plan = Plan.parse("(pick-up pills-bob kitchen) (move kitchen hall) (move hall living-room) "
+                      "(give-other-medicine pills-bob ann bob living-room pills-ann)")
+    text = plan_svg(timeline(care, plan), care.naming)
+    root = _svg(text)
+    assert root.get("viewBox") == f"0 0 {root.get('width')} {root.get('height')}"
+    boxes = 0
+    for group in root.iter(f"{SVG}g"):
+        title = group.find(f"{SVG}title")
+        if title is None:
+            continue
+        name = re.sub(r"^step \d+: ", "", title.text).split(": ")[0]   # its tooltip
+        lines = [node.text for node in group.iter(f"{SVG}text")
+                 if node.get("font-style") == "normal" and node.text != "caused"
+                 and not node.text.lstrip("+\u2212").isdigit()]
+        assert " ".join(lines) == name, (name, lines)      # broken at spaces here
+        assert "\u2026" not in "".join(lines)
+        boxes += 1
+    assert boxes > 10
+    assert any(title.text.startswith("(not (robot-at kitchen))")
+               for title in root.iter(f"{SVG}title"))

@@ -1,5 +1,9 @@
 """The page in a real browser (headless Chromium driven by selenium): the
-paper's conductor example explored end to end, as a person would.
+paper's conductor example explored end to end, as a person would, and the
+layout at 1280 pixels: no element's content runs out of its box (the trolley
+model and the care PDDL model, whose plans, pictures and reasons are long),
+history, undo and save in view wherever the page is scrolled, and errors
+shown where the user acted and scrolled into view.
 
 Needs the Debian packages ``chromium`` and ``chromium-driver`` (``.ci/run``
 installs them) and the test dependency selenium; skipped without them, unless
@@ -111,19 +115,87 @@ def idle(driver) -> bool:
     return not driver.find_element(By.ID, "status").is_displayed()
 
 
+# Boxes whose content must stay inside them, and what runs out of them: a
+# descendant drawn beyond a box's edges (outside a scrolling part of it), or
+# text wider than the box (scrollWidth beyond clientWidth).
+LAYOUT = """
+const boxes = document.querySelectorAll(
+  "header, section, .card, .side, .picture, .menu, .notice, #messages p, table.glance, li");
+const scrolls = (node, axis) => ["auto", "scroll"].includes(
+  getComputedStyle(node)[axis === "x" ? "overflowX" : "overflowY"]);
+const name = (node) => node.id ? "#" + node.id : node.tagName.toLowerCase() +
+  (node.className && node.className.baseVal === undefined ? "." + node.className.split(" ").join(".") : "") +
+  " '" + (node.textContent || "").trim().slice(0, 40) + "'";
+const problems = [];
+for (const box of boxes) {
+  if (!box.getClientRects().length) continue;                      // not shown
+  if (!scrolls(box, "x") && box.scrollWidth > box.clientWidth + 1) {
+    problems.push(`${name(box)}: content ${box.scrollWidth}px wide in ${box.clientWidth}px`);
+  }
+  const outer = box.getBoundingClientRect();
+  for (const child of box.querySelectorAll("*")) {
+    if (child.closest("svg") && child.tagName.toLowerCase() !== "svg") continue;
+    if (child.closest(".visually-hidden") || !child.getClientRects().length) continue;
+    const folded = child.closest("details:not([open])");     // laid out, but not shown
+    if (folded && !(folded.querySelector("summary") || folded).contains(child)) continue;
+    let scroller = child.parentElement, clipped = false;
+    while (scroller && scroller !== box) {
+      if (scrolls(scroller, "x") || scrolls(scroller, "y")) { clipped = true; break; }
+      scroller = scroller.parentElement;
+    }
+    if (clipped) continue;
+    const rect = child.getBoundingClientRect();
+    if (rect.width === 0 && rect.height === 0) continue;
+    const sideways = !scrolls(box, "x") && (rect.left < outer.left - 1 || rect.right > outer.right + 1);
+    const below = !scrolls(box, "y") && (rect.top < outer.top - 1 || rect.bottom > outer.bottom + 1);
+    if (sideways || below) {
+      problems.push(`${name(child)} runs out of ${name(box)} ` +
+        `(${Math.round(rect.left)}..${Math.round(rect.right)} x ${Math.round(rect.top)}..` +
+        `${Math.round(rect.bottom)} in ${Math.round(outer.left)}..${Math.round(outer.right)} x ` +
+        `${Math.round(outer.top)}..${Math.round(outer.bottom)})`);
+    }
+  }
+}
+return problems;
+"""
+
+
+def layout_problems(driver) -> list[str]:
+    """What runs out of its box on the page as it is (see LAYOUT)."""
+    return driver.execute_script(LAYOUT)
+
+
+def open_everything(driver) -> None:
+    """Open every folded section (the model's tables, the reasons), as a
+    curious user would, so that the layout check sees them too."""
+    driver.execute_script("for (const d of document.querySelectorAll('details')) d.open = true;")
+
+
+def in_view(driver, element) -> bool:
+    """Is the element wholly in the window, below the sticky header?"""
+    return driver.execute_script("""
+        const rect = arguments[0].getBoundingClientRect();
+        const header = document.querySelector("header").getBoundingClientRect();
+        return rect.height > 0 && rect.top >= header.bottom - 1 &&
+               rect.bottom <= window.innerHeight + 1;""", element)
+
+
 def screenshot(driver, name: str) -> Path:
+    """The whole page, as wide as the window (then the window as it was)."""
     OUTPUT.mkdir(parents=True, exist_ok=True)
+    size = driver.get_window_size()
     driver.execute_script("window.scrollTo(0, 0)")
     height = driver.execute_script("return document.documentElement.scrollHeight")
-    driver.set_window_size(1400, height + 20)
+    driver.set_window_size(size["width"], height + 20)
     path = OUTPUT / name
     driver.save_screenshot(str(path))
-    driver.set_window_size(1400, 1000)
+    driver.set_window_size(size["width"], size["height"])
     return path
 
 
 def test_conductor_example_in_the_browser(server, browser):
     driver = browser
+    driver.set_window_size(1280, 1000)
     driver.get(server.url)
     # The page starts a dialogue under do-no-harm: the plan refrain.
     wait_for(driver, lambda d: "do-no-harm" in text(d, "current-summary")
@@ -161,6 +233,8 @@ def test_conductor_example_in_the_browser(server, browser):
     wait_for(driver, lambda d: "the plans part at step 1" in text(d, "answer-picture"),
              "the contrast picture")
     assert "why refrain rather than pull" in text(driver, "history")
+    open_everything(driver)
+    assert layout_problems(driver) == []
     screenshot(driver, "page-conductor.png")
 
     # Switch to utilitarianism, take the question back and ask it again.
@@ -198,12 +272,16 @@ def test_conductor_example_in_the_browser(server, browser):
     assert "(not in the current plan)" in text(driver, "action-menu")
     assert driver.find_elements(By.ID, "why-not") and not driver.find_elements(By.ID, "why-this")
 
-    # Errors show the command line's one-line messages.
+    # Errors show the command line's one-line messages, in the Ask panel.
     box = driver.find_element(By.ID, "question")
     box.clear()
     box.send_keys("why not jump\n")
     wait_for(driver, lambda d: idle(d) and text(d, "error"), "the error")
     assert text(driver, "error") == "error: question 'why not jump': unknown action jump"
+    error = driver.find_element(By.ID, "error")
+    assert driver.execute_script("return arguments[0].closest('#ask-panel') !== null", error)
+    assert in_view(driver, error)
+    assert layout_problems(driver) == []
     screenshot(driver, "page-error.png")
     severe = [entry["message"] for entry in driver.get_log("browser") if entry["level"] == "SEVERE"]
     assert severe == [], severe
@@ -257,3 +335,100 @@ def test_a_long_search_shows_progress_and_can_be_cancelled(slow_server, browser)
     assert driver.find_elements(By.CSS_SELECTOR, "#history li") == []
     assert not driver.find_element(By.ID, "answer-panel").is_displayed()
     assert driver.find_element(By.ID, "ask").is_enabled()
+
+
+CARE = [str(MODELS / "pddl" / name)
+        for name in ("care-domain.pddl", "care-problem.pddl", "care-utility.lp")]
+
+
+@pytest.fixture(scope="module")
+def care_server():
+    workspace = Workspace(Model.load(CARE), CARE, "do-no-harm")
+    running = Server(workspace, None, 0)
+    thread = threading.Thread(target=running.serve_forever, daemon=True)
+    thread.start()
+    yield running
+    running.shutdown()
+    thread.join(30)
+
+
+def test_the_layout_of_a_long_pddl_task(care_server, browser):
+    """The care robot: 122 variables, a plan of 10 steps, a GEq reason that
+    compares two states of about 120 facts, a contrast plan of 13 steps."""
+    driver = browser
+    driver.set_window_size(1280, 900)
+    driver.get(care_server.url)
+    wait_for(driver, lambda d: idle(d) and len(d.find_elements(By.CSS_SELECTOR, "#judgements .card"))
+             == 3 and d.find_elements(By.CSS_SELECTOR, "#current-picture svg"), "the first plan")
+    assert "10 steps, made and judged under do-no-harm" in text(driver, "current-summary")
+    # Long sections are folded: the model's 32 actions and 122 variables.
+    assert driver.execute_script(
+        "return [...document.querySelectorAll('#model details')].map(d => d.open)") == [False, False]
+    # The plan's picture fits its box; its boxes name facts whole (wrapped), with tooltips.
+    picture = driver.find_element(By.ID, "current-picture")
+    assert driver.execute_script("""
+        const svg = arguments[0].querySelector("svg");
+        return svg.getBoundingClientRect().width <= arguments[0].clientWidth + 1 &&
+               svg.getBoundingClientRect().width < svg.viewBox.baseVal.width;""", picture)
+    names = [e.get_attribute("textContent") for e in
+             driver.find_elements(By.CSS_SELECTOR, "#current-picture text")]
+    assert not any("\u2026" in name and "(not (robot-at" in name for name in names)
+    # The long GEq reason is shortened, and can be shown whole.
+    card = driver.find_element(By.CSS_SELECTOR, '#judgements .card[data-principle="utilitarianism"]')
+    chosen = card.find_element(By.CSS_SELECTOR, ".literal")
+    assert chosen.text.startswith("not GEq((") and len(chosen.text) < 200
+    assert layout_problems(driver) == []
+    click(driver, chosen.find_element(By.CSS_SELECTOR, "button.more"))
+    assert len(chosen.text) > 2000
+    open_everything(driver)
+    assert layout_problems(driver) == []
+    click(driver, chosen.find_element(By.CSS_SELECTOR, "button.more"))
+    assert len(chosen.text) < 200
+
+    # History, undo and save stay in view at the bottom of the page.
+    driver.execute_script("window.scrollTo(0, document.documentElement.scrollHeight)")
+    for element_id in ("history-panel", "undo", "save"):
+        assert in_view(driver, driver.find_element(By.ID, element_id)), element_id
+
+    # A question with a long contrast plan; its picture fits, or is shown at its size.
+    box = driver.find_element(By.ID, "question")
+    box.clear()
+    box.send_keys("why not (pick-up pills-bob kitchen)\n")
+    wait_for(driver, lambda d: idle(d) and d.find_element(By.ID, "answer-panel").is_displayed()
+             and d.find_elements(By.CSS_SELECTOR, "#answer-picture svg"), "the answer")
+    assert "(pick-up pills-bob kitchen)" in text(driver, "side-contrast")
+    open_everything(driver)
+    assert layout_problems(driver) == []
+    zoom = driver.find_element(By.CSS_SELECTOR, 'button.zoom[data-picture="answer-picture"]')
+    click(driver, zoom)
+    assert zoom.text == "Fit to width"
+    assert driver.execute_script(
+        "const p = arguments[0]; return p.scrollWidth > p.clientWidth + 100",
+        driver.find_element(By.ID, "answer-picture"))
+    assert layout_problems(driver) == []
+    click(driver, zoom)
+    driver.execute_script("window.scrollTo(0, document.documentElement.scrollHeight)")
+    for element_id in ("undo", "save"):
+        assert in_view(driver, driver.find_element(By.ID, element_id)), element_id
+    screenshot(driver, "page-care.png")
+
+    # An error where the user asked, scrolled into view although the page was
+    # at its top (a question chosen from the plan at the top of the page).
+    driver.execute_script("window.scrollTo(0, 0)")
+    driver.execute_script("""
+        document.getElementById("question").value = "why not (fly kitchen)";
+        document.getElementById("ask-form").requestSubmit();""")
+    wait_for(driver, lambda d: idle(d) and text(d, "error"), "the error")
+    error = driver.find_element(By.ID, "error")
+    assert error.text == "error: question 'why not (fly kitchen)': unknown action (fly kitchen)"
+    assert driver.execute_script("return arguments[0].closest('#ask-panel') !== null", error)
+    wait_for(driver, lambda d: in_view(d, error), "the error in view")
+    assert layout_problems(driver) == []
+    # Undo's messages appear in the History panel.
+    click(driver, driver.find_element(By.ID, "undo"))
+    wait_for(driver, lambda d: idle(d) and "took back" in text(d, "note"), "the undo")
+    note = driver.find_element(By.ID, "note")
+    assert driver.execute_script("return arguments[0].closest('#history-panel') !== null", note)
+    assert in_view(driver, note)
+    severe = [entry["message"] for entry in driver.get_log("browser") if entry["level"] == "SEVERE"]
+    assert severe == [], severe

@@ -6,6 +6,8 @@ import argparse
 import json
 import math
 import os
+import re
+import shutil
 import sys
 import threading
 import time
@@ -21,6 +23,7 @@ from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan, steps
 from ethasp.interfaces.version import package_version
 from ethasp.planning.terms import read_text
+from ethasp.reasons import DEFAULT_LIMIT as DEFAULT_REASONS_LIMIT
 from ethasp.resources import MODELS
 from ethasp.planning.search import (DEFAULT_MAX_HORIZON, DEFAULT_SATISFICING_HORIZON, FOUND,
                                     find_plan)
@@ -41,9 +44,10 @@ eff/3, ceff/4, cpre/4, init/1, goal/2, utility/2, utility/3 (derived variables:
 derived/1, axiom/2, axiom_pre/4; events: event/1, event_at/2, ...), or a PDDL
 domain and problem (STRIPS, ADL, derived predicates) with ASP annotation files,
 or a HERA situation (.yaml, .json); the name of a bundled model (e.g. trolley)
-also works.  A model that comes with a plan (a situation's) is judged on it
-when --plan is not given.  Bad input gets one line on standard error and exit code 2;
-Ctrl-C one line and exit code 130."""
+also works, and - reads an ASP model from standard input.  A model that comes
+with a plan (a situation's) is judged on it when --plan is not given.  Bad
+input gets one line on standard error and exit code 2; Ctrl-C one line and exit
+code 130."""
 
 # Bounds of the numeric options (a larger value is refused, not wrapped).
 MAX_HORIZON = 1_000_000
@@ -76,8 +80,49 @@ def model_paths(names: Sequence[str]) -> list[Path]:
     return paths
 
 
+STDIN = "-"            # as a model file: read the model from standard input
+STDIN_NAME = "<stdin>"  # its name in messages
+
+
+def read_stdin_model() -> str:
+    """An ASP model from standard input (one line of error if it is not ASP text)."""
+    try:
+        data = sys.stdin.buffer.read() if hasattr(sys.stdin, "buffer") else \
+            sys.stdin.read().encode("utf-8", "surrogateescape")
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as error:
+        raise InputError(f"{STDIN_NAME}: cannot be read (not UTF-8 text: byte "
+                         f"{error.start + 1})") from None
+    except (OSError, ValueError) as error:   # closed, or not readable
+        raise InputError(f"{STDIN_NAME}: cannot be read "
+                         f"({getattr(error, 'strerror', None) or error})") from None
+    head = text.lstrip()
+    if head[:1] in ("(", ";") and "(define" in head[:4096].lower():
+        raise InputError(f"{STDIN_NAME}: this looks like PDDL; standard input takes an ASP "
+                         "model (give a PDDL domain and problem as files)")
+    if re.match(r'\{\s*"|---', head):
+        raise InputError(f"{STDIN_NAME}: this looks like a HERA situation; standard input "
+                         "takes an ASP model (give a situation as a .yaml or .json file)")
+    return text
+
+
 def load_model(args: argparse.Namespace) -> Model:
-    return Model.load(model_paths(args.model), allow_scripts=args.allow_scripts)
+    """The model of the command's MODEL arguments; ``-`` reads ASP text from
+    standard input (at most once)."""
+    names = list(args.model)
+    if names.count(STDIN) > 1:
+        raise InputError("standard input (-) can be given only once as a model file")
+    if STDIN not in names:
+        return Model.load(model_paths(names), allow_scripts=args.allow_scripts)
+    names.remove(STDIN)
+    return Model.load(model_paths(names), allow_scripts=args.allow_scripts,
+                      texts=[(STDIN_NAME, read_stdin_model())])
+
+
+def model_files(args: argparse.Namespace, resolve: bool = False) -> list[str]:
+    """The model's files as a dialogue or the page names them (``<stdin>`` for -)."""
+    return [STDIN_NAME if name == STDIN else str(path.resolve() if resolve else path)
+            for name, path in zip(args.model, model_paths(args.model))]
 
 
 def _seconds(text: str) -> float | None:
@@ -92,15 +137,16 @@ def _seconds(text: str) -> float | None:
     return value if value > 0 else None
 
 
-def _count(name: str, largest: int):
-    """An argparse type: a whole number from 0 to ``largest``."""
+def _count(name: str, largest: int, smallest: int = 0):
+    """An argparse type: a whole number from ``smallest`` to ``largest``."""
     def parse(text: str) -> int:
         try:
             value = int(text.strip())
         except ValueError:
             raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
-        if not 0 <= value <= largest:
-            raise argparse.ArgumentTypeError(f"must be from 0 to {largest:,}: {text!r}")
+        if not smallest <= value <= largest:
+            raise argparse.ArgumentTypeError(f"must be from {smallest} to {largest:,}: "
+                                             f"{text!r}")
         return value
     parse.__name__ = name
     return parse
@@ -108,6 +154,7 @@ def _count(name: str, largest: int):
 
 _horizon = _count("horizon", MAX_HORIZON)
 _reasons = _count("reasons limit", MAX_REASONS)
+_answer_reasons = _count("reasons limit", MAX_REASONS, smallest=1)   # answers need words
 
 
 def budget(args: argparse.Namespace) -> Budget:
@@ -128,28 +175,39 @@ def _port(text: str) -> int:
 
 
 def emit(args: argparse.Namespace, data: dict, text: str) -> None:
+    """Print the answer (text, or JSON with --json) on standard output, or on
+    standard error when the picture goes to standard output (--svg -)."""
     progress = getattr(args, "progress", None)
     if progress is not None:
         progress.clear()
-    print(json.dumps(data, indent=2) if args.json else text)
+    out = sys.stderr if getattr(args, "svg", None) == STDIN else sys.stdout
+    print(json.dumps(data, indent=2) if args.json else text, file=out, flush=True)
 
 
 def _add_svg_argument(parser: argparse.ArgumentParser, what: str) -> None:
     parser.add_argument("--svg", metavar="FILE",
-                        help=f"also draw {what} as an SVG picture in FILE")
+                        help=f"also draw {what} as an SVG picture in FILE (- for standard "
+                             "output; the answer then goes to standard error)")
 
 
 def _draw(args: argparse.Namespace, model: Model, draw) -> None:
-    """--svg FILE: write the picture that ``draw(Pictures)`` makes (ethasp/interfaces/pictures.py)."""
+    """--svg FILE: write the picture that ``draw(Pictures)`` makes
+    (ethasp/interfaces/pictures.py); --svg -: to standard output."""
     if args.svg is not None:
         from ethasp.interfaces.pictures import Pictures, write
 
-        write(args.svg, draw(Pictures(model)))
+        svg = draw(Pictures(model))
+        if args.svg == STDIN:
+            sys.stdout.write(svg)
+            sys.stdout.flush()
+        else:
+            write(args.svg, svg)
 
 
 def _no_picture(args: argparse.Namespace) -> None:
     if args.svg is not None:
-        print(f"ethasp: no plan found, so no picture was written to {args.svg}", file=sys.stderr)
+        where = "standard output" if args.svg == STDIN else args.svg
+        print(f"ethasp: no plan found, so no picture was written to {where}", file=sys.stderr)
 
 
 # -- commands -----------------------------------------------------------------
@@ -212,9 +270,10 @@ def command_plan_permissible(args: argparse.Namespace, model: Model) -> int:
                   f"{under}:"] + [f"  {plan}" for plan in shown] if args.all
                  else [f"{head}: {shown[0]}"])
         # The judgement of the (first) HPlan, as ethasp judge prints it, minus its plan line.
+        _reasons_limit(args)
         report = judge(model, result.plan, result.principles,
                        DEFAULT_MAX_HORIZON if args.max_horizon is None else args.max_horizon,
-                       budget=limits)
+                       reasons_limit=args.reasons_limit, budget=limits)
         data["judgements"] = report.to_json()["judgements"]
         lines += _explanation_text(report) + _judgement_text(report, model).split("\n")[1:]
         _draw(args, model, lambda pictures: pictures.report(report, f"{head}: {shown[0]}"))
@@ -324,27 +383,33 @@ def _add_plan_arguments(parser: argparse.ArgumentParser, required: bool = True,
 
 
 def _explanation_text(report: "JudgementReport") -> list[str]:
-    """Each judgement's explanation, then its reasons (ethasp/reasons/reasons.py)."""
-    lines = []
+    """Each judgement's explanation, then its reasons (ethasp/reasons/reasons.py),
+    long ones shortened (ethasp/interfaces/shortening.py; --json has them whole)."""
+    from ethasp.interfaces.shortening import WIDTH, reasons_lines
+
+    width = WIDTH
+    if sys.stdout.isatty():
+        width = max(WIDTH, shutil.get_terminal_size((WIDTH, 24)).columns - 1)
+    lines, shortened = [], False
     for judgement in report.judgements:
         explanation = judgement.explanation
         if explanation is None:
             continue
-        more = " (limit reached; more may exist)" if explanation.truncated else ""
         lines.append(f"{judgement.principle}: {explanation.text}")
         for kind, reasons in (("necessary", explanation.necessary_reasons),
                               ("sufficient", explanation.sufficient_reasons)):
-            shown = "; ".join("{" + ", ".join(reason) + "}" for reason in reasons) or "none"
-            lines.append(f"  {kind} reasons: {shown}{more}")
+            kind_lines, cut = reasons_lines(kind, reasons, explanation.truncated, width)
+            lines += kind_lines
+            shortened = shortened or cut
+    if shortened:
+        lines.append("(long reasons are shortened here; --json prints them whole)")
     return lines
 
 
 def _reasons_limit(args: argparse.Namespace) -> None:
-    """--reasons-limit, by default ethasp.reasons.DEFAULT_LIMIT (imported only here)."""
+    """--reasons-limit, by default ethasp.reasons.DEFAULT_LIMIT."""
     if args.reasons_limit is None:
-        from ethasp.reasons.reasons import DEFAULT_LIMIT
-
-        args.reasons_limit = DEFAULT_LIMIT
+        args.reasons_limit = DEFAULT_REASONS_LIMIT
 
 
 def command_judge(args: argparse.Namespace) -> int:
@@ -399,6 +464,13 @@ def command_dialogue(args: argparse.Namespace) -> int:
     from ethasp.interfaces.prompt import Prompt
 
     _reasons_limit(args)
+    if args.json:
+        raise InputError("the dialogue prints text, not JSON: its answers are saved as JSON "
+                         "when it ends (--save FILE), and ethasp ask --json answers questions "
+                         "as JSON")
+    if STDIN in args.model:
+        raise InputError("the dialogue reads its commands from standard input, so its model "
+                         "cannot come from there (-): give the model as a file")
     save = None if args.save == "-" else Path(args.save)
     if save is not None:
         _writable(save, "--save")
@@ -406,7 +478,7 @@ def command_dialogue(args: argparse.Namespace) -> int:
     options = dict(max_horizon=_max_horizon(args), time_limit=args.time_limit,
                    reasons_limit=args.reasons_limit, satisficing=args.satisficing)
     progress = ProgressLine(enabled=False if args.quiet else None)
-    files = [str(path.resolve()) for path in model_paths(args.model)]
+    files = model_files(args, resolve=True)
     if args.load:
         dialogue = Dialogue.load(args.load, model, **options)
     else:
@@ -415,9 +487,11 @@ def command_dialogue(args: argparse.Namespace) -> int:
     dialogue.model_files = files
     dialogue.on_progress = progress
     interactive = sys.stdin.isatty()
+    # At a terminal: editing keys, a history across runs, Tab completion.
+    editor = _line_editor(model) if interactive else None
 
     def read() -> str:
-        line = input("ethasp> " if interactive else "")
+        line = editor.read("ethasp> ") if editor is not None else input("")
         # Bytes that are not UTF-8 become U+FFFD, so that messages can show them.
         return line.encode("utf-8", "surrogateescape").decode("utf-8", "replace")
 
@@ -430,8 +504,28 @@ def command_dialogue(args: argparse.Namespace) -> int:
     if interactive:
         print("ethasp dialogue: type help for the commands, quit to end.")
     prompt = Prompt(dialogue, save, sys.stdout, load, progress)
-    args.on_interrupt = prompt.save_now      # Ctrl-C saves the dialogue first
+
+    def on_interrupt() -> str:               # Ctrl-C saves the dialogue first
+        if editor is not None:
+            editor.restore()
+            print(file=sys.stderr)           # off the line being edited
+        return prompt.save_now()
+
+    args.on_interrupt = on_interrupt
     return prompt.run(read)
+
+
+def _line_editor(model: Model):
+    """The dialogue's line editor (ethasp/interfaces/editing.py): it completes
+    commands, the model's actions and variables, and principle names."""
+    from ethasp.interfaces.completion import principle_names
+    from ethasp.interfaces.editing import Completer, LineEditor, history_path
+
+    naming, planner = model.naming, model.planner
+    actions = [naming.action(atom.arguments[0]) for atom in planner.get("action", 1)]
+    facts = [naming.fact(str(atom.arguments[0])) for atom in planner.get("variable", 1)]
+    return LineEditor(Completer(actions, facts, principle_names(restricting=True)),
+                      history_path())
 
 
 def command_serve(args: argparse.Namespace) -> int:
@@ -445,10 +539,21 @@ def command_serve(args: argparse.Namespace) -> int:
 
     _reasons_limit(args)
     model = load_model(args)
-    files = [str(path) for path in model_paths(args.model)]
+    files = model_files(args)
     workspace = Workspace(model, files, args.principle,
                           Options(_max_horizon(args), args.time_limit, args.reasons_limit))
-    return serve(workspace, args.host, args.port, args.open)
+    if args.quiet and args.log_requests:
+        raise InputError("--log-requests cannot go with --quiet")
+    return serve(workspace, args.host, args.port, args.open, log_requests=args.log_requests,
+                 quiet=args.quiet)
+
+
+def command_completion(args: argparse.Namespace) -> int:
+    """ethasp completion bash|zsh: the completion script (ethasp/interfaces/completion.py)."""
+    from ethasp.interfaces.completion import script
+
+    sys.stdout.write(script(args.shell, build_parser()))
+    return 0
 
 
 def command_query(args: argparse.Namespace) -> int:
@@ -462,13 +567,25 @@ def command_query(args: argparse.Namespace) -> int:
 
 # -- parser -------------------------------------------------------------------
 
-def _add_model_arguments(parser: argparse.ArgumentParser) -> None:
+MODEL_FILES_HELP = ("model files (ASP), or a PDDL domain and problem (.pddl) with ASP "
+                    "annotation files, or a HERA situation (.yaml, .json), or the name of a "
+                    "bundled model")
+MODEL_HELP = MODEL_FILES_HELP + "; - reads an ASP model from standard input"
+
+
+def _add_model_arguments(parser: argparse.ArgumentParser, stdin: bool = True) -> None:
     parser.add_argument("model", nargs="+", metavar="MODEL",
-                        help="model files (ASP), or a PDDL domain and problem (.pddl) "
-                             "with ASP annotation files, or a HERA situation (.yaml, .json)")
+                        help=MODEL_HELP if stdin else MODEL_FILES_HELP)
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.add_argument("--allow-scripts", action="store_true",
                         help="run #script blocks in model files (refused by default)")
+
+
+def _hide(parser: argparse.ArgumentParser, option: str) -> None:
+    """Leave an option out of --help (it is still read, to be refused in words)."""
+    for action in parser._actions:          # noqa: SLF001 (argparse keeps no public list)
+        if option in action.option_strings:
+            action.help = argparse.SUPPRESS
 
 
 TIME_LIMIT_HELP = (f"stop searching after SECONDS and answer 'bounded' (default "
@@ -476,19 +593,29 @@ TIME_LIMIT_HELP = (f"stop searching after SECONDS and answer 'bounded' (default 
 QUIET_HELP = "no progress line on standard error (shown on a terminal after 2 s)"
 
 
-def _add_limits(parser: argparse.ArgumentParser, per: str = "") -> None:
+def _add_reasons_limit(parser: argparse.ArgumentParser,
+                       what: str = "at most N reasons of each kind per judgement",
+                       answers: bool = False) -> None:
+    """--reasons-limit; for contrastive answers at least 1 (their words come from reasons)."""
+    least = "at least 1" if answers else "0: no explanations"
+    parser.add_argument("--reasons-limit", type=_answer_reasons if answers else _reasons,
+                        default=None, metavar="N",
+                        help=f"{what} (default {DEFAULT_REASONS_LIMIT}; {least})")
+
+
+def _add_limits(parser: argparse.ArgumentParser, per: str = "", quiet: str = QUIET_HELP) -> None:
     parser.add_argument("--time-limit", type=_seconds, default=DEFAULT_TIME_LIMIT,
                         metavar="SECONDS", help=TIME_LIMIT_HELP + per)
-    parser.add_argument("--quiet", action="store_true", help=QUIET_HELP)
+    parser.add_argument("--quiet", action="store_true", help=quiet)
 
 
 def _add_search_arguments(parser: argparse.ArgumentParser, per: str = "",
-                          satisficing: bool = False) -> None:
+                          satisficing: bool = False, quiet: str = QUIET_HELP) -> None:
     default = (f"{DEFAULT_MAX_HORIZON}; {DEFAULT_SATISFICING_HORIZON} with --satisficing"
                if satisficing else f"{DEFAULT_MAX_HORIZON}")
     parser.add_argument("--max-horizon", type=_horizon, default=None, metavar="N",
                         help=f"search plans of at most N steps (default {default})")
-    _add_limits(parser, per)
+    _add_limits(parser, per, quiet)
 
 
 def _add_satisficing_argument(parser: argparse.ArgumentParser, what: str = "a plan") -> None:
@@ -509,7 +636,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="ethasp", description=DESCRIPTION,
                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.set_defaults(one_answer=True)
-    parser.add_argument("--version", action=_Version, nargs=0,
+    parser.add_argument("-V", "--version", action=_Version, nargs=0,
                         help="show the program's version number and exit")
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
@@ -528,6 +655,8 @@ def build_parser() -> argparse.ArgumentParser:
                            "hera-deontology, goal-deontology, avoid-any-harm, "
                            "avoid-avoidable-harm, hera-utilitarianism; repeat it to "
                            "require several)")
+    _add_reasons_limit(plan, "with --principle: compute at most N sufficient and N "
+                             "necessary reasons for the plan's judgement")
     _add_svg_argument(plan, "the plan found (with --principle: and its judgement)")
     plan.set_defaults(run=command_plan)
 
@@ -565,10 +694,8 @@ def build_parser() -> argparse.ArgumentParser:
     judging.add_argument("--best", action="store_true",
                          help="also find a best reachable state (utilitarianism; by default "
                               "the search stops at the first state that decides the verdict)")
-    judging.add_argument("--reasons-limit", type=_reasons, default=None, metavar="N",
-                         help="compute at most N sufficient and N necessary reasons per "
-                              "judgement (default: ethasp.reasons.DEFAULT_LIMIT; "
-                              "0: no explanations)")
+    _add_reasons_limit(judging, "compute at most N sufficient and N necessary reasons per "
+                                "judgement")
     _add_svg_argument(judging, "the plan and its judgements")
     judging.set_defaults(run=command_judge)
 
@@ -600,8 +727,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_search_arguments(contrast, satisficing=True)
     _add_satisficing_argument(contrast, "the plans searched (the contrast plan, and the plan "
                                         "asked about when --plan is not given)")
-    contrast.add_argument("--reasons-limit", type=_reasons, default=None,
-                          metavar="N", help="at most N reasons of each kind per judgement")
+    _add_reasons_limit(contrast, answers=True)
     _add_svg_argument(contrast, "the contrast plan aligned with the plan asked about")
     contrast.set_defaults(run=command_ask)
 
@@ -611,7 +737,8 @@ def build_parser() -> argparse.ArgumentParser:
                     "about the current plan; their constraints accumulate; undo, switch "
                     "principle, save and load. Type help at the prompt. The dialogue is "
                     "saved when it ends (also on Ctrl-C or end of input).")
-    _add_model_arguments(talk)
+    _add_model_arguments(talk, stdin=False)   # standard input carries the commands
+    _hide(talk, "--json")                   # refused with a line that says why
     _add_plan_arguments(talk, required=False, what="the first plan")
     talk.add_argument("--principle", default="deontology", metavar="P",
                       help="the principle the first plan is made and judged under "
@@ -623,8 +750,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_search_arguments(talk, " per question", satisficing=True)
     _add_satisficing_argument(talk, "the plans searched (the first plan unless --plan is "
                                     "given, and every contrast plan)")
-    talk.add_argument("--reasons-limit", type=_reasons, default=None, metavar="N",
-                      help="at most N reasons of each kind per judgement")
+    _add_reasons_limit(talk, answers=True)
     talk.set_defaults(run=command_dialogue, one_answer=False)
 
     web = commands.add_parser(
@@ -635,9 +761,7 @@ def build_parser() -> argparse.ArgumentParser:
                     "history, undo, save and load. Only the model given here is served. "
                     "The server binds 127.0.0.1 unless --host is given, and prints the "
                     "page's URL.")
-    web.add_argument("model", nargs="+", metavar="MODEL",
-                     help="model files (ASP), or a PDDL domain and problem (.pddl) with ASP "
-                          "annotation files")
+    web.add_argument("model", nargs="+", metavar="MODEL", help=MODEL_HELP)
     web.add_argument("--allow-scripts", action="store_true",
                      help="run #script blocks in model files (refused by default)")
     web.add_argument("--principle", default="deontology", metavar="P",
@@ -648,11 +772,25 @@ def build_parser() -> argparse.ArgumentParser:
     web.add_argument("--host", default=None, metavar="H",
                      help="the address to bind (default 127.0.0.1; an address beyond "
                           "loopback serves the page to other machines)")
-    web.add_argument("--open", action="store_true", help="open the page in a web browser")
-    _add_search_arguments(web)
-    web.add_argument("--reasons-limit", type=_reasons, default=None, metavar="N",
-                     help="at most N reasons of each kind per judgement")
+    web.add_argument("--open", action="store_true",
+                     help="open the page in the default web browser (one line on standard "
+                          "error if none can be started)")
+    _add_search_arguments(web, quiet="no log lines from the web server on standard error "
+                                     "(the page's URL is still printed)")
+    web.add_argument("--log-requests", action="store_true",
+                     help="print a line per HTTP request on standard error (off by default)")
+    _add_reasons_limit(web, answers=True)
     web.set_defaults(run=command_serve, one_answer=False)
+
+    shells = commands.add_parser(
+        "completion", help="print a shell completion script (bash, zsh)",
+        description="Print a script that completes ethasp's commands, options, principle "
+                    "names, bundled models and file names in bash or zsh. Install: "
+                    "'ethasp completion bash > ~/.local/share/bash-completion/completions/"
+                    "ethasp', or 'ethasp completion zsh > ~/.zfunc/_ethasp' with "
+                    "fpath+=(~/.zfunc) before compinit in ~/.zshrc (see docs/cli.md).")
+    shells.add_argument("shell", choices=("bash", "zsh"), help="the shell: bash or zsh")
+    shells.set_defaults(run=command_completion)
     return parser
 
 

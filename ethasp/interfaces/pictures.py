@@ -97,7 +97,8 @@ class Pictures:
             notes.append(f"The principle {answer.under} was dropped for the contrast: "
                          f"{answer.dropped_because}")
         if answer.conflict and words:
-            notes.append("Conflicting constraints: " + ", ".join(map(str, answer.conflict)))
+            notes.append("Conflicting constraints: " + ", ".join(
+                self.model.naming.constraint(c.term) for c in answer.conflict))
         contrast = answer.contrast
         return contrast_svg(
             self.timeline(answer.original.plan),

@@ -11,6 +11,7 @@ from ethasp.questions.contrast import Answer
 from ethasp.questions.dialogue import Dialogue
 from ethasp.errors import InputError
 from ethasp.interfaces.progress import ProgressLine
+from ethasp.interfaces.shortening import shorten_literal
 
 HELP = """\
 Commands:
@@ -43,15 +44,22 @@ def answer_text(answer: Answer, naming) -> str:
     if answer.principle_dropped:
         lines.append(f"  the principle {answer.under} was dropped for the contrast: "
                      f"{answer.dropped_because}")
-    lines.append(f"  constraints: {', '.join(map(str, answer.constraints))}")
+    constraints = ", ".join(naming.constraint(c.term) for c in answer.constraints)
+    lines.append(f"  constraints: {constraints}")
     if answer.conflict:
-        lines.append(f"  conflicting constraints: {', '.join(map(str, answer.conflict))}")
+        lines.append(f"  conflicting constraints: "
+                     f"{', '.join(naming.constraint(c.term) for c in answer.conflict)}")
     difference = answer.difference
     if difference["original_only"] or difference["contrast_only"]:
         lines.append(f"  reasons only for the plan asked about: "
-                     f"{', '.join(difference['original_only']) or 'none'}; "
-                     f"only for the contrast: {', '.join(difference['contrast_only']) or 'none'}")
+                     f"{_literals(difference['original_only'])}; "
+                     f"only for the contrast: {_literals(difference['contrast_only'])}")
     return "\n".join(lines)
+
+
+def _literals(literals: list[str]) -> str:
+    """Literals of reasons, long ones shortened (``--json`` has them whole)."""
+    return ", ".join(shorten_literal(literal) for literal in literals) or "none"
 
 
 def _verdict(side) -> str:
@@ -114,8 +122,9 @@ class Prompt:
             for number, step in enumerate(self.dialogue.steps, start=1):
                 own = [c for c in step.answer.constraints
                        if c.question == step.answer.constraints[-1].question]
+                naming = self.dialogue.model.naming
                 self.say(f"{number}. {step.question} (under {step.under}): "
-                         f"{', '.join(map(str, own))}")
+                         f"{', '.join(naming.constraint(c.term) for c in own)}")
         elif command == "undo":
             step = self.dialogue.undo()
             self.say(f"took back: {step.question}")

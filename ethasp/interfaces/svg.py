@@ -18,6 +18,7 @@ external fonts or links), so it can go into papers and reports.
 
 from __future__ import annotations
 
+import re
 import textwrap
 from dataclasses import dataclass
 from xml.sax.saxutils import escape, quoteattr
@@ -50,6 +51,28 @@ def _fit(text: str, size: float, width: float) -> str:
     """Text cut to fit ``width`` pixels at font ``size`` (with an ellipsis)."""
     room = max(3, int(width / (size * CHAR)))
     return text if len(text) <= room else text[:room - 1] + "\u2026"
+
+
+def _lines(text: str, size: float, width: float, most: int) -> list[str]:
+    """Text in at most ``most`` lines of ``width`` pixels at font ``size``,
+    broken after spaces, commas and opening parentheses (names such as
+    ``(not (robot-at kitchen))`` or ``move(kitchen,hall)``); the last line is
+    cut with an ellipsis if the text is longer still (the box's tooltip has
+    it whole)."""
+    room = max(3, int(width / (size * CHAR)))
+    if len(text) <= room:
+        return [text]
+    breaks = [match.end() for match in re.finditer(r"[ ,(]", text)] + [len(text)]
+    starts, start = [], 0
+    while start < len(text):
+        starts.append(start)
+        fitting = [end for end in breaks if start < end and len(text[start:end].rstrip()) <= room]
+        start = fitting[-1] if fitting else start + room     # a word longer than a line
+    starts.append(len(text))
+    lines = [text[one:two].rstrip() for one, two in zip(starts, starts[1:])]
+    if len(lines) > most:
+        lines = lines[:most - 1] + [_fit(text[starts[most - 1]:], size, width)]
+    return lines
 
 
 def _text(x: float, y: float, text: str, size: float = 12, colour: str = INK,
@@ -85,23 +108,34 @@ class _Canvas:
                 + "\n".join(self.parts) + "\n</svg>\n")
 
 
+NAME_LINES = 4        # lines of an action's or a fact's name in its box
+LABEL_LINES = 2       # lines of its label
+
+
 def _box(canvas: _Canvas, x: float, y: float, height: float, utility: int, first: str,
          second: str, tip: str, caused: bool = False, dashed: bool = False,
-         marked: str = "", attributes: str = "", bold: bool = False) -> None:
+         marked: str = "", attributes: str = "", bold: bool = False) -> float:
+    """A box with a name (``first``, wrapped) and a label (``second``); it is
+    ``height`` tall, more for names or labels of several lines.  Returns the
+    height drawn."""
     fill, stroke, ink = COLOURS[moral(utility)]
     border = INK if caused else stroke
     extra = ' stroke-dasharray="5 3"' if dashed else ""
-    canvas.add(f"<g{attributes}>")
-    canvas.add(f"<title>{escape(tip)}</title>")
-    canvas.add(f'<rect x="{x:.0f}" y="{y:.0f}" width="{COLUMN}" height="{height}" rx="6" '
-               f'fill="{fill}" stroke="{border}" stroke-width="{2.5 if caused else 1.2}"{extra}/>')
     value = _utility(utility)
     right = x + COLUMN - 8
     size = 13 if bold else 12
     value_width = len(value) * 12 * CHAR + 6 if value else 0
     room = COLUMN - 16 - value_width - (50 if caused else 0)
-    canvas.add(_text(x + 8, y + 17, _fit(first, size, room), size, ink,
-                     "bold" if bold else "normal"))
+    names = _lines(first, size, room, NAME_LINES)
+    labels = _lines(second, 11, COLUMN - 16, LABEL_LINES) if second else []
+    height += (len(names) - 1 + max(0, len(labels) - 1)) * (LINE - 3)
+    canvas.add(f"<g{attributes}>")
+    canvas.add(f"<title>{escape(tip)}</title>")
+    canvas.add(f'<rect x="{x:.0f}" y="{y:.0f}" width="{COLUMN}" height="{height}" rx="6" '
+               f'fill="{fill}" stroke="{border}" stroke-width="{2.5 if caused else 1.2}"{extra}/>')
+    for index, name in enumerate(names):
+        canvas.add(_text(x + 8, y + 17 + index * (LINE - 3), name, size, ink,
+                         "bold" if bold else "normal"))
     if value:
         canvas.add(_text(right, y + 17, value, 12, ink, "bold", "end"))
     if caused:
@@ -109,12 +143,13 @@ def _box(canvas: _Canvas, x: float, y: float, height: float, utility: int, first
         canvas.add(f'<rect x="{left:.0f}" y="{y + 6:.0f}" width="44" height="15" rx="7" '
                    f'fill="{INK}"/>')
         canvas.add(_text(left + 22, y + 17, "caused", 10, "#ffffff", "bold", "middle"))
-    if second:
-        canvas.add(_text(x + 8, y + height - 9, _fit(second, 11, COLUMN - 16), 11, MUTED,
-                         style="italic"))
+    for index, label in enumerate(labels):
+        canvas.add(_text(x + 8, y + height - 9 - (len(labels) - 1 - index) * (LINE - 3), label,
+                         11, MUTED, style="italic"))
     if marked:
         canvas.add(_text(x + COLUMN + 4, y + 17, marked, 13, PART, "bold"))
     canvas.add("</g>")
+    return height
 
 
 def _fact_box(canvas: _Canvas, timeline: Timeline, naming: Naming, x: float, y: float,
@@ -127,8 +162,9 @@ def _fact_box(canvas: _Canvas, timeline: Timeline, naming: Naming, x: float, y: 
         tip += "; caused by the plan"
     if dashed:
         tip += "; set again (no change)"
-    _box(canvas, x, y, FACT, utility, fact.shown(naming), label, tip, caused, dashed, marked)
-    return y + FACT + SPACE
+    height = _box(canvas, x, y, FACT, utility, fact.shown(naming), label, tip, caused, dashed,
+                  marked)
+    return y + height + SPACE
 
 
 @dataclass
@@ -182,9 +218,9 @@ def _draw_lane(canvas: _Canvas, lane: _Lane, naming: Naming, end_index: int,
         attributes = (f' class="action" data-lane={quoteattr(lane.name)} '
                       f'data-step="{column.step}" data-action={quoteattr(str(column.action))} '
                       f'data-shown={quoteattr(shown)}')
-        _box(canvas, x, boxes_top, ACTION, utility, shown, label, tip, attributes=attributes,
-             bold=True)
-        y = boxes_top + ACTION + SPACE
+        height = _box(canvas, x, boxes_top, ACTION, utility, shown, label, tip,
+                      attributes=attributes, bold=True)
+        y = boxes_top + height + SPACE
         for fact in column.changes:
             y = _fact_box(canvas, timeline, naming, x, y, fact, fact in column.causing)
         for fact in column.kept:

@@ -97,6 +97,14 @@ def _describe(problem: clingo.Symbol) -> str:
     return str(problem)
 
 
+def _renamed(logger, placeholder: str, name: str):
+    """A clingo logger that names a text source ``name`` where clingo writes
+    ``placeholder`` (``<string>`` when parsing text, ``<block>`` when grounding it)."""
+    def log(code: clingo.MessageCode, message: str) -> None:
+        logger(code, message.replace(f"{placeholder}:", f"{name}:"))
+    return log
+
+
 @dataclass
 class Model:
     """A planning model made of ASP sources (files or text).
@@ -115,13 +123,15 @@ class Model:
 
     @classmethod
     def load(cls, paths: Iterable[str | Path], allow_scripts: bool = False,
-             check: bool = True) -> "Model":
+             check: bool = True, texts: Sequence[tuple[str, str]] = ()) -> "Model":
         """Load a model from ASP files, or a PDDL domain and problem plus ASP files.
 
         Files ending in ``.pddl`` are translated into rules (see
         :mod:`ethasp.planning.pddl`); the model then shows actions in PDDL form.
         HERA situations (``.yaml``, ``.yml``, ``.json``) are translated into
-        facts (see :mod:`ethasp.planning.situation`).
+        facts (see :mod:`ethasp.planning.situation`).  ``texts`` are more ASP
+        sources given as (name, text), e.g. ``("<stdin>", text)`` read from
+        standard input; messages name them by that name.
         """
         from ethasp.planning.situation import situation_paths, translate
 
@@ -146,6 +156,9 @@ class Model:
             text = read_text(path)
             scan_file(path, text)
             sources.append(Source(str(path), text, path))
+        for name, text in texts:
+            scan_program(text, name)
+            sources.append(Source(name, text))
         if not sources:
             raise InputError("no model file given")
         model = cls._build(sources, allow_scripts, check)
@@ -197,7 +210,8 @@ class Model:
             if source.path is not None:
                 ast.parse_files([str(source.path)], visit, logger=messages)
             else:
-                ast.parse_string(source.text, visit, logger=messages)
+                ast.parse_string(source.text, visit,
+                                 logger=_renamed(messages, "<string>", source.name))
         except RuntimeError:
             messages.raise_first(f"{source.name}: syntax error")
         if scripts and not self.allow_scripts:
@@ -211,7 +225,12 @@ class Model:
         """A fresh clingo control object holding the model (not yet grounded)."""
         if self.allow_scripts:
             clingo.script.enable_python()
-        ctl = clingo.Control(list(arguments), logger=messages or Messages(), message_limit=20)
+        logger = messages or Messages()
+        written = [source for source in self.sources if source.path is None
+                   and not source.generated]
+        if len(written) == 1:         # clingo calls a text source <block>
+            logger = _renamed(logger, "<block>", written[0].name)
+        ctl = clingo.Control(list(arguments), logger=logger, message_limit=20)
         for source in self.sources:
             if source.path is not None:
                 ctl.load(str(source.path))

@@ -85,6 +85,8 @@ def pddl_atom_to_term(text: str) -> clingo.Symbol:
 class Naming:
     """Actions and facts shown as ASP terms (models written in ASP)."""
 
+    pddl = False
+
     def action(self, action: clingo.Symbol | str) -> str:
         """An action (a term, or its text), e.g. ``push(man)``."""
         return str(action)
@@ -92,6 +94,18 @@ class Naming:
     def fact(self, literal: str) -> str:
         """A fact given as ``v`` (true) or ``-v`` (false)."""
         return literal
+
+    def fact_of(self, variable: clingo.Symbol, value: bool) -> str:
+        """The fact that ``variable`` has ``value``: ``v`` or ``-v``."""
+        return self.fact(str(variable) if value else f"-{variable}")
+
+    def name(self, term: clingo.Symbol) -> str:
+        """Another term of the model (an object, a moral patient), e.g. ``frank``."""
+        return str(term)
+
+    def constraint(self, term: clingo.Symbol) -> str:
+        """A question's constraint term, e.g. ``unused(pull)``."""
+        return str(term)
 
     def actions(self, actions: Iterable[clingo.Symbol | str]) -> str:
         """A sequence of actions (a plan) separated by spaces."""
@@ -103,7 +117,10 @@ class Naming:
 
 
 class PddlNaming(Naming):
-    """Actions and facts shown in PDDL form (models read from PDDL)."""
+    """Actions and facts shown in PDDL form (models read from PDDL):
+    ``(move kitchen hall)``, ``(robot-at hall)``, ``(not (robot-at hall))``."""
+
+    pddl = True
 
     def action(self, action: clingo.Symbol | str) -> str:
         if isinstance(action, str):
@@ -120,3 +137,30 @@ class PddlNaming(Naming):
         except (RuntimeError, InputError):
             return literal
         return f"(not {atom})" if negative else atom
+
+    def name(self, term: clingo.Symbol) -> str:
+        if term.type == clingo.SymbolType.Function and term.name and not term.arguments:
+            try:
+                return asp_name_to_pddl(term.name)
+            except InputError:
+                return str(term)
+        try:
+            return term_to_pddl(term)
+        except InputError:
+            return str(term)
+
+    def constraint(self, term: clingo.Symbol) -> str:
+        """``unused((move kitchen hall))``: the constraint's kind, its actions and
+        facts in PDDL form."""
+        if term.type != clingo.SymbolType.Function or not term.arguments:
+            return str(term)
+        parts = []
+        for argument in term.arguments:
+            if argument.type == clingo.SymbolType.Function and argument.name:
+                try:
+                    parts.append(term_to_pddl(argument))
+                    continue
+                except InputError:
+                    pass
+            parts.append(str(argument))
+        return f"{term.name}({','.join(parts)})"

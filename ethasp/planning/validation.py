@@ -89,10 +89,10 @@ class Validation:
         }
 
 
-def _problem(problem: clingo.Symbol) -> str:
+def _problem(problem: clingo.Symbol, naming: Naming = Naming()) -> str:
     args = problem.arguments
     if problem.name == "unknown_action":
-        return f"unknown action {args[0]} at step {args[1]}"
+        return f"unknown action {naming.action(args[0])} at step {args[1]}"
     return str(problem)
 
 
@@ -113,7 +113,9 @@ def read_validation(plan: Plan, symbols: list[clingo.Symbol],
     if problems:
         static = _static_failure(model, problems) if model is not None else None
         if static is None:
-            raise InputError(f"plan: {sorted(map(_problem, problems))[0]}")
+            naming = model.naming if model is not None else Naming()
+            first = min(problems, key=lambda problem: _problem(problem))   # as ever: by text
+            raise InputError(f"plan: {_problem(first, naming)}")
         if not failures or static[0] < failures[0]:
             return Validation(plan, False, *static, static=True)
     if failures:

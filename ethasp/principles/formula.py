@@ -21,7 +21,9 @@ The syntax (documented in the README, section "Formulas")::
 
 Actions, variables and moral patients are ASP terms of the model (``pull``,
 ``push(man)``, ``at(robot,r1)``, ``"4alive"``); ``v`` is the fact "v is true"
-and ``-v`` the fact "v is false".  The operator names are case-insensitive.
+and ``-v`` the fact "v is false".  Actions and variables may also be written
+as PDDL atoms (``(push man)``, ``(at robot r1)``), and a false fact as
+``(not (at robot r1))``: reasons of PDDL models are printed so.  The operator names are case-insensitive.
 The operators after GEq are HERA's (see ``encodings/judgement/language.lp``);
 a comparison of utility terms is ``ucompare(O,X,Y)`` with O ``gt``, ``geq``
 or ``eq`` (``<`` and ``<=`` swap the sides), X and Y built of ``u(C)``,
@@ -53,6 +55,7 @@ import clingo
 from clorm import Raw
 
 from ethasp.errors import InputError
+from ethasp.planning.naming import Naming, pddl_atom_to_term
 from ethasp.planning.terms import MAX_NESTING, TermError, parse_symbol
 from ethasp.vocabulary import Conj, FormulaOf
 
@@ -75,6 +78,7 @@ _SHOWN = {"gt": ">", "geq": ">=", "eq": "="}
 KEYWORDS = {"not", "and", "or", "true", "false"}
 
 _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_']*")
+_PDDL_NOT = re.compile(r"\(\s*not\s+(\(.*\))\s*\)", re.IGNORECASE | re.DOTALL)
 _STOP = {",", "&", ")"}
 
 
@@ -391,23 +395,29 @@ class _Parser:
             self.fail(f"expected an action or a fact, found {self.found()}", start)
         negative = text.startswith("-")
         name = text[1:].lstrip() if negative else text
+        pddl = _PDDL_NOT.fullmatch(name)          # (not (p a)): a PDDL model's false fact
+        if pddl and not negative:
+            negative, name = True, pddl.group(1)
         try:
-            symbol = parse_symbol(name, "name")
-        except TermError as error:
+            symbol = (pddl_atom_to_term(name) if name.startswith("(")
+                      else parse_symbol(name, "name"))
+        except (TermError, InputError) as error:
             shown = text if len(text) <= 60 else text[:57] + "..."
-            detail = f" ({error.reason})" if error.reason else ""
+            reason = getattr(error, "reason", "")
+            detail = f" ({reason})" if reason else ""
             self.fail(f"not an action or variable name: '{shown}'{detail}", start)
         is_action = symbol in self.elements.actions
         is_variable = symbol in self.elements.variables
+        written = " ".join(name.split()) if name.startswith("(") else symbol   # as typed
         if is_action and is_variable:
-            self.fail(f"'{symbol}' is both an action and a variable of the model", start)
+            self.fail(f"'{written}' is both an action and a variable of the model", start)
         if not is_action and not is_variable:
-            self.fail(f"unknown action or variable '{symbol}'", start)
+            self.fail(f"unknown action or variable '{written}'", start)
         if is_action:
             if negative:
-                self.fail(f"'{symbol}' is an action; only facts can be negated", start)
+                self.fail(f"'{written}' is an action; only facts can be negated", start)
             if not allow_action:
-                self.fail(f"{operator} takes facts, but '{symbol}' is an action", start)
+                self.fail(f"{operator} takes facts, but '{written}' is an action", start)
             return Function("action", [symbol])
         return Function("fact", [symbol, FALSE if negative else TRUE])
 
@@ -452,17 +462,21 @@ def _truth(value) -> bool:
     return str(value) == "true"
 
 
-def format_fact(variable, value) -> str:
-    """A fact as text: ``v`` (true) or ``-v`` (false)."""
+def format_fact(variable, value, naming: Naming | None = None) -> str:
+    """A fact as text: ``v`` (true) or ``-v`` (false); with a PDDL model's
+    ``naming`` ``(v a)`` or ``(not (v a))``."""
+    if naming is not None and naming.pddl and isinstance(variable, clingo.Symbol):
+        return naming.fact_of(variable, _truth(value))
     return str(variable) if _truth(value) else f"-{variable}"
 
 
 class _Lookup:
     """Members of conjunctions or of all/any names, found by symbol or by text."""
 
-    def __init__(self, mapping: Mapping | None):
+    def __init__(self, mapping: Mapping | None, naming: Naming | None = None):
         self.mapping = mapping or {}
         self.by_text: dict[str, list] | None = None
+        self.naming = naming          # how the printed formula names actions and facts
 
     def __call__(self, name) -> list:
         if name in self.mapping:
@@ -472,11 +486,12 @@ class _Lookup:
         return list(self.by_text.get(str(name), []))
 
 
-def _element(term: clingo.Symbol) -> str:
+def _element(term: clingo.Symbol, naming: Naming | None = None) -> str:
     if term.name == "action" and len(term.arguments) == 1:
-        return str(term.arguments[0])
+        action = term.arguments[0]
+        return naming.action(action) if naming is not None and naming.pddl else str(action)
     if term.name == "fact" and len(term.arguments) == 2:
-        return format_fact(*term.arguments)
+        return format_fact(*term.arguments, naming)
     raise ValueError(f"not an element of L: {term}")
 
 
@@ -485,7 +500,7 @@ _STRENGTH = {"neg": _NOT, "and": _AND, "or": _OR, "imp": _IMP}
 
 
 def _facts_text(side, conj: _Lookup) -> str:
-    facts = [format_fact(variable, value) for variable, value in conj(side)]
+    facts = [format_fact(variable, value, conj.naming) for variable, value in conj(side)]
     return " & ".join(facts) if facts else "()"
 
 
@@ -517,19 +532,20 @@ def _utility_primary(term: clingo.Symbol, conj: _Lookup) -> str:
 def _atom_text(term: clingo.Symbol, conj: _Lookup) -> str:
     name, args = term.name, term.arguments
     if name in ("good", "bad", "neutral") and len(args) == 1:
-        return f"{ATOMS[name]}({_element(args[0])})"
+        return f"{ATOMS[name]}({_element(args[0], conj.naming)})"
     if name in ("caused", "goal_fact", "finally", "but_for", "instrumental", "avoidable") \
             and len(args) == 2:
-        return f"{ATOMS[name]}({format_fact(*args)})"
+        return f"{ATOMS[name]}({format_fact(*args, conj.naming)})"
     if name in ("means", "means2", "end") and len(args) == 1:
-        return f"{ATOMS[name]}({args[0]})"
+        patient = conj.naming.name(args[0]) if conj.naming is not None else str(args[0])
+        return f"{ATOMS[name]}({patient})"
     if name == "ucompare" and len(args) == 3 and args[0].name in _SHOWN:
         return (f"{_utility_text(args[1], conj)} {_SHOWN[args[0].name]} "
                 f"{_utility_text(args[2], conj)}")
     if name == "geq" and len(args) == 2:
         sides = []
         for side in args:
-            facts = [format_fact(variable, value) for variable, value in conj(side)]
+            facts = [format_fact(variable, value, conj.naming) for variable, value in conj(side)]
             sides.append(" & ".join(facts) if facts else "()")
         return f"GEq({sides[0]}, {sides[1]})"
     raise ValueError(f"not a formula of L: {term}")
@@ -598,21 +614,24 @@ def _format(term: clingo.Symbol, conj: _Lookup, members: _Lookup) -> str:
 
 
 def format_formula(term: clingo.Symbol, conj_members: ConjMembers | None = None,
-                   members: Members | None = None) -> str:
+                   members: Members | None = None, naming: Naming | None = None) -> str:
     """Print a formula term of ``language.lp`` in the syntax of :func:`parse_formula`.
 
     ``conj_members`` maps conjunction names (symbols, or their text) to their
     facts as (variable, value) pairs, the value a bool, ``"true"``/``"false"``
     or the symbol; ``members`` maps the names of ``all/any`` to their member
     formulas.  A name missing from a mapping has no members (as in ASP): an
-    empty ``all`` prints ``true``, an empty ``any`` prints ``false``.
+    empty ``all`` prints ``true``, an empty ``any`` prints ``false``.  With
+    the ``naming`` of a PDDL model, actions and facts are printed in PDDL form
+    (``Bad((move a b))``, ``Caused((not (at a)))``), which the parser reads too.
     """
-    return _format(term, _Lookup(conj_members), _Lookup(members))
+    return _format(term, _Lookup(conj_members, naming), _Lookup(members))
 
 
-def format_literal(term: clingo.Symbol, conj_members: ConjMembers | None = None) -> str:
+def format_literal(term: clingo.Symbol, conj_members: ConjMembers | None = None,
+                   naming: Naming | None = None) -> str:
     """Print a literal of L: an atom (Good, Bad, Neutral, Caused, GEq) or its negation."""
     atom = term.arguments[0] if term.name == "neg" and len(term.arguments) == 1 else term
     if atom.name not in ATOMS:
         raise ValueError(f"not a literal of L: {term}")
-    return format_formula(term, conj_members)
+    return format_formula(term, conj_members, naming=naming)

@@ -26,6 +26,7 @@ from ethasp.errors import InputError
 from ethasp.planning.budget import Budget
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan, parse_action
+from ethasp.planning.naming import Naming
 from ethasp.planning.planner import Constraint, occurrences
 from ethasp.planning.search import BOUNDED, DEFAULT_MAX_HORIZON, FOUND, NONE
 from ethasp.planning.validation import static_failures, validate
@@ -81,10 +82,12 @@ def check_question(model: Model, question: Question, plan: Plan) -> list[Constra
             raise InputError(f"question '{question}': action {model.naming.action(unknown[0])} "
                              f"never applies: precondition {facts} does not hold and no "
                              "action changes it")
-        raise InputError(f"question '{question}': unknown action {unknown[0]}")
+        raise InputError(f"question '{question}': unknown action "
+                         f"{model.naming.action(unknown[0])}")
     if list(answer.query(Answered).all()):
         raise InputError(f"question '{question}': the plan already meets its contrast "
-                         f"({', '.join(map(str, constraints))}); ask about what the plan does")
+                         f"({', '.join(model.naming.constraint(c.term) for c in constraints)}); "
+                         "ask about what the plan does")
     return constraints
 
 
@@ -230,15 +233,16 @@ def _side_sentences(side: Side, modal: str, opening: str, alternatively: bool) -
 
 
 def contrastive_text(original: Side, contrast: Side | None, conflict: Sequence[Constraint],
-                     status: str) -> str:
-    """The words of a contrastive explanation (step 5)."""
+                     status: str, naming: Naming = Naming()) -> str:
+    """The words of a contrastive explanation (step 5); ``naming`` names the
+    constraints (a PDDL model's in PDDL form)."""
     text = _side_sentences(original, "could", "This would be", alternatively=False)
     if contrast is not None:
         return f"{text} {_side_sentences(contrast, 'could', 'Doing so is', alternatively=True)}"
     if status == NONE:
         if conflict:
             return (f"{text} There is no alternative plan: no plan meets the question's "
-                    f"constraints {', '.join(map(str, conflict))}.")
+                    f"constraints {', '.join(naming.constraint(c.term) for c in conflict)}.")
         return f"{text} There is no alternative plan: no plan reaches the goal."
     return (f"{text} No alternative plan was found within the search bounds (one may "
             "exist).")
@@ -292,7 +296,8 @@ def answer_questions(model: Model, questions: Sequence[Question], plan: Plan,
     return Answer(list(questions), principle, under, original, contrast, search.result.status,
                   search.result.proof, search.principle_dropped, constraints, search.conflict,
                   _difference(original, contrast),
-                  contrastive_text(original, contrast, search.conflict, search.result.status),
+                  contrastive_text(original, contrast, search.conflict, search.result.status,
+                                   model.naming),
                   search.dropped_because, search.result.optimal)
 
 

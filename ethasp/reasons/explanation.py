@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 
 import clingo
 
+from ethasp.planning.naming import Naming
 from ethasp.planning.plan import Plan
 
 
@@ -35,13 +36,15 @@ class Comparison:
 
 @dataclass
 class Labels:
-    """The model's label facts (``encodings/reasons/labels.lp``)."""
+    """The model's label facts (``encodings/reasons/labels.lp``), and how the
+    model names what has no label (``naming``: ASP terms, or PDDL form)."""
 
     agent: str | None = None
     possessive: str | None = None
     actions: dict[clingo.Symbol, tuple[str, str]] = field(default_factory=dict)
     facts: dict[tuple[clingo.Symbol, bool], str] = field(default_factory=dict)
     patients: dict[clingo.Symbol, str] = field(default_factory=dict)
+    naming: Naming = field(default_factory=Naming)
 
 
 @dataclass
@@ -55,9 +58,11 @@ class Explanation:
     may exist).  ``chosen_reason`` is the most relevant necessary reason (empty
     when the verdict holds whatever the atoms' values), ``text`` its words.
     ``alternative`` is the state compared with (utilitarianism), as literals
-    ``v`` / ``-v``.  ``literals`` holds the chosen reason as :class:`Literal`
+    ``v`` / ``-v``.  ``literals`` holds what the words say as :class:`Literal`
     objects, with ``comparisons`` and ``labels``, for building other texts
-    (see :mod:`ethasp.reasons.words`).
+    (see :mod:`ethasp.reasons.words`): the chosen reason, or the only
+    sufficient reason when its literals are all of one kind (a permissible
+    plan of several actions under deontology: none of them is bad).
     """
 
     principle: str

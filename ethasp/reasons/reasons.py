@@ -49,12 +49,12 @@ from ethasp.principles.judgement import (Judgement, JudgementReport, evaluate, e
 from ethasp.principles.judgement import judge as judge_verdicts
 from ethasp.principles.principle import Principle, select_principles
 from ethasp.principles.utilitarianism import ReachableState, best_reachable
+from ethasp.reasons import DEFAULT_LIMIT
 from ethasp.reasons.explanation import Comparison, Explanation, Labels, Literal
 from ethasp.reasons.words import non_contrastive
 from ethasp.vocabulary import (ActionLabel, AgentLabel, ComparisonAtom, Conjunct, FactLabel,
                                Mention, PatientLabel, ReasonAtom, Verdict)
 
-DEFAULT_LIMIT = 10
 
 REASONS = ("reasons/literals.lp", "reasons/theory.lp", "reasons/evaluate.lp")
 NECESSARY = REASONS + ("reasons/necessary.lp", "reasons/relevance.lp")
@@ -78,6 +78,14 @@ def _literals(symbols: Iterable[clingo.Symbol]) -> list[Literal]:
     atoms = unify([ReasonAtom], symbols).query(ReasonAtom).all()
     return sorted((Literal(a.atom.symbol, a.value == "true") for a in atoms),
                   key=lambda lit: (str(lit.atom), lit.value))
+
+
+def _kind(literal: Literal) -> tuple:
+    """What a literal says, without what of: its operator, its value and, for
+    Good/Bad/Neutral, whether it is about an action or a fact."""
+    atom = literal.atom
+    element = atom.arguments[0].name if atom.name in ("good", "bad", "neutral") else ""
+    return atom.name, literal.value, element
 
 
 def _enumerate(ctl: clingo.Control, limit: int) -> tuple[list[list[clingo.Symbol]], bool]:
@@ -136,7 +144,9 @@ def _comparisons(symbols: Iterable[clingo.Symbol]) -> dict[clingo.Symbol, Compar
 
 def _labels_of(model: Model) -> Labels:
     planner = model.planner
-    return _labels([symbol for signature in LABELS for symbol in planner.get(*signature)])
+    labels = _labels([symbol for signature in LABELS for symbol in planner.get(*signature)])
+    labels.naming = model.naming
+    return labels
 
 
 def other_state(model: Model, plan: Plan, budget: Budget,
@@ -198,8 +208,20 @@ def explain(model: Model, plan: Plan, principle: str | Principle, limit: int = D
     necessary, necessary_done = (_enumerate(necessary_ctl, limit) if best is not None
                                  else ([], True))
     sufficient_ctl = model.planner.program(SUFFICIENT, program, OPTIONS, model=False)
-    sufficient, sufficient_done = _enumerate(sufficient_ctl, limit)
+    # One more than the limit allows: whether a single sufficient reason is the only one.
+    sufficient, sufficient_done = _enumerate(sufficient_ctl, max(limit, 2))
+    if len(sufficient) > limit:
+        sufficient, sufficient_done = sufficient[:limit], False
     words = sufficient[0] if sufficient else []
+    # The words say a reason whole when it is the only sufficient reason and its
+    # literals are all of one kind ("none of his 8 actions is inherently bad"):
+    # each of its literals is then a necessary reason, and naming one alone
+    # would read as if the others did not count.
+    spoken = literals
+    if sufficient_done and len(sufficient) == 1:
+        whole = _literals(sufficient[0])
+        if len(whole) > 1 and len({_kind(literal) for literal in whole}) == 1:
+            spoken = whole
     permissible = any(v.value == "true" and str(v.name.symbol) == chosen.asp_name
                       for v in unify([Verdict], answer.get("verdict", 2)).query(Verdict).all())
     conj: dict[clingo.Symbol, list[tuple[clingo.Symbol, str]]] = {}
@@ -209,7 +231,7 @@ def explain(model: Model, plan: Plan, principle: str | Principle, limit: int = D
         members.sort(key=lambda pair: str(pair[0]))
 
     def texts(reason: list[Literal]) -> list[str]:
-        return [format_literal(lit.term(), conj) for lit in reason]
+        return [format_literal(lit.term(), conj, model.naming) for lit in reason]
 
     explanation = Explanation(
         principle=chosen.name, plan=plan, permissible=permissible,
@@ -217,7 +239,7 @@ def explain(model: Model, plan: Plan, principle: str | Principle, limit: int = D
         necessary_reasons=[texts(_literals(s)) for s in necessary],
         chosen_reason=texts(literals), text="",
         truncated=not (necessary_done and sufficient_done),
-        alternative=compared, literals=literals, comparisons=_comparisons(words),
+        alternative=compared, literals=spoken, comparisons=_comparisons(words),
         labels=_labels_of(model))
     explanation.text = non_contrastive(explanation)
     memo[key] = explanation

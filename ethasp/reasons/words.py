@@ -32,7 +32,13 @@ Templates, by literal (``X`` a gerund or fact phrase, ``P`` a possessive):
   (not) affected by P action", ``End(x)`` "x is (not) treated as an end",
   and comparisons "the utility of the final state is (not) greater than 0".
 
-A reason of several literals joins their clauses with "and".
+A reason of several literals joins their clauses with "and"; literals of one
+kind share a clause: "neither X nor Y is inherently bad", "X and Y are
+inherently bad", "this way neither X nor Y is caused by P actions", and for
+every action of a plan of more than three, "none of P N actions is inherently
+bad".  Actions and facts without labels are named by their terms, or in PDDL
+form for PDDL models (``action (move kitchen hall)``, ``the fact (not
+(robot-at hall))``).
 """
 
 from __future__ import annotations
@@ -78,22 +84,33 @@ def possessive(labels: Labels, pronoun: bool = False) -> str:
     return f"{agent(labels)}'s"
 
 
-def _term_words(term: clingo.Symbol) -> str:
+def _term_words(term: clingo.Symbol, labels: Labels | None = None) -> str:
+    """A term without a label: an ASP constant as words (``do_nothing``: "do
+    nothing"), another ASP term as it is, or in PDDL form for a PDDL model."""
+    if labels is not None and labels.naming.pddl:
+        return labels.naming.name(term)
     if term.type == clingo.SymbolType.Function and not term.arguments:
         return term.name.replace("_", " ")
     return str(term)
 
 
+def _action_name(labels: Labels, action: clingo.Symbol) -> str:
+    """An action without a label: its term, or its PDDL form ``(move a b)``."""
+    return labels.naming.action(action) if labels.naming.pddl else str(action)
+
+
 def action_phrase(labels: Labels, action: clingo.Symbol) -> str:
     """An action as a verb phrase, e.g. "pull the lever"."""
     label = labels.actions.get(action)
-    return label[0] if label else _term_words(action)
+    if label:
+        return label[0]
+    return _action_name(labels, action) if labels.naming.pddl else _term_words(action)
 
 
 def gerund(labels: Labels, action: clingo.Symbol) -> str:
     """An action as a gerund phrase, e.g. "pulling a lever"."""
     label = labels.actions.get(action)
-    return label[1] if label else f"action {action}"
+    return label[1] if label else f"action {_action_name(labels, action)}"
 
 
 def plan_phrase(labels: Labels, plan: Plan) -> str:
@@ -108,6 +125,8 @@ def fact_phrase(labels: Labels, variable: clingo.Symbol, value: bool) -> str:
     label = labels.facts.get((variable, value))
     if label:
         return label
+    if labels.naming.pddl:
+        return f"the fact {labels.naming.fact_of(variable, value)}"
     return f"the fact {variable}" if value else f"the fact not {variable}"
 
 
@@ -157,7 +176,8 @@ def literal_clause(literal: Literal, labels: Labels,
         noun = "action" if actions <= 1 else "actions"
         return _HERA_FACTS[atom.name](fact, possessive(labels, pronoun), noun, value)
     if atom.name in _HERA_PATIENTS:
-        patient = labels.patients.get(atom.arguments[0]) or _term_words(atom.arguments[0])
+        patient = labels.patients.get(atom.arguments[0]) or _term_words(atom.arguments[0],
+                                                                         labels)
         noun = "action" if actions <= 1 else "actions"
         return _HERA_PATIENTS[atom.name](patient, possessive(labels, pronoun), noun, value)
     if atom.name == "ucompare":
@@ -234,17 +254,82 @@ def _utility_primary_words(term: clingo.Symbol) -> str:
     return "minus " * signs + text
 
 
+def _group(literal: Literal) -> tuple | None:
+    """Literals that one clause can say together: Good/Bad/Neutral of actions,
+    or of facts, with one value; Caused with one value.  None: said alone."""
+    atom = literal.atom
+    if atom.name in VALUATIONS:
+        return atom.name, literal.value, atom.arguments[0].name
+    if atom.name == "caused":
+        return atom.name, literal.value
+    return None
+
+
+def _none_of(subjects: list[str]) -> str:
+    """"neither a nor b", "none of a, b and c"."""
+    if len(subjects) == 2:
+        return f"neither {subjects[0]} nor {subjects[1]}"
+    return f"none of {join(subjects)}"
+
+
+def _group_clause(key: tuple, literals: list[Literal], labels: Labels, pronoun: bool,
+                  actions: int, plan: Plan | None) -> str:
+    """The words of several literals of one group (see :func:`_group`), e.g.
+    "none of his 8 actions is inherently bad"."""
+    whose = possessive(labels, pronoun)
+    if key[0] == "caused":
+        facts = [fact_phrase(labels, lit.atom.arguments[0], lit.atom.arguments[1].name == "true")
+                 for lit in literals]
+        noun = "action" if actions <= 1 else "actions"
+        if key[1]:
+            return f"this way {join(facts)} are caused by {whose} {noun}"
+        return f"this way {_none_of(facts)} is caused by {whose} {noun}"
+    name, value, element = key
+    degree = "inherently " if element == "action" and name != "neutral" else ""
+    subjects = [_element_phrase(labels, lit.atom.arguments[0])[0] for lit in literals]
+    if value:
+        return f"{join(subjects)} are {degree}{VALUATIONS[name]}"
+    elements = {lit.atom.arguments[0].arguments[0] for lit in literals}
+    if element == "action" and plan is not None and len(elements) > 3 \
+            and elements == set(plan):
+        return f"none of {whose} {len(plan)} actions is {degree}{VALUATIONS[name]}"
+    return f"{_none_of(subjects)} is {degree}{VALUATIONS[name]}"
+
+
 def reason_clause(literals: Sequence[Literal], labels: Labels,
                   comparisons: dict[clingo.Symbol, Comparison] | None = None,
-                  pronoun: bool = False, actions: int = 1) -> str:
-    """The words of a reason: its literals' clauses joined by "and"."""
-    return join([literal_clause(lit, labels, comparisons, pronoun, actions) for lit in literals])
+                  pronoun: bool = False, actions: int = 1, plan: Plan | None = None) -> str:
+    """The words of a reason: its literals' clauses joined by "and"; literals
+    of one group share a clause ("neither pulling a lever nor pushing a man is
+    inherently bad", or with the ``plan`` whose every action they name, "none
+    of the man's 5 actions is inherently bad")."""
+    groups: dict[tuple, list[Literal]] = {}
+    order: list[tuple | Literal] = []
+    for literal in literals:
+        key = _group(literal)
+        if key is None:
+            order.append(literal)
+        elif key in groups:
+            groups[key].append(literal)
+        else:
+            groups[key] = [literal]
+            order.append(key)
+    clauses = []
+    for item in order:
+        if isinstance(item, Literal):
+            clauses.append(literal_clause(item, labels, comparisons, pronoun, actions))
+        elif len(groups[item]) == 1:
+            clauses.append(literal_clause(groups[item][0], labels, comparisons, pronoun,
+                                          actions))
+        else:
+            clauses.append(_group_clause(item, groups[item], labels, pronoun, actions, plan))
+    return join(clauses)
 
 
 def explanation_clause(explanation: Explanation, pronoun: bool = False) -> str:
     """The chosen reason of an explanation in words ("because ..." follows)."""
     return reason_clause(explanation.literals, explanation.labels, explanation.comparisons,
-                         pronoun, len(explanation.plan))
+                         pronoun, len(explanation.plan), explanation.plan)
 
 
 # -- sentences --------------------------------------------------------------------

@@ -15,7 +15,11 @@ from ethasp.questions.dialogue import Step
 def model_json(workspace: Workspace) -> dict:
     """The model at a glance, the principles, defaults and limits."""
     names = [Path(path).name for path in workspace.files]
-    key = hashlib.sha256("\n".join(str(Path(p).resolve()) for p in workspace.files)
+    # The page keeps its dialogue under this key: the files' paths, and the text
+    # of a model read from standard input (which has no path).
+    texts = [source.text for source in workspace.model.sources
+             if source.path is None and not source.generated]
+    key = hashlib.sha256("\n".join([str(Path(p).resolve()) for p in workspace.files] + texts)
                          .encode()).hexdigest()[:16]
     limits = workspace.limits
     principles = available_principles()
@@ -46,6 +50,9 @@ def _step_json(workspace: Workspace, number: int, step: Step) -> dict:
     data["original"]["shown"] = _actions(workspace, answer.original.plan)
     if answer.contrast is not None:
         data["contrast"]["shown"] = _actions(workspace, answer.contrast.plan)
+    naming = workspace.model.naming
+    data["constraints_shown"] = [naming.constraint(c.term) for c in answer.constraints]
+    data["conflict_shown"] = [naming.constraint(c.term) for c in answer.conflict]
     own = [str(c) for c in answer.constraints
            if answer.constraints and c.question == answer.constraints[-1].question]
     return {"number": number, "question": str(step.question), "under": step.under,

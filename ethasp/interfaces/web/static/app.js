@@ -66,17 +66,44 @@ function utilityText(utility) {
   return utility > 0 ? `+${utility}` : utility < 0 ? `\u2212${-utility}` : "0";
 }
 
+// Errors and notes are shown where the user acted (the slot of that panel:
+// the Ask panel, the History panel, ...) and scrolled into view there.
+let messagesAt = null;   // the slot of the last move, null: the top of the page
+
+function place(slot) {
+  messagesAt = slot || null;
+  const target = slot || $("messages-home");
+  if ($("messages").parentNode !== target) target.append($("messages"));
+}
+
+let revealedAt = 0;    // when a message was last scrolled into view
+const SETTLING_MS = 3000;
+
+function reveal(box) {
+  // After the layout has settled (a render may have just changed it).
+  revealedAt = Date.now();
+  requestAnimationFrame(() => { if (!box.hidden) box.scrollIntoView({ block: "nearest" }); });
+}
+
+function settled() {
+  // A picture arrived and may have moved the page: an error shown just before
+  // stays in view (a note does not pull the page back from the answer).
+  if (Date.now() - revealedAt <= SETTLING_MS && !$("error").hidden) reveal($("error"));
+}
+
 function showError(message) {
   const box = $("error");
   if (!message) { box.hidden = true; box.textContent = ""; return; }
   box.textContent = `error: ${message}`;
   box.hidden = false;
+  reveal(box);
 }
 
 function showNote(message) {
   const box = $("note");
   box.hidden = !message;
   box.textContent = message || "";
+  if (message) reveal(box);
 }
 
 // -- keeping the session across reloads -------------------------------------------------------------
@@ -121,13 +148,14 @@ async function follow(reply) {
     setBusy(job);
   }
   setBusy(null);
+  await refresh();
   if (job && job.state === "failed") showError(job.error);
   if (job && job.note) showNote(job.note);
-  await refresh();
   return job;
 }
 
-async function move(request) {
+async function move(request, slot) {
+  place(slot);
   showError(null);
   showNote(null);
   try {
@@ -156,7 +184,6 @@ function renderModel() {
   const box = clear($("model"));
   if (glance.agent) box.append(el("p", {}, "Agent: ", el("strong", { text: glance.agent.name })));
 
-  box.append(el("h3", { text: `Actions (${glance.actions.length})` }));
   const actions = el("table", { class: "glance", id: "model-actions" },
     el("tr", {}, el("th", { text: "action" }), el("th", { text: "label" }), el("th", { text: "utility" })));
   for (const action of glance.actions) {
@@ -168,9 +195,8 @@ function renderModel() {
       el("td", { class: "label", text: action.label }),
       el("td", { class: action.moral, text: utilityText(action.utility) })));
   }
-  box.append(actions);
+  box.append(collapsible(`Actions (${glance.actions.length})`, actions, glance.actions.length));
 
-  box.append(el("h3", { text: `Variables (${glance.variables.length})` }));
   const variables = el("table", { class: "glance", id: "model-variables" },
     el("tr", {}, el("th", { text: "variable" }), el("th", { text: "true" }), el("th", { text: "false" })));
   const goal = new Set(glance.goal.map((fact) => fact.literal));
@@ -183,7 +209,8 @@ function renderModel() {
     variables.append(el("tr", {}, el("td", {}, el("code", { text: variable.shown })),
       cell(variable.true, true), cell(variable.false, false)));
   }
-  box.append(variables);
+  box.append(collapsible(`Variables (${glance.variables.length})`, variables,
+    glance.variables.length));
   box.append(el("p", { class: "muted" },
     "Goal: ", glance.goal.map((fact) => fact.shown).join(", ") || "none"));
 
@@ -202,12 +229,50 @@ function verdictNode(side) {
     el("span", { class: "status", text: side.status === "proven" ? "proven" : "bounded: as far as searched" }));
 }
 
+// A long section (the model's tables) is folded when it has more rows than this.
+const OPEN_ROWS = 12;
+// A literal longer than this shows its start; a reason with more literals, its first ones.
+const LONG_LITERAL = 160;
+const MANY_LITERALS = 12;
+// Characters of a history entry after its question.
+const HISTORY_WORDS = 90;
+
+function collapsible(title, content, rows) {
+  return el("details", { class: "glance", open: rows <= OPEN_ROWS }, el("summary", { text: title }),
+    content);
+}
+
+function expander(shown, label) {
+  // A button that shows the whole of something shortened, and shortens it again.
+  const button = el("button", { type: "button", class: "more", "aria-expanded": "false" }, label);
+  button.addEventListener("click", () => {
+    const open = button.getAttribute("aria-expanded") !== "true";
+    button.setAttribute("aria-expanded", String(open));
+    button.textContent = open ? "show less" : label;
+    shown(open);
+  });
+  return button;
+}
+
+function literalNode(literal, highlight) {
+  const diff = highlight && highlight.has(literal);
+  const node = el("span", { class: diff ? "literal diff" : "literal",
+    title: diff ? "only this plan's reason has it" : null });
+  if (literal.length <= LONG_LITERAL) { node.textContent = literal; return node; }
+  const start = `${literal.slice(0, LONG_LITERAL - 40)}\u2026`;
+  const text = el("span", { text: start });
+  node.append(text, expander((open) => { text.textContent = open ? literal : start; },
+    `show all ${literal.length} characters`));
+  return node;
+}
+
 function literals(list, highlight) {
   if (!list || list.length === 0) return el("span", { class: "muted", text: "(none: the verdict holds whatever the atoms)" });
-  return el("span", {}, list.map((literal) => el("span", {
-    class: highlight && highlight.has(literal) ? "literal diff" : "literal",
-    title: highlight && highlight.has(literal) ? "only this plan's reason has it" : null,
-    text: literal })));
+  const nodes = list.map((literal) => literalNode(literal, highlight));
+  if (nodes.length <= MANY_LITERALS) return el("span", {}, nodes);
+  const rest = el("span", { hidden: true }, nodes.slice(MANY_LITERALS));
+  return el("span", {}, nodes.slice(0, MANY_LITERALS), rest,
+    expander((open) => { rest.hidden = !open; }, `show ${nodes.length - MANY_LITERALS} more`));
 }
 
 function reasonsBlock(kind, reasons, chosen) {
@@ -245,21 +310,26 @@ function planNode(actions, clickable) {
 }
 
 async function showPicture(box, path) {
-  clear(box);
+  // The picture replaces the one shown when it has arrived (no empty box in
+  // between, so the page below it does not jump); a later call wins.
+  const token = String(Math.random());
+  box.dataset.loading = token;
+  let content = el("p", { class: "muted", text: "(no picture)" });
   try {
     const response = await fetch(path);
     const type = response.headers.get("Content-Type") || "";
-    if (!response.ok || !type.startsWith("image/svg+xml")) {
-      box.append(el("p", { class: "muted", text: "(no picture)" }));
-      return;
-    }
-    box.innerHTML = await response.text();  // SVG drawn by the server, text escaped there
+    if (response.ok && type.startsWith("image/svg+xml")) content = await response.text();
+  } catch (error) { /* "(no picture)" */ }
+  if (box.dataset.loading !== token) return;
+  if (typeof content === "string") {
+    box.innerHTML = content;  // SVG drawn by the server, text escaped there
     for (const action of box.querySelectorAll("g.action")) {
       action.addEventListener("click", () => choose(action.dataset.action, action.dataset.shown));
     }
-  } catch (error) {
-    box.append(el("p", { class: "muted", text: "(no picture)" }));
+  } else {
+    box.replaceChildren(content);
   }
+  settled();
 }
 
 function renderCurrent() {
@@ -350,10 +420,10 @@ function renderAnswer() {
   if (answer.conflict && answer.conflict.length) {
     notes.append(el("p", { class: "notice warning", id: "conflict" },
       el("strong", { text: "Minimal conflict: " }), "no plan meets all of ",
-      answer.conflict.map((c) => el("span", { class: "literal", text: c })), "."));
+      (answer.conflict_shown || answer.conflict).map((c) => el("span", { class: "literal", text: c })), "."));
   }
   notes.append(el("p", { class: "proof" }, "Constraints imposed: ",
-    answer.constraints.map((c) => el("span", { class: "literal", text: c }))));
+    (answer.constraints_shown || answer.constraints).map((c) => el("span", { class: "literal", text: c }))));
   const difference = answer.reason_difference || { original_only: [], contrast_only: [] };
   $("side-original").replaceChildren(sideNode("Plan asked about", answer.original, answer.original.shown,
     new Set(difference.original_only)));
@@ -372,9 +442,13 @@ function renderHistory() {
     const outcome = answer.contrast
       ? `contrast: ${answer.contrast.shown.map((a) => a.shown).join(" ") || "(empty plan)"}`
       : `no contrast plan (${answer.status})`;
+    const words = ` \u2014 under ${step.under}; ${outcome}`;
+    // A long contrast plan is shortened here (the answer shows it whole; the tooltip too).
+    const shown = words.length > HISTORY_WORDS ? `${words.slice(0, HISTORY_WORDS - 1)}\u2026` : words;
     list.append(el("li", { class: step.number === viewing ? "viewing" : null },
-      el("button", { class: "entry", type: "button", onclick: () => { viewing = step.number; renderAnswer(); renderHistory(); } },
-        el("code", { text: step.question }), el("span", { class: "muted", text: ` \u2014 under ${step.under}; ${outcome}` }))));
+      el("button", { class: "entry", type: "button", title: `${step.question}${words}`,
+        onclick: () => { viewing = step.number; renderAnswer(); renderHistory(); } },
+        el("code", { text: step.question }), el("span", { class: "muted", text: shown }))));
   }
   $("undo").disabled = running || !state.steps.length;
   $("save").href = `/api/sessions/${sid}/dialogue.json`;
@@ -402,8 +476,13 @@ function askText(text) {
 
 async function ask() {
   const text = $("question").value.trim();
-  if (!text) { showError("question: expected 'why ...' (forms: why A | why not A | why A rather than B | why A before B)"); return; }
-  const job = await move(() => post(`/api/sessions/${sid}/ask`, { question: text }));
+  if (!text) {
+    place($("ask-messages"));
+    showNote(null);
+    showError("question: expected 'why ...' (forms: why A | why not A | why A rather than B | why A before B)");
+    return;
+  }
+  const job = await move(() => post(`/api/sessions/${sid}/ask`, { question: text }), $("ask-messages"));
   if (job && job.state === "done") {
     viewing = state.steps.length;
     $("action-menu").hidden = true;
@@ -417,7 +496,7 @@ async function startDialogue(principle, plan, quiet) {
   const request = sid
     ? () => post(`/api/sessions/${sid}/start`, { principle, plan })
     : () => post("/api/sessions", { principle, plan });
-  const job = await move(request);
+  const job = await move(request, quiet ? null : $("history-messages"));
   if (job && job.state === "done") {
     viewing = null;
     $("new-dialogue").open = false;
@@ -431,7 +510,7 @@ async function restore(saved) {
   const job = await move(() => post("/api/sessions", { dialogue: JSON.stringify(saved.dialogue), name: "the page's saved dialogue" }));
   if (!job || job.state !== "done") {
     const why = $("error").hidden ? "" : $("error").textContent;
-    await startDialogue(model.principle, "");
+    await startDialogue(model.principle, "", true);
     showNote(`the dialogue kept by this page could not be restored (${why || "unknown reason"}); a new one was started`);
   }
 }
@@ -442,11 +521,20 @@ function bind() {
     event.preventDefault();
     startDialogue($("start-principle").value, $("start-plan").value.trim());
   });
-  $("undo").addEventListener("click", () => move(() => post(`/api/sessions/${sid}/undo`, {})));
+  $("undo").addEventListener("click", () => move(() => post(`/api/sessions/${sid}/undo`, {}),
+    $("history-messages")));
   $("cancel").addEventListener("click", async () => {
     try { await post(`/api/sessions/${sid}/cancel`, {}); } catch (error) { showError(error.message); }
   });
+  for (const button of document.querySelectorAll("button.zoom")) {
+    button.addEventListener("click", () => {
+      const actual = $(button.dataset.picture).classList.toggle("actual");
+      button.setAttribute("aria-pressed", String(actual));
+      button.textContent = actual ? "Fit to width" : "Actual size";
+    });
+  }
   $("under").addEventListener("change", async () => {
+    place($("ask-messages"));
     showError(null);
     try {
       state = await post(`/api/sessions/${sid}/principle`, { principle: $("under").value });
@@ -460,12 +548,23 @@ function bind() {
     if (!file) return;
     const text = await file.text();
     $("load").value = "";
-    const job = await move(() => post(`/api/sessions/${sid}/load`, { dialogue: text, name: file.name }));
+    const job = await move(() => post(`/api/sessions/${sid}/load`, { dialogue: text, name: file.name }),
+      $("history-messages"));
     if (job && job.state === "done") viewing = null, render();
   });
 }
 
+function measureHeader() {
+  // The sticky header's height, for the sticky side column and for scrolling
+  // messages into view below it.
+  const header = document.querySelector("header");
+  const set = () => document.documentElement.style.setProperty("--header", `${header.offsetHeight}px`);
+  set();
+  if (window.ResizeObserver) new ResizeObserver(set).observe(header);
+}
+
 async function main() {
+  measureHeader();
   bind();
   try {
     model = await get("/api/model");
