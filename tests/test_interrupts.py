@@ -144,8 +144,8 @@ def test_the_server_and_the_dialogue_outlive_the_time_limit(monkeypatch):
     monkeypatch.setattr(cli, "OVERRUN_GRACE", 0.0)
     served = []
 
-    def serve(workspace, host, port, open_page):
-        clock.sleep(1.0)           # up ten times longer than 2 x the limit
+    def serve(workspace, host, port, open_page, **options):
+        clock.sleep(1.0)           # up ten times longer than the limit
         served.append(port)
         return 0
 
