@@ -11,17 +11,26 @@ from ethasp.questions.contrast import Answer
 from ethasp.questions.dialogue import Dialogue
 from ethasp.errors import InputError
 from ethasp.interfaces.progress import ProgressLine
+from ethasp.principles.restriction import restricting_principles
+from ethasp.questions.question import step_question
 
 HELP = """\
 Commands:
-  why A | why not A | why A rather than B | why A before B
-                     ask about the current plan; the question's constraints
-                     stay imposed on later contrast plans
-  principle NAME     the principle later contrast plans must satisfy
-                     (deontology, utilitarianism, do-no-harm)
+  why A | why not A | why A rather than B | why A before B | why A after B
+  why A at T | why not A at T | why A within T1..T2 | why not A within T1..T2
+  why F | why not F | why F at T | why not F at T | why not in N steps
+                     ask about the current plan (A, B actions, F a state
+                     variable, T, N step numbers; 'why action X' or 'why
+                     fact X' for a name that is both); the question's
+                     constraints stay imposed on later contrast plans
+  why step T         how step T of the current plan serves later steps
+                     and the goal (causal links), and whether it is needed
+  principle NAME     the principle later contrast plans must satisfy (one
+                     that can restrict plan search: {principles})
   plan               show the current plan and its explanation
   history            the questions asked so far, with their principles
   undo               take back the last question
+  drop               take back the last question when no plan can meet it
   save FILE          save the whole dialogue to FILE (JSON)
   load FILE          load a dialogue saved before
   help               this text
@@ -42,7 +51,10 @@ def answer_text(answer: Answer, naming) -> str:
         lines.append(f"  contrast plan: none ({answer.status}: {answer.proof})")
     if answer.principle_dropped:
         lines.append(f"  the principle {answer.under} was dropped for the contrast: "
-                     f"{answer.dropped_because}")
+                     f"{answer.dropped_because}; the contrast plan was made without it and "
+                     f"is judged under it")
+    if answer.note:
+        lines.append(f"  note: {answer.note}")
     lines.append(f"  constraints: {', '.join(map(str, answer.constraints))}")
     if answer.conflict:
         lines.append(f"  conflicting constraints: {', '.join(map(str, answer.conflict))}")
@@ -52,6 +64,14 @@ def answer_text(answer: Answer, naming) -> str:
                      f"{', '.join(difference['original_only']) or 'none'}; "
                      f"only for the contrast: {', '.join(difference['contrast_only']) or 'none'}")
     return "\n".join(lines)
+
+
+def unmeetable_text(answer: Answer) -> str:
+    """What the dialogue says when no plan can meet the questions imposed."""
+    return ("No plan can meet the questions asked so far together (conflicting constraints: "
+            f"{', '.join(map(str, answer.conflict))}); they stay imposed, so every later "
+            "question would have no contrast plan either. Type drop to take back the last "
+            "question.")
 
 
 def _verdict(side) -> str:
@@ -97,10 +117,16 @@ class Prompt:
         if command in ("quit", "exit"):
             return False
         if command == "help":
-            self.say(HELP)
+            self.say(HELP.format(principles=", ".join(restricting_principles())))
+        elif command == "why" and step_question(line) is not None:
+            step = step_question(line)
+            explanation = self.dialogue.explain_step(step)
+            self.say(explanation.step_text(step, self.dialogue.model))
         elif command == "why":
             answer = self.dialogue.ask(line.strip())
             self.say(answer_text(answer, self.dialogue.model.naming))
+            if self.dialogue.unmeetable is not None:
+                self.say(unmeetable_text(answer))
         elif command == "principle":
             if not rest:
                 self.say(f"next contrasts must satisfy: {self.dialogue.under}")
@@ -119,6 +145,13 @@ class Prompt:
         elif command == "undo":
             step = self.dialogue.undo()
             self.say(f"took back: {step.question}")
+            self.show_current()
+        elif command == "drop":
+            if self.dialogue.unmeetable is None:
+                raise InputError("drop: the last question does not conflict (no question to "
+                                 "drop); undo takes back any last question")
+            step = self.dialogue.undo()
+            self.say(f"dropped: {step.question} (its constraints are no longer imposed)")
             self.show_current()
         elif command == "save":
             if not rest:

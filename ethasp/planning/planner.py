@@ -336,6 +336,12 @@ class Planner:
         return self._atoms[key]
 
     @_locked
+    def defines(self, name: str, argument: clingo.Symbol) -> bool:
+        """Is ``name(argument)`` an atom of the model's base grounding (e.g. is
+        a term an ``action/1`` or a ``variable/1`` of the model)?"""
+        return self.ctl.symbolic_atoms[clingo.Function(name, [argument])] is not None
+
+    @_locked
     def bound(self) -> Answer:
         """``upper_bound/1`` and ``best_fact/2`` of judgement/best.lp: no reachable
         state is worth more than the upper bound (a small program of its own:

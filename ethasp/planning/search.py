@@ -291,11 +291,15 @@ def _checked(planner: Planner, actions, engine: str) -> Plan:
 
 def shortest(planner: Planner, setting: Setting, budget: Budget,
              max_horizon: int = DEFAULT_MAX_HORIZON, start: int = 0, start_proof: str = "",
-             all_plans: bool = False, task: str = "plan search") -> SearchResult:
+             all_plans: bool = False, task: str = "plan search",
+             longest: int | None = None) -> SearchResult:
     """A shortest plan under a setting, searching horizons ``start`` to ``max_horizon``.
 
     ``start`` must be a proven lower bound on the length of every plan under
     the setting (``start_proof`` says why); horizons below it are not solved.
+    ``longest``, if given, is a proven upper bound (a question constraint
+    allows no longer plan): once the horizons up to it are refuted, there is
+    no plan.
     Exact layers run beside the solver (see :class:`_Exact`): their lower
     bounds skip horizons, and for plain plan search (no restriction, no
     question constraint, one plan) a shortest plan read off them, checked by
@@ -307,6 +311,8 @@ def shortest(planner: Planner, setting: Setting, budget: Budget,
     if setting.goal and planner.is_fact("unreachable_goal"):
         return SearchResult(NONE, horizon=0,
                             proof="the goal is unreachable even ignoring delete effects")
+    if longest is not None and start > longest:
+        return SearchResult(NONE, horizon=start, proof=_too_long(longest, start_proof))
     if start > max_horizon:
         return SearchResult(BOUNDED, horizon=max_horizon,
                             proof=f"every plan has more than {steps(max_horizon)} ({start_proof}), "
@@ -317,15 +323,23 @@ def shortest(planner: Planner, setting: Setting, budget: Budget,
         setting = replace(setting, canonical=True)
     try:
         return _shortest(planner, setting, budget, max_horizon, start, start_proof, all_plans,
-                         task, exact)
+                         task, exact, longest)
     finally:
         exact.stop()
         planner.threads(1)      # later searches on this grounding: one answer each time
 
 
+def _too_long(longest: int, why: str) -> str:
+    """Why no plan exists when every plan has more steps than the question allows."""
+    return (f"every plan has more than {steps(longest)} ({why}), and the question allows at "
+            f"most {steps(longest)}")
+
+
 def _shortest(planner: Planner, setting: Setting, budget: Budget, max_horizon: int,
               start: int, start_proof: str, all_plans: bool, task: str,
-              exact: _Exact) -> SearchResult:
+              exact: _Exact, longest: int | None = None) -> SearchResult:
+    if longest is not None:
+        max_horizon = min(max_horizon, longest)
     checkpoints = _checkpoints(max_horizon)
     bound, why = start, start_proof          # every plan has at least `bound` steps
     horizon = start
@@ -349,6 +363,8 @@ def _shortest(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
         if bound > horizon:
             horizon = bound
         if horizon > max_horizon:
+            if longest is not None and max_horizon >= longest:
+                return SearchResult(NONE, horizon=max_horizon, proof=_too_long(longest, why))
             return SearchResult(BOUNDED, horizon=max_horizon,
                                 proof=f"every plan has more than {steps(max_horizon)} ({why}), "
                                       "the maximal horizon")
@@ -382,6 +398,10 @@ def _shortest(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
                     NONE, horizon=horizon,
                     proof=f"no plan up to horizon {horizon}, and no path of {steps(horizon)} "
                           "without a repeated state: every reachable state was searched")
+        if longest is not None and horizon >= longest:
+            return SearchResult(NONE, horizon=horizon, proof=(
+                f"no plan up to horizon {horizon}, and the question allows at most "
+                f"{steps(longest)}"))
         if horizon >= max_horizon:
             return SearchResult(BOUNDED, horizon=max_horizon,
                                 proof=f"no plan up to horizon {max_horizon} (the maximal horizon)")
@@ -390,9 +410,10 @@ def _shortest(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
 
 def any_plan(planner: Planner, setting: Setting, budget: Budget,
              max_horizon: int = DEFAULT_SATISFICING_HORIZON, start: int = 0,
-             start_proof: str = "", task: str = "plan search") -> SearchResult:
+             start_proof: str = "", task: str = "plan search",
+             longest: int | None = None) -> SearchResult:
     """Some plan under a setting, found fast and not proven shortest
-    (``optimal`` False).
+    (``optimal`` False); ``longest`` as in :func:`shortest`.
 
     The solver gets each horizon for a slice of time only: a horizon it
     refutes in time is a lower bound (as in :func:`shortest`); one it cannot
@@ -411,18 +432,25 @@ def any_plan(planner: Planner, setting: Setting, budget: Budget,
     if setting.goal and planner.is_fact("unreachable_goal"):
         return SearchResult(NONE, horizon=0, optimal=False,
                             proof="the goal is unreachable even ignoring delete effects")
+    if longest is not None and start > longest:
+        return SearchResult(NONE, horizon=start, optimal=False,
+                            proof=_too_long(longest, start_proof))
     plain = not setting.restrictions and not setting.constraints
     exact = _Exact(planner, setting, budget, read_plan=plain, greedy=True)
     setting = replace(setting, satisficing=True,
                       canonical=plain and _one_plan_wanted(setting))
     try:
-        return _any_plan(planner, setting, budget, max_horizon, start, start_proof, task, exact)
+        return _any_plan(planner, setting, budget, max_horizon, start, start_proof, task, exact,
+                         longest)
     finally:
         exact.stop()
 
 
 def _any_plan(planner: Planner, setting: Setting, budget: Budget, max_horizon: int, start: int,
-              start_proof: str, task: str, exact: _Exact) -> SearchResult:
+              start_proof: str, task: str, exact: _Exact,
+              longest: int | None = None) -> SearchResult:
+    if longest is not None:
+        max_horizon = min(max_horizon, longest)
     bound, why = start, start_proof          # every plan has at least `bound` steps
     horizon, slice_, checked = start, SLICE, 0
     exact.head_start()
@@ -452,6 +480,9 @@ def _any_plan(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
                 why = f"exact reachability found no goal state within {steps(bound - 1)}"
         horizon = max(horizon, bound)
         if horizon > max_horizon:
+            if longest is not None and max_horizon >= longest:
+                return SearchResult(NONE, horizon=max_horizon, optimal=False,
+                                    proof=_too_long(longest, why))
             return SearchResult(BOUNDED, horizon=max_horizon, optimal=False,
                                 proof=f"no plan found up to horizon {max_horizon} (the maximal "
                                       f"horizon; every plan has at least {steps(bound)})")
@@ -478,6 +509,10 @@ def _any_plan(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
             return SearchResult(FOUND, plan=plan, horizon=horizon, optimal=False,
                                 proof=f"a plan found at horizon {horizon} (not proven shortest)")
         bound, why = horizon + 1, f"horizon {horizon} refuted"
+        if longest is not None and horizon >= longest:
+            return SearchResult(NONE, horizon=horizon, optimal=False, proof=(
+                f"no plan up to horizon {horizon}, and the question allows at most "
+                f"{steps(longest)}"))
         if horizon >= 4 * checked or horizon == max_horizon:
             checked = max(horizon, 1)
             exists = planner.simple_path_exists(horizon, setting, exact.watch(horizon)) \

@@ -84,6 +84,11 @@ def _term_words(term: clingo.Symbol) -> str:
     return str(term)
 
 
+def term_words(term: clingo.Symbol) -> str:
+    """A term in words: a constant with spaces for underscores, else the term."""
+    return _term_words(term)
+
+
 def action_phrase(labels: Labels, action: clingo.Symbol) -> str:
     """An action as a verb phrase, e.g. "pull the lever"."""
     label = labels.actions.get(action)
@@ -270,3 +275,48 @@ def non_contrastive(explanation: Explanation) -> str:
     """The non-contrastive explanation: the plan and why it is (im)permissible."""
     return (f"{option_sentence(explanation.labels, explanation.plan)} "
             f"{verdict_sentence(explanation)}")
+
+
+# -- questions ------------------------------------------------------------------
+
+def _steps_words(count: int) -> str:
+    return f"{count} step" if count == 1 else f"{count} steps"
+
+
+def constraint_phrase(labels: Labels, term: clingo.Symbol) -> str:
+    """A question's constraint (a term of ``contrast(Q,C)``, questions.lp) as
+    what a plan does, a verb phrase: "pull the lever at step 2", "end with
+    the door open", "take at most 3 steps"."""
+    name, arguments = term.name, term.arguments
+
+    def act(index: int = 0) -> str:
+        return action_phrase(labels, arguments[index])
+
+    def avoid(index: int = 0) -> str:
+        return f"avoid {gerund(labels, arguments[index])}"
+
+    def fact(index: int = 0) -> str:
+        variable, value = arguments[index], arguments[index + 1]
+        return fact_phrase(labels, variable, value.name == "true")
+
+    if name == "used":
+        return act()
+    if name == "unused":
+        return avoid()
+    if name == "before":
+        return f"{act(0)}, then later {act(1)}"
+    if name == "at":
+        return f"{act()} at step {arguments[1]}"
+    if name == "not_at":
+        return f"{avoid()} at step {arguments[1]}"
+    if name == "within":
+        return f"{act()} at some step from {arguments[1]} to {arguments[2]}"
+    if name == "not_within":
+        return f"{avoid()} at every step from {arguments[1]} to {arguments[2]}"
+    if name == "ends":
+        return f"end with {fact()}"
+    if name == "fact_at":
+        return f"have {fact()} after step {arguments[2]}"
+    if name == "at_most":
+        return f"take at most {_steps_words(arguments[0].number)}"
+    return f"meet {term}"
