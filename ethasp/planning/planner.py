@@ -583,6 +583,26 @@ class Planner:
         return list(self._questions[self._question_ids[key]])
 
     @_locked
+    def impossible(self, constraints: Iterable[Constraint]) -> list[tuple[Constraint, str]]:
+        """The question constraints that no plan can meet, known from the grounding
+        (``questions/questions.lp``): each with why (``goal``: it contradicts the
+        goal; ``relaxed``: relaxed reachability excludes what it needs).  Their
+        rules read the question's input atom and facts of the model and of
+        relaxed reachability only, so an atom is grounded exactly when its
+        rule holds for the question (the grounder drops a rule with a false
+        body)."""
+        found = []
+        for constraint in constraints:
+            for name, why in (("question_against_goal", "goal"),
+                              ("question_unreachable", "relaxed")):
+                atom = self.ctl.symbolic_atoms[clingo.Function(
+                    name, [constraint.question, constraint.term])]
+                if atom is not None:
+                    found.append((constraint, why))
+                    break
+        return found
+
+    @_locked
     def avoid(self, state: Iterable[tuple[clingo.Symbol, bool]]) -> int:
         """An id for a state that searches may be asked to avoid (``other_state``)."""
         key = frozenset(state)

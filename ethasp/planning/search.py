@@ -311,6 +311,9 @@ def shortest(planner: Planner, setting: Setting, budget: Budget,
     if setting.goal and planner.is_fact("unreachable_goal"):
         return SearchResult(NONE, horizon=0,
                             proof="the goal is unreachable even ignoring delete effects")
+    impossible = _impossible(planner, setting)
+    if impossible:
+        return SearchResult(NONE, horizon=0, proof=impossible)
     if longest is not None and start > longest:
         return SearchResult(NONE, horizon=start, proof=_too_long(longest, start_proof))
     if start > max_horizon:
@@ -327,6 +330,22 @@ def shortest(planner: Planner, setting: Setting, budget: Budget,
     finally:
         exact.stop()
         planner.threads(1)      # later searches on this grounding: one answer each time
+
+
+def _impossible(planner: Planner, setting: Setting) -> str:
+    """Why no plan meets the setting's question constraints, if the grounding
+    knows it before any search (a constraint against the goal, or one that
+    needs what relaxed reachability excludes); else the empty text."""
+    if not setting.goal or not setting.constraints:
+        return ""
+    found = planner.impossible(sorted(setting.constraints, key=str))
+    if not found:
+        return ""
+    constraint, why = found[0]
+    if why == "goal":
+        return f"the question's constraint {constraint} contradicts the goal"
+    return (f"the question's constraint {constraint} needs an action or a fact that is "
+            "unreachable even ignoring delete effects")
 
 
 def _too_long(longest: int, why: str) -> str:
@@ -432,6 +451,9 @@ def any_plan(planner: Planner, setting: Setting, budget: Budget,
     if setting.goal and planner.is_fact("unreachable_goal"):
         return SearchResult(NONE, horizon=0, optimal=False,
                             proof="the goal is unreachable even ignoring delete effects")
+    impossible = _impossible(planner, setting)
+    if impossible:
+        return SearchResult(NONE, horizon=0, optimal=False, proof=impossible)
     if longest is not None and start > longest:
         return SearchResult(NONE, horizon=start, optimal=False,
                             proof=_too_long(longest, start_proof))

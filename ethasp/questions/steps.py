@@ -173,6 +173,11 @@ class StepsExplanation:
                 "events": [event.to_json(naming) for event in self.events if event.links],
                 "explanation": self.text}
 
+    def lines(self) -> list[str]:
+        """The explanation in words, one sentence per step (and per event
+        with links, in its place)."""
+        return plan_lines(self.labels, self.plan, self.steps, self.events)
+
     @property
     def links(self) -> list[CausalLink]:
         """Every link, from steps and events, in the order of the plan."""
@@ -295,19 +300,25 @@ def event_sentence(labels: Labels, plan: Plan, event: EventExplanation) -> str:
 def plan_text(labels: Labels, plan: Plan, steps: list[StepExplanation],
               events: list[EventExplanation]) -> str:
     """The whole plan in words, step by step (events with links in their place)."""
-    if not steps:
-        return "The plan has no steps: the goal holds without any action."
-    sentences = []
+    return " ".join(plan_lines(labels, plan, steps, events))
+
+
+def plan_lines(labels: Labels, plan: Plan, steps: list[StepExplanation],
+               events: list[EventExplanation]) -> list[str]:
+    """The sentences of :func:`plan_text`."""
+    if not steps and not any(event.links for event in events):
+        return ["The plan has no steps: the goal holds without any action."]
+    sentences = [] if steps else ["The plan has no steps."]
     by_step: dict[int, list[EventExplanation]] = {}
     for event in events:
         if event.links:
             by_step.setdefault(event.step, []).append(event)
-    last = max([len(steps)] + list(by_step))
+    last = max([len(steps)] + list(by_step))  # events after the plan's end come last
     for number in range(1, last + 1):
         if number <= len(steps):
             sentences.append(step_sentence(labels, plan, steps[number - 1]))
         sentences += [event_sentence(labels, plan, event) for event in by_step.get(number, [])]
-    return " ".join(sentences)
+    return sentences
 
 
 # -- the API -------------------------------------------------------------------------
