@@ -194,7 +194,8 @@ def test_errors_have_the_command_line_messages(client, trolley):
     assert reply.status_code == 400
     assert reply.json == {"error": message_of(lambda: Question.parse("how pull"))}
     job = ask(client, key, "why not jump")
-    assert job["state"] == "failed" and job["error"] == "question 'why not jump': unknown action jump"
+    assert job["state"] == "failed" and job["error"] == ("question 'why not jump': unknown action jump "
+                                                 "(nor a state variable)")
     job = ask(client, key, "why not refrain")
     assert job["state"] == "failed" and "already meets its contrast" in job["error"]
     reply = client.post(f"/api/sessions/{key}/principle", json={"principle": "kindness"})

@@ -203,7 +203,8 @@ def test_conductor_example_in_the_browser(server, browser):
     box.clear()
     box.send_keys("why not jump\n")
     wait_for(driver, lambda d: idle(d) and text(d, "error"), "the error")
-    assert text(driver, "error") == "error: question 'why not jump': unknown action jump"
+    assert text(driver, "error") == ("error: question 'why not jump': unknown action jump "
+                                     "(nor a state variable)")
     screenshot(driver, "page-error.png")
     severe = [entry["message"] for entry in driver.get_log("browser") if entry["level"] == "SEVERE"]
     assert severe == [], severe

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import textwrap
 import threading
 from pathlib import Path
 from typing import Callable, TextIO
@@ -25,8 +26,9 @@ Commands:
                      constraints stay imposed on later contrast plans
   why step T         how step T of the current plan serves later steps
                      and the goal (causal links), and whether it is needed
-  principle NAME     the principle later contrast plans must satisfy (one
-                     that can restrict plan search: {principles})
+  principle NAME     the principle later contrast plans must satisfy, one
+                     that can restrict plan search:
+{principles}
   plan               show the current plan and its explanation
   history            the questions asked so far, with their principles
   undo               take back the last question
@@ -117,7 +119,9 @@ class Prompt:
         if command in ("quit", "exit"):
             return False
         if command == "help":
-            self.say(HELP.format(principles=", ".join(restricting_principles())))
+            self.say(HELP.format(principles=textwrap.fill(
+                ", ".join(restricting_principles()), 74, initial_indent=" " * 21,
+                subsequent_indent=" " * 21, break_on_hyphens=False)))
         elif command == "why" and step_question(line) is not None:
             step = step_question(line)
             explanation = self.dialogue.explain_step(step)

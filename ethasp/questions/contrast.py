@@ -146,7 +146,7 @@ def _subject_words(model: Model, resolved: Resolved) -> str:
 def _already(model: Model, resolved: Resolved, plan: Plan) -> str:
     """Why the plan already meets a question's contrast, in words."""
     question, naming = resolved.question, model.naming
-    name = _subject_words(model, resolved)
+    name = _subject_words(model, resolved) if question.action is not None else ""
     other = naming.action(parse_action(question.other)) if question.other else ""
     kind, length = question.kind, len(plan)
     if kind == "length":
