@@ -174,18 +174,24 @@ class Question:
                 raise InputError(f"question: missing action after 'why not' in {shown!r}")
             if len(tokens) == 3 and lower[0] == "in" and lower[2] in ("steps", "step"):
                 return cls("length", steps=_number(tokens[1], "a number of steps", shown, 0))
+        def keyword_at(position: int) -> bool:
+            word = lower[position]
+            return word in ("before", "after", "at", "within") or \
+                (word == "rather" and lower[position + 1:position + 2] == ["than"])
+
+        # The subject comes first, so keywords are looked for after it (an
+        # action may be named "at": why at at 2).
         keyword, index = None, None
-        for position, word in enumerate(lower):
-            if word in ("before", "after", "at", "within") or \
-                    (word == "rather" and lower[position + 1:position + 2] == ["than"]):
-                keyword, index = word, position
+        for position in range(1, len(tokens)):
+            if keyword_at(position):
+                keyword, index = lower[position], position
                 break
         if keyword is None:
+            if keyword_at(0) and len(tokens) > 1:
+                raise InputError(f"question: missing action before '{tokens[0]}' in {shown!r}")
             what, subject = cls._subject(tokens, shown)
             return cls("why-not" if negated else "why", subject, what=what)
         after = index + (2 if keyword == "rather" else 1)
-        if index == 0:
-            raise InputError(f"question: missing action before '{tokens[0]}' in {shown!r}")
         if after >= len(tokens):
             raise InputError(f"question: missing {'step' if keyword in ('at', 'within') else 'action'}"
                              f" at the end of {shown!r}")
@@ -224,7 +230,10 @@ class Question:
             what, tokens = tokens[0].lower(), tokens[1:]
         if not tokens:
             raise InputError(f"question: missing action in {shown!r}")
-        return what, " ".join(tokens)
+        if len(tokens) > 1:
+            raise InputError(f"question: expected one action or state variable, got "
+                             f"{' '.join(tokens)!r} in {shown!r} (forms: {FORMS})")
+        return what, tokens[0]
 
     def __str__(self) -> str:
         if self.kind == "length":
