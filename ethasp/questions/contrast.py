@@ -1,17 +1,20 @@
 """Contrastive questions answered (steps 1 to 5 of the paper's iterative process).
 
-A question "Why A rather than B?" about the original plan becomes constraint
-facts (``contrast(Q,C)``, :mod:`ethasp.questions.question`) that the fixed encoding
-``encodings/questions/questions.lp`` reads.  The question's constraints and the chosen
-principle restrict the model (the HModel, :mod:`ethasp.principles.restriction`), which is
-solved for the contrast plan (the HPlan).  If the HModel has no plan, the
-principle is dropped and the model solved again (step 3), so that the
-explanation shows why the contrast is impermissible.  If there is no plan even
-then, a minimal subset of the question's constraints that conflict is found
-with solver assumptions (each constraint is switched on by an assumption on
+A question "Why A rather than B?" (or any form of :mod:`ethasp.questions.question`)
+about the original plan becomes constraint facts (``contrast(Q,C)``) that the
+fixed encoding ``encodings/questions/questions.lp`` reads.  The question's
+constraints and the chosen principle restrict the model (the HModel,
+:mod:`ethasp.principles.restriction`), which is solved for the contrast plan
+(the HPlan).  If the search proves that the HModel has no plan (status
+``none``), the principle is dropped and the model solved again (step 3), so
+that the explanation shows why the contrast is impermissible; if the search
+under the principle was cut short (``bounded``), the principle is kept and
+the answer is ``bounded``.  If no plan meets the question at all (proven), a
+minimal subset of the constraints that conflict is found with solver
+assumptions (each constraint is switched on by an assumption on
 ``active(Q,C)``).  Both plans are judged and explained (step 4,
-:mod:`ethasp.principles.judgement`), and the contrastive explanation sets the reasons of
-the two side by side (step 5).
+:mod:`ethasp.principles.judgement`), and the contrastive explanation sets the
+reasons of the two side by side (step 5).
 """
 
 from __future__ import annotations
@@ -290,7 +293,7 @@ def contrast_plan(model: Model, constraints: Sequence[Constraint], under: str,
             BOUNDED, [], None, dropped.horizon,
             f"{result.proof}; without {under}, {dropped.proof}"), False, impermissible=True)
     note = ""
-    if dropped.status == FOUND:
+    if dropped.status == FOUND and result.plan is None:
         note = (f"a plan meeting the question exists without {under} "
                 f"({model.naming.actions(dropped.plan) or 'the empty plan'}), but the search "
                 f"under {under} was cut short, so {under} is kept: it is dropped only when "
