@@ -177,7 +177,7 @@ class Dialogue:
         self.under = one_restricting_principle(name)
         return self.under
 
-    def explain_step(self, step: int, budget: Budget | None = None):
+    def explain_step(self, step: int):
         """The causal explanation of one step of the current plan (``why step
         T``): :class:`ethasp.questions.steps.StepsExplanation` of the plan,
         with ``step`` checked to be one of its steps."""

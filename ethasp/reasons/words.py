@@ -285,34 +285,31 @@ def _steps_words(count: int) -> str:
 
 def constraint_phrase(labels: Labels, term: clingo.Symbol) -> str:
     """A question's constraint (a term of ``contrast(Q,C)``, questions.lp) as
-    what a plan does, a verb phrase: "pull the lever at step 2", "end with
-    the door open", "take at most 3 steps"."""
+    what a plan does, a verb phrase: "include pulling a lever at step 2", "end
+    with the door open", "take at most 3 steps"."""
     name, arguments = term.name, term.arguments
 
-    def act(index: int = 0) -> str:
-        return action_phrase(labels, arguments[index])
-
-    def avoid(index: int = 0) -> str:
-        return f"avoid {gerund(labels, arguments[index])}"
+    def doing(index: int = 0) -> str:
+        return gerund(labels, arguments[index])
 
     def fact(index: int = 0) -> str:
         variable, value = arguments[index], arguments[index + 1]
         return fact_phrase(labels, variable, value.name == "true")
 
     if name == "used":
-        return act()
+        return f"include {doing()}"
     if name == "unused":
-        return avoid()
+        return f"avoid {doing()}"
     if name == "before":
-        return f"{act(0)}, then later {act(1)}"
+        return f"include {doing(0)} before {doing(1)}"
     if name == "at":
-        return f"{act()} at step {arguments[1]}"
+        return f"include {doing()} at step {arguments[1]}"
     if name == "not_at":
-        return f"{avoid()} at step {arguments[1]}"
+        return f"avoid {doing()} at step {arguments[1]}"
     if name == "within":
-        return f"{act()} at some step from {arguments[1]} to {arguments[2]}"
+        return f"include {doing()} at some step from {arguments[1]} to {arguments[2]}"
     if name == "not_within":
-        return f"{avoid()} at every step from {arguments[1]} to {arguments[2]}"
+        return f"avoid {doing()} from step {arguments[1]} to {arguments[2]}"
     if name == "ends":
         return f"end with {fact()}"
     if name == "fact_at":
