@@ -8,9 +8,12 @@ Constraint terms are tuples named as in encodings/questions/questions.lp:
 ("within", a, t1, t2), ("not_within", a, t1, t2), ("ends", f, value),
 ("fact_at", f, value, t), ("at_most", n).
 
-The states a plan passes are computed by one function, :func:`trajectory`
-(so that it can follow the model's own simulation, with exogenous events,
-where the model has one).
+A step is simulated in one function, :func:`step_state`, and the states a
+plan passes are listed by :func:`trajectory`; both follow RandomModel's
+actions (applicable, apply).  For models with exogenous events they are the
+two places to switch to the model's own simulation of steps and events (and
+the search of :func:`shortest_meeting` would count its steps up to the last
+event as well).
 """
 
 from __future__ import annotations
@@ -20,14 +23,19 @@ from collections import deque
 from oracle import RandomModel
 
 
+def step_state(spec: RandomModel, state: frozenset, step: int, action: str) -> frozenset:
+    """The state after step ``step`` of a plan, its action applicable in ``state``."""
+    return spec.apply(state, action)
+
+
 def trajectory(spec: RandomModel, plan: list[str]) -> list[frozenset] | None:
     """The states of a plan: the initial state, then the state after each step
     (its final state last); None if some step is not applicable."""
     state, states = spec.init, [spec.init]
-    for action in plan:
+    for step, action in enumerate(plan, start=1):
         if not spec.applicable(state, action):
             return None
-        state = spec.apply(state, action)
+        state = step_state(spec, state, step, action)
         states.append(state)
     return states
 
@@ -127,7 +135,7 @@ def shortest_meeting(spec: RandomModel, terms, principles=()) -> int | None:
                 continue
             if "deontology" in principles and spec.bad_action(action):
                 continue
-            after = spec.apply(state, action)
+            after = step_state(spec, state, step, action)
             remember = set(memory)
             if action in watched:
                 remember.add(("used", action))

@@ -110,7 +110,9 @@ class Dialogue:
 
     @property
     def current_principle(self) -> str:
-        """The principle the current plan was made under."""
+        """The principle the current plan is judged under: the one it was made
+        under (or, when no plan meeting the questions was permissible under it,
+        proven, the one it was made without)."""
         for step in reversed(self.steps):
             if step.answer.contrast is not None:
                 return step.under
