@@ -173,7 +173,8 @@ def _already(model: Model, resolved: Resolved, plan: Plan) -> str:
         if negative:
             if question.at > length:
                 return f"the plan has only {steps(length)}"
-            return f"step {question.at} of the plan is {naming.action(plan.actions[question.at - 1])}"
+            there = naming.action(plan.actions[question.at - 1])
+            return f"step {question.at} of the plan is {there}"
         return f"step {question.at} of the plan already is {name}"
     if question.within is not None:
         first, last = question.within

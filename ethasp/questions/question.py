@@ -193,8 +193,8 @@ class Question:
             return cls("why-not" if negated else "why", subject, what=what)
         after = index + (2 if keyword == "rather" else 1)
         if after >= len(tokens):
-            raise InputError(f"question: missing {'step' if keyword in ('at', 'within') else 'action'}"
-                             f" at the end of {shown!r}")
+            missing = "step" if keyword in ("at", "within") else "action"
+            raise InputError(f"question: missing {missing} at the end of {shown!r}")
         what, subject = cls._subject(tokens[:index], shown)
         rest = tokens[after:]
         if keyword in ("at", "within"):
