@@ -105,7 +105,7 @@ def presupposition_fails(spec, plan, form, terms, text) -> bool:
     return all(meets(spec, plan, term) for term in terms)
 
 
-@settings(max_examples=160, deadline=None)
+@settings(max_examples=120, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9), st.sampled_from(PRINCIPLES),
        st.sampled_from(FORMS), st.sampled_from(["plain", "conditional", "derived"]))
 def test_every_form_against_brute_force(seed, under, form, kind):
