@@ -25,6 +25,7 @@ _HOMES = {
     "Plan": "ethasp.planning.plan",
     "Explanation": "ethasp.reasons.reasons",
     "explain": "ethasp.reasons.reasons",
+    "explain_steps": "ethasp.questions.steps",
     "HPlanResult": "ethasp.principles.restriction",
     "plan_with_principles": "ethasp.principles.restriction",
     "SearchResult": "ethasp.planning.search",
@@ -49,6 +50,7 @@ def __dir__() -> list[str]:
 __all__ = [
     "Explanation",
     "explain",
+    "explain_steps",
     "Formula",
     "InputError",
     "Judgement",

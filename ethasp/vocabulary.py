@@ -194,6 +194,17 @@ class UnknownAction(Predicate, name="unknown_action"):
     action: Raw
 
 
+class UnknownVariable(Predicate, name="unknown_variable"):
+    question: Raw
+    variable: Raw
+
+
+class Met(Predicate, name="met"):
+    question: Raw
+    constraint: Raw
+    time: int
+
+
 # -- pictures of plans (model.lp's weights, steps.lp) ------------------------------
 
 class Weight(Predicate, name="weight"):
@@ -238,3 +249,40 @@ class EventChanged(Predicate, name="event_changed"):
 class Happened(Predicate, name="happened"):
     step: int
     event: Raw
+
+
+# -- causal links of a plan (questions/links.lp, removable.lp) ------------------------
+
+class Link(Predicate, name="link"):
+    provider: Raw
+    consumer: Raw
+    variable: Raw
+    value: ConstantStr
+    kind: Raw
+    via: Raw
+
+
+class ServesGoal(Predicate, name="serves_goal"):
+    node: Raw
+
+
+class Chain(Predicate, name="goal_chain"):
+    step: int
+    index: int
+    node: Raw
+
+
+class StepUtility(Predicate, name="step_utility"):
+    step: int
+    utility: int
+
+
+class StepCauses(Predicate, name="step_causes"):
+    step: int
+    variable: Raw
+    value: ConstantStr
+    utility: int
+
+
+class Removable(Predicate, name="removable"):
+    step: int

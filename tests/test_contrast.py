@@ -176,3 +176,198 @@ def test_cli_dialogue_through_standard_input(tmp_path):
     resumed = ethasp("dialogue", str(MODELS / "trolley.lp"), "--load", str(saved),
                      "--save", "-", stdin="history\nquit\n", cwd=tmp_path)
     assert "1. why refrain rather than pull (under utilitarianism)" in resumed.stdout
+
+
+# -- the whole question language ------------------------------------------------------
+
+# p goes back and forth; only go reaches the goal.
+TOGGLE = """variable(p;g). action(on;off;go).
+pre(on,p,false). eff(on,p,true). pre(off,p,true). eff(off,p,false). eff(go,g,true).
+goal(g,true)."""
+
+
+@pytest.fixture(scope="module")
+def toggle():
+    return Model.from_string(TOGGLE)
+
+
+@pytest.mark.parametrize("question,plan,contrast", [
+    # The steps before step 5 can only be filled with loops: the step is part of
+    # the state the loop-free check compares, else it would "prove" that none exists.
+    ("why not go at 5", "go", "on off on off go"),
+    ("why go within 1..4", "go", "on off on off go"),
+    ("why go at 1", "go", "on go"),
+    ("why not p", "go", "go on|on go"),
+    ("why not p at 4", "go", "go on|on go"),   # after step 4 of a shorter plan: its end
+    ("why p at 4", "on go", "go"),
+    ("why go after on", "on go", "go on"),
+    ("why on before go", "on go", "go on"),
+])
+def test_new_forms_give_shortest_contrasts(toggle, question, plan, contrast):
+    answer = ask(toggle, question, plan=Plan.parse(plan), max_horizon=10)
+    assert str(answer.contrast.plan) in contrast.split("|") and answer.status == "found"
+    assert not answer.principle_dropped
+
+
+def test_questions_no_plan_can_meet_are_proven(toggle):
+    answer = ask(toggle, "why not in 0 steps", plan=Plan.parse("go"))
+    assert answer.contrast is None and answer.status == "none"
+    assert "the question allows at most 0 steps" in answer.proof
+    assert [str(c) for c in answer.conflict] == ["at_most(0)"]
+    assert answer.explanation.endswith("There is no alternative plan: no plan can take at "
+                                       "most 0 steps.")
+    # Against the goal: known before any search.
+    answer = ask(toggle, "why g", plan=Plan.parse("go"))
+    assert answer.status == "none" and "contradicts the goal" in answer.proof
+    assert answer.explanation.endswith("no plan can end with the fact not g.")
+
+
+@pytest.mark.parametrize("question,message", [
+    ("why off", "the plan does not use off (the plan already meets its contrast unused(off))"),
+    ("why not go", "the plan already uses go"),
+    ("why go at 1", "step 1 of the plan is on"),
+    ("why go at 5", "the plan has only 2 steps"),
+    ("why not go at 2", "step 2 of the plan already is go"),
+    ("why off within 1..2", "the plan does not use off at any step from 1 to 2"),
+    ("why not on within 1..2", "the plan already uses on at step 1"),
+    ("why g at 1", "g is false after step 1"),
+    ("why not p", "p is already true at the end of the plan"),
+    ("why not p at 7", "p is true at the end of the plan, which has only 2 steps"),
+    ("why not in 2 steps", "the plan has 2 steps, at most 2"),
+    ("why off rather than go", "the plan does not use off; ask about what the plan does"),
+    ("why off after on", "the plan does not use off; ask about what the plan does"),
+    ("why on after go", "the plan uses on before go (the plan already meets its contrast "
+                        "before(on,go))"),
+])
+def test_failed_presuppositions_get_one_line(toggle, question, message):
+    with pytest.raises(InputError) as error:
+        ask(toggle, question, plan=Plan.parse("on go"))
+    text = str(error.value)
+    assert message in text and "\n" not in text and text.startswith(f"question '{question}'")
+
+
+def test_names_that_are_both_an_action_and_a_variable():
+    model = Model.from_string("variable(door;g). action(door;go). eff(door,door,true). "
+                              "eff(go,g,true). goal(g,true).")
+    with pytest.raises(InputError, match="door is both an action and a state variable; say "
+                                         "which: 'why action door' or 'why fact door'"):
+        ask(model, "why door", plan=Plan.parse("door go"))
+    assert [str(c) for c in ask(model, "why action door", plan=Plan.parse("door go"))
+            .constraints] == ["unused(door)"]
+    assert [str(c) for c in ask(model, "why fact door", plan=Plan.parse("door go"))
+            .constraints] == ["ends(door,false)"]
+    with pytest.raises(InputError, match="unknown state variable go"):
+        ask(model, "why fact go", plan=Plan.parse("door go"))
+    with pytest.raises(InputError, match="unknown action jump \\(nor a state variable\\)"):
+        ask(model, "why jump", plan=Plan.parse("door go"))
+    with pytest.raises(InputError, match="a window of steps applies to actions"):
+        ask(model, "why g within 1..2", plan=Plan.parse("door go"))
+
+
+# Regressions: the principle is dropped only on a proof.
+EDGE2 = """variable(p;q). action(s1;s2). eff(s1,p,true). pre(s2,p,true). eff(s2,q,true).
+utility(p,true,-10). utility(q,true,5).
+variable(r). action(w;w2). eff(w,r,true). eff(w2,r,true). goal(r,true)."""
+
+
+def test_the_principle_is_kept_when_the_search_under_it_is_cut_by_the_horizon():
+    model = Model.from_string(EDGE2)
+    answer = ask(model, "why w", plan=Plan.parse("w"), principle="utilitarianism",
+                 max_horizon=3)
+    # Brute force: w2 is a permissible contrast (utility 0 is the best reachable).
+    assert not answer.principle_dropped and answer.dropped_because == ""
+    assert answer.status in ("found", "bounded")
+    if answer.status == "bounded":
+        assert answer.contrast is None and "utilitarianism is kept" in answer.note
+        assert "No alternative plan permissible under the utilitarianism principle was found " \
+               "within the search bounds" in answer.explanation
+        assert answer.to_json()["principle_dropped"] is False
+
+
+SETY = """variable(g;good;x;y;z;t). action(setx;sety;setz;mkgood;finish;on;off).
+pre(setx,y,true). pre(setx,z,true). eff(setx,x,true). pre(sety,z,false). eff(sety,y,true).
+pre(setz,y,false). eff(setz,z,true). eff(mkgood,good,true). eff(finish,g,true).
+pre(on,t,false). eff(on,t,true). pre(off,t,true). eff(off,t,false). goal(g,true).
+utility(good,true,5). utility(x,true,10)."""
+
+
+def test_the_principle_is_kept_when_the_time_limit_cuts_the_search():
+    from ethasp.planning.budget import Budget
+
+    model = Model.from_string(SETY)
+    answer = ask(model, "why not sety", plan=Plan.parse("mkgood finish"),
+                 principle="utilitarianism", budget=Budget(0.0))
+    assert answer.status == "bounded" and not answer.principle_dropped
+    assert answer.contrast is None and "time limit" in answer.proof
+    # Without a limit: a permissible contrast exists (sety, finish, mkgood).
+    answer = ask(model, "why not sety", plan=Plan.parse("mkgood finish"),
+                 principle="utilitarianism")
+    assert answer.status == "found" and not answer.principle_dropped
+    assert len(answer.contrast.plan) == 3 and answer.contrast.judgement.permissible
+
+
+# Exogenous events: the alarm goes off at step 3 if the door is open then.
+ALARM = """variable(door;alarm;g). action(finish;close).
+eff(finish,g,true). eff(finish,door,true). pre(close,door,true). eff(close,door,false).
+event(ring). event_at(ring,3). event_effect(ring,k,alarm,true).
+event_condition(ring,k,door,true). goal(g,true)."""
+
+
+def test_states_after_steps_with_events():
+    model = Model.from_string(ALARM)
+    # After step 2 of a plan of 1 step: its final state, after the event of step 3.
+    answer = ask(model, "why alarm at 2", plan=Plan.parse("finish"))
+    assert [str(c) for c in answer.constraints] == ["fact_at(alarm,false,2)"]
+    contrast = answer.contrast.plan
+    assert len(contrast) == 2           # a plan of 1 step ends after the event: alarm on
+    with pytest.raises(InputError, match="alarm is false at the end of the plan"):
+        ask(model, "why alarm", plan=Plan.parse("finish close"))
+    answer = ask(model, "why alarm", plan=Plan.parse("finish"))
+    assert str(answer.contrast.plan) == "finish close"
+
+
+def test_dialogue_with_a_question_no_plan_can_meet(trolley, monkeypatch):
+    from ethasp.questions import contrast as contrast_module
+
+    dialogue = Dialogue.start(trolley, "do-no-harm")
+    dialogue.ask("why refrain rather than pull")
+    assert dialogue.unmeetable is None
+    blocked = dialogue.ask("why pull rather than refrain")
+    assert dialogue.unmeetable is blocked and blocked.unmeetable
+    # Later questions are answered at once: no plan meets what is imposed.
+    monkeypatch.setattr(contrast_module, "contrast_plan",
+                        lambda *a, **k: (_ for _ in ()).throw(AssertionError("searched")))
+    again = dialogue.ask("why not pull at 2")
+    assert again.status == "none" and again.conflict == blocked.conflict
+    assert "imposed by the questions before" in again.proof
+    monkeypatch.undo()
+    dialogue.undo()
+    dialogue.undo()
+    assert dialogue.unmeetable is None and str(dialogue.current_plan) == "pull"
+
+
+def test_dialogue_principles_that_cannot_restrict_are_refused(trolley):
+    dialogue = Dialogue.start(trolley, "do-no-harm")
+    with pytest.raises(InputError, match="principle kantian-humanity cannot restrict plan "
+                                         "search .*: .*deontology, do-no-harm"):
+        dialogue.switch_principle("kantian-humanity")
+    for group in ("all", "hera", "paper"):
+        with pytest.raises(InputError, match=f"principle '{group}' names a group"):
+            dialogue.switch_principle(group)
+    assert dialogue.under == "do-no-harm"
+    with pytest.raises(InputError, match="cannot restrict plan search"):
+        Dialogue.start(trolley, "double-effect")
+    with pytest.raises(InputError, match="names a group"):
+        ask(trolley, "why refrain", principle="all")
+    with pytest.raises(InputError, match="cannot restrict plan search"):
+        ask(trolley, "why refrain", plan=Plan.parse("refrain"), under="kantian-humanity")
+
+
+def test_dialogue_starts_from_the_models_own_plan():
+    model = Model.load([MODELS / "hera" / "robot-and-frank.yaml"])
+    dialogue = Dialogue.start(model, "deontology")
+    assert str(dialogue.current_plan) == "lie_to_frank"
+    explained = dialogue.explain_step(1)
+    assert "Lying to Frank is inherently bad (utility -1)" in explained.step_text(1)
+    with pytest.raises(InputError, match="why step 2: the current plan has steps 1 to 1"):
+        dialogue.explain_step(2)

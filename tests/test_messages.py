@@ -80,7 +80,7 @@ def test_contrast_messages_speak_of_the_question():
     assert impossible.status == "none" and not impossible.principle_dropped
     assert impossible.proof.startswith("no plan meets the question: ")
     assert impossible.explanation.endswith(
-        "There is no alternative plan: no plan meets the question's constraints used(x).")
+        "There is no alternative plan: no plan can include action x.")
 
 
 def test_utilitarian_judgement_messages():

@@ -45,7 +45,11 @@ def test_contrast_plans_meet_the_constraints(seed, under, kind):
         answer = ask(model, text, plan=Plan.parse(" ".join(plan)), principle="deontology",
                      under=under, max_horizon=16)
     except InputError as error:
-        # Only when the plan already meets the contrast.
+        # Only when the plan already meets the contrast, or (questions about two
+        # actions) does not use the action asked about.
+        if kind in ("rather-than", "before") and a not in plan:
+            assert f"the plan does not use {a}" in str(error)
+            return
         assert "already meets" in str(error)
         assert meets(plan, kind, a, b)
         return

@@ -194,7 +194,8 @@ def test_errors_have_the_command_line_messages(client, trolley):
     assert reply.status_code == 400
     assert reply.json == {"error": message_of(lambda: Question.parse("how pull"))}
     job = ask(client, key, "why not jump")
-    assert job["state"] == "failed" and job["error"] == "question 'why not jump': unknown action jump"
+    assert job["state"] == "failed" and job["error"] == ("question 'why not jump': unknown action jump "
+                                                 "(nor a state variable)")
     job = ask(client, key, "why not refrain")
     assert job["state"] == "failed" and "already meets its contrast" in job["error"]
     reply = client.post(f"/api/sessions/{key}/principle", json={"principle": "kindness"})
@@ -428,3 +429,75 @@ def test_a_pddl_model_is_shown_and_asked_in_pddl_form():
     answer = state(client, key)["steps"][0]["answer"]
     assert answer["contrast"]["shown"] == [{"term": "pull", "shown": "(pull)"}]
     assert b"(pull)" in client.get(f"/api/sessions/{key}/steps/1.svg").data
+
+
+# -- the whole question language on the page ---------------------------------------------
+
+def test_model_offers_the_principles_that_can_restrict(client):
+    data = client.get("/api/model").json
+    assert "kantian-humanity" in data["principles"]
+    assert "kantian-humanity" not in data["restricting"]
+    assert {"deontology", "do-no-harm", "utilitarianism"} <= set(data["restricting"])
+    key = start(client)
+    reply = client.post(f"/api/sessions/{key}/principle", json={"principle": "kantian-humanity"})
+    assert reply.status_code == 400 and "cannot restrict plan search" in reply.json["error"]
+    reply = client.post(f"/api/sessions/{key}/principle", json={"principle": "all"})
+    assert reply.status_code == 400 and "names a group" in reply.json["error"]
+    reply = client.post("/api/sessions", json={"principle": "double-effect"})
+    assert reply.status_code == 400 and "cannot restrict plan search" in reply.json["error"]
+
+
+@pytest.mark.parametrize("plan,question,constraints", [
+    ("refrain pull", "why pull at 2", ["not_at(pull,2)"]),
+    ("refrain pull", "why refrain within 1..1", ["not_within(refrain,1,1)"]),
+    ("refrain pull", "why pull after refrain", ["before(pull,refrain)"]),
+    ("pull", "why one_will_die", ["ends(one_will_die,false)"]),
+    ("pull", "why not five_will_die at 1", ["fact_at(five_will_die,true,1)"]),
+    ("refrain pull", "why not in 1 step", ["at_most(1)"]),
+])
+def test_the_new_forms_on_the_page(client, plan, question, constraints):
+    key = start(client, "deontology", plan)
+    job = ask(client, key, question)
+    assert job["state"] == "done", job
+    step = state(client, key)["steps"][0]
+    assert step["own_constraints"] == constraints and step["answer"]["contrast"] is not None
+
+
+def test_why_step_and_the_plan_step_by_step(client):
+    key = start(client, "deontology", "refrain pull")
+    data = client.get(f"/api/sessions/{key}/explain?step=2").json
+    assert data["step"] == 2 and data["step_text"].startswith("Step 2, pull the lever, brings "
+                                                              "about the goal (the decision).")
+    assert [s["removable"] for s in data["steps"]] == [True, True]
+    assert data["lines"][0].startswith("Step 1, refrain from action, is not needed")
+    assert client.get(f"/api/sessions/{key}/explain?step=3").status_code == 400
+    assert client.get(f"/api/sessions/{key}/explain?step=x").status_code == 400
+    picture = client.get(f"/api/sessions/{key}/explain.svg")
+    assert picture.mimetype == "image/svg+xml" and b"arrowhead" in picture.data
+    # "why step T" typed into the question box is no contrastive question.
+    reply = client.post(f"/api/sessions/{key}/ask", json={"question": "why step 1"})
+    assert reply.status_code == 400 and "explain?step=1" in reply.json["error"]
+
+
+def test_what_the_current_plan_is_and_a_question_no_plan_can_meet(client):
+    key = start(client)                                   # do-no-harm: refrain
+    current = state(client, key)["current"]
+    assert current["from_question"] == 0 and current["made_without_principle"] is False
+    ask(client, key, "why refrain rather than pull")       # the principle is dropped
+    data = state(client, key)
+    assert data["current"]["from_question"] == 1
+    assert data["current"]["made_without_principle"] is True and not data["unmeetable"]
+    ask(client, key, "why pull rather than refrain")       # no plan meets both
+    data = state(client, key)
+    assert data["unmeetable"] and data["current"]["from_question"] == 1
+    assert data["current"]["plan"] == ["pull"]
+    # The page's button drops it (the undo move).
+    assert finish(client, client.post(f"/api/sessions/{key}/undo", json={}))["state"] == "done"
+    assert not state(client, key)["unmeetable"]
+
+
+def test_a_situation_starts_from_its_own_plan():
+    files = [str(MODELS / "hera" / "robot-and-frank.yaml")]
+    client = create_app(Workspace(Model.load(files), files, "deontology")).test_client()
+    key = start(client)
+    assert state(client, key)["current"]["plan"] == ["lie_to_frank"]

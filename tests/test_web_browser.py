@@ -277,7 +277,8 @@ def test_conductor_example_in_the_browser(server, browser):
     box.clear()
     box.send_keys("why not jump\n")
     wait_for(driver, lambda d: idle(d) and text(d, "error"), "the error")
-    assert text(driver, "error") == "error: question 'why not jump': unknown action jump"
+    assert text(driver, "error") == ("error: question 'why not jump': unknown action jump "
+                                     "(nor a state variable)")
     error = driver.find_element(By.ID, "error")
     assert driver.execute_script("return arguments[0].closest('#ask-panel') !== null", error)
     assert in_view(driver, error)
@@ -430,5 +431,42 @@ def test_the_layout_of_a_long_pddl_task(care_server, browser):
     note = driver.find_element(By.ID, "note")
     assert driver.execute_script("return arguments[0].closest('#history-panel') !== null", note)
     assert in_view(driver, note)
+def test_steps_and_a_question_no_plan_can_meet_in_the_browser(server, browser):
+    driver = browser
+    driver.get(server.url)
+    driver.execute_script("localStorage.clear()")
+    driver.refresh()
+    wait_for(driver, lambda d: idle(d) and "the first plan" in text(d, "current-summary"),
+             "a new dialogue")
+    # The plan step by step, and "why step 1" typed.
+    click(driver, driver.find_element(By.ID, "explain-plan"))
+    wait_for(driver, lambda d: d.find_element(By.ID, "explain-panel").is_displayed()
+             and "Step 1, refrain from action" in text(d, "explain-lines"), "the steps")
+    assert "Every step is needed" in text(driver, "explain-removable")
+    wait_for(driver, lambda d: d.find_elements(By.CSS_SELECTOR, "#explain-picture svg"),
+             "the picture with arrows")
+    box = driver.find_element(By.ID, "question")
+    box.clear()
+    box.send_keys("why step 1\n")
+    wait_for(driver, lambda d: text(d, "explain-step").startswith("Step 1, refrain from action"),
+             "why step 1")
+    # The principle dropped on a proof: the summary says how the plan was made.
+    box.clear()
+    box.send_keys("why refrain rather than pull\n")
+    wait_for(driver, lambda d: idle(d) and CONDUCTOR in text(d, "answer-text"), "the answer")
+    assert "made without do-no-harm" in text(driver, "current-summary")
+    assert not driver.find_element(By.ID, "explain-panel").is_displayed()   # a new plan
+    # A question no plan can meet: say so, and offer to drop it.
+    box = driver.find_element(By.ID, "question")
+    box.clear()
+    box.send_keys("why pull rather than refrain\n")
+    wait_for(driver, lambda d: idle(d) and d.find_elements(By.ID, "drop-question"),
+             "the conflict and its button")
+    assert "No contrast plan (proven)" in text(driver, "answer-notes")
+    assert "question 2 has no contrast plan" in text(driver, "current-summary")
+    click(driver, driver.find_element(By.ID, "drop-question"))
+    wait_for(driver, lambda d: idle(d) and "dropped: why pull rather than refrain" in
+             text(d, "note"), "the question dropped")
+    assert len(driver.find_elements(By.CSS_SELECTOR, "#history li")) == 1
     severe = [entry["message"] for entry in driver.get_log("browser") if entry["level"] == "SEVERE"]
     assert severe == [], severe

@@ -442,6 +442,40 @@ def command_ask(args: argparse.Namespace) -> int:
     return 0
 
 
+def command_explain(args: argparse.Namespace) -> int:
+    """ethasp explain: a plan step by step (causal links, removable steps, moral side)."""
+    from ethasp.questions.steps import explain_steps
+
+    model = load_model(args)
+    if args.plan or args.plan_file:
+        plan = _given_plan(args)
+    elif args.principle is None and model.own_plan() is not None:
+        plan = model.own_plan()
+    elif args.principle is not None:
+        from ethasp.principles.restriction import plan_with_principles
+
+        result = plan_with_principles(model, [args.principle], _max_horizon(args),
+                                      budget=budget(args), satisficing=args.satisficing)
+        if result.plan is None:
+            raise InputError(f"no plan to explain: {result.proof}")
+        plan = result.plan
+    else:
+        result = find_plan(model, _max_horizon(args), budget=budget(args),
+                           satisficing=args.satisficing)
+        if result.plan is None:
+            raise InputError(f"no plan to explain: {result.proof}")
+        plan = result.plan
+    explanation = explain_steps(model, plan)
+    naming = model.naming
+    removable = [str(step.step) for step in explanation.steps if step.removable]
+    lines = [f"plan of {steps(len(plan))}: {naming.actions(plan) or '(empty)'}"]
+    lines += explanation.lines()
+    lines.append(f"removable steps: {', '.join(removable) or 'none'}")
+    _draw(args, model, lambda pictures: pictures.explained(explanation))
+    emit(args, explanation.to_json(naming), "\n".join(lines))
+    return 0
+
+
 def _writable(path: Path, what: str) -> None:
     """Refuse a file that cannot be written before any work is done."""
     try:
@@ -482,7 +516,7 @@ def command_dialogue(args: argparse.Namespace) -> int:
     if args.load:
         dialogue = Dialogue.load(args.load, model, **options)
     else:
-        plan = _given_plan(args) if (args.plan or args.plan_file) else None
+        plan = _given_plan(args) if (args.plan or args.plan_file) else model.own_plan()
         dialogue = Dialogue.start(model, args.principle, plan, files, **options)
     dialogue.model_files = files
     dialogue.on_progress = progress
@@ -711,10 +745,19 @@ def build_parser() -> argparse.ArgumentParser:
     contrast = commands.add_parser(
         "ask", help="answer a contrastive question 'why A rather than B?' about a plan",
         description="Answer contrastive questions about a plan: the plan of --plan, or else "
-                    "the plan that 'ethasp plan --principle P' makes. The question's "
-                    "constraints and the principle Q (--under, default P) restrict the model; "
-                    "its plan (the contrast) is judged and explained beside the original. "
-                    "Questions: 'why A', 'why not A', 'why A rather than B', 'why A before B'.")
+                    "the plan the model comes with, or else the plan that 'ethasp plan "
+                    "--principle P' makes. The question's constraints and the principle Q "
+                    "(--under, default P; one that can restrict plan search) restrict the "
+                    "model; its plan (the contrast) is judged and explained beside the "
+                    "original. The principle is dropped only when no plan meeting the "
+                    "question is proven permissible under Q; a search cut short answers "
+                    "bounded. Questions (A, B actions, F a state variable, T, T1, T2, N whole "
+                    "numbers, steps from 1): 'why A', 'why not A', 'why A rather than B', "
+                    "'why A before B', 'why A after B', 'why A at T', 'why not A at T', "
+                    "'why A within T1..T2', 'why not A within T1..T2', 'why F', 'why not F' "
+                    "(the final state), 'why F at T', 'why not F at T' (the state after step "
+                    "T), 'why not in N steps'; 'why action X' / 'why fact X' for a name that "
+                    "is both. See docs/questions.md.")
     _add_model_arguments(contrast)
     contrast.add_argument("--question", action="append", required=True, metavar='"why ..."',
                           help="the question (repeatable: all are imposed together)")
@@ -731,18 +774,42 @@ def build_parser() -> argparse.ArgumentParser:
     _add_svg_argument(contrast, "the contrast plan aligned with the plan asked about")
     contrast.set_defaults(run=command_ask)
 
+    explaining = commands.add_parser(
+        "explain", help="explain a plan step by step: causal links, removable steps",
+        description="Explain a plan step by step: which later steps and goal facts each step "
+                    "serves (causal links: step i links V=B to step j when step i sets V to "
+                    "B, step j's precondition needs it and no step or event between them "
+                    "sets V), which steps the plan does not need (removable: the plan "
+                    "without them is still a plan), and each step's moral side (utility, bad "
+                    "under deontology, the valued facts it causes). The plan is --plan, or "
+                    "else the plan the model comes with, or else the plan 'ethasp plan "
+                    "[--principle P]' makes. See docs/questions.md.")
+    _add_model_arguments(explaining)
+    _add_plan_arguments(explaining, required=False, what="the plan explained")
+    explaining.add_argument("--principle", default=None, metavar="P",
+                            help="without --plan: explain the plan made under the principle "
+                                 "P (default: the model's own plan, else a shortest plan)")
+    _add_search_arguments(explaining, satisficing=True)
+    _add_satisficing_argument(explaining, "the plan explained, when it is searched")
+    _add_svg_argument(explaining, "the plan with its causal links as arrows")
+    explaining.set_defaults(run=command_explain)
+
     talk = commands.add_parser(
         "dialogue", help="explore contrastive questions interactively",
         description="An interactive dialogue (the paper's iterative process): ask questions "
-                    "about the current plan; their constraints accumulate; undo, switch "
-                    "principle, save and load. Type help at the prompt. The dialogue is "
-                    "saved when it ends (also on Ctrl-C or end of input).")
+                    "about the current plan (the forms of 'ethasp ask'); their constraints "
+                    "accumulate; 'why step T' explains a step of the current plan; undo, "
+                    "drop a question no plan can meet, switch principle, save and load. Type "
+                    "help at the prompt. The dialogue is saved when it ends (also on Ctrl-C "
+                    "or end of input).")
     _add_model_arguments(talk, stdin=False)   # standard input carries the commands
     _hide(talk, "--json")                   # refused with a line that says why
     _add_plan_arguments(talk, required=False, what="the first plan")
     talk.add_argument("--principle", default="deontology", metavar="P",
-                      help="the principle the first plan is made and judged under "
-                           "(default deontology)")
+                      help="the principle the first plan is made (without --plan and a "
+                           "plan of the model's own) and judged under, and the first "
+                           "principle contrast plans must satisfy (default deontology; one "
+                           "that can restrict plan search)")
     talk.add_argument("--load", metavar="FILE", help="resume a saved dialogue")
     talk.add_argument("--save", default="ethasp-dialogue.json", metavar="FILE",
                       help="where the dialogue is saved when it ends "

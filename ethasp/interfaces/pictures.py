@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ethasp.errors import InputError
-from ethasp.interfaces.svg import contrast_svg, plan_svg
+from ethasp.interfaces.svg import Arrow, contrast_svg, plan_svg
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
 from ethasp.planning.timeline import Timeline, Valuation, timeline
@@ -19,6 +19,7 @@ from ethasp.planning.timeline import Timeline, Valuation, timeline
 if TYPE_CHECKING:
     from ethasp.principles.judgement import Judgement, JudgementReport
     from ethasp.questions.contrast import Answer, Side
+    from ethasp.questions.steps import StepsExplanation
 
 # Timelines kept per plan (a server draws the same plans again and again).
 CACHED = 128
@@ -83,6 +84,26 @@ class Pictures:
             if judgement.explanation is not None and judgement.explanation.text:
                 notes.append(judgement.explanation.text)
         return self.plan(report.plan, title, notes)
+
+    def explained(self, explanation: "StepsExplanation", title: str = "",
+                  words: bool = True) -> str:
+        """A plan with its causal links as arrows from step to step (to the
+        final state for the goal), under its explanation in words."""
+        naming = self.model.naming
+        arrows = []
+        for link in explanation.links:
+            target = link.consumer.step if link.consumer.kind != "goal" else None
+            label = naming.fact(link.literal())
+            if link.consumer.kind == "goal":
+                label += " (goal)"
+            elif link.consumer.kind == "event":
+                label += f" (event {link.consumer.event})"
+            arrows.append(Arrow(link.provider.step, target, label,
+                                link.provider.kind == "event"))
+        notes = explanation.lines() if words else []
+        return plan_svg(self.timeline(explanation.plan), naming,
+                        title or f"plan: {self._actions(explanation.plan)}, step by step",
+                        notes, list(dict.fromkeys(arrows)))
 
     def _side_title(self, role: str, side: "Side") -> str:
         return f"{role}: {self._actions(side.plan)} \u2014 {side.principle}: " \

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import textwrap
 import threading
 from pathlib import Path
 from typing import Callable, TextIO
@@ -12,17 +13,27 @@ from ethasp.questions.dialogue import Dialogue
 from ethasp.errors import InputError
 from ethasp.interfaces.progress import ProgressLine
 from ethasp.interfaces.shortening import shorten_literal
+from ethasp.principles.restriction import restricting_principles
+from ethasp.questions.question import step_question
 
 HELP = """\
 Commands:
-  why A | why not A | why A rather than B | why A before B
-                     ask about the current plan; the question's constraints
-                     stay imposed on later contrast plans
-  principle NAME     the principle later contrast plans must satisfy
-                     (deontology, utilitarianism, do-no-harm)
+  why A | why not A | why A rather than B | why A before B | why A after B
+  why A at T | why not A at T | why A within T1..T2 | why not A within T1..T2
+  why F | why not F | why F at T | why not F at T | why not in N steps
+                     ask about the current plan (A, B actions, F a state
+                     variable, T, N step numbers; 'why action X' or 'why
+                     fact X' for a name that is both); the question's
+                     constraints stay imposed on later contrast plans
+  why step T         how step T of the current plan serves later steps
+                     and the goal (causal links), and whether it is needed
+  principle NAME     the principle later contrast plans must satisfy, one
+                     that can restrict plan search:
+{principles}
   plan               show the current plan and its explanation
   history            the questions asked so far, with their principles
   undo               take back the last question
+  drop               take back the last question when no plan can meet it
   save FILE          save the whole dialogue to FILE (JSON)
   load FILE          load a dialogue saved before
   help               this text
@@ -43,7 +54,10 @@ def answer_text(answer: Answer, naming) -> str:
         lines.append(f"  contrast plan: none ({answer.status}: {answer.proof})")
     if answer.principle_dropped:
         lines.append(f"  the principle {answer.under} was dropped for the contrast: "
-                     f"{answer.dropped_because}")
+                     f"{answer.dropped_because}; the contrast plan was made without it and "
+                     f"is judged under it")
+    if answer.note:
+        lines.append(f"  note: {answer.note}")
     constraints = ", ".join(naming.constraint(c.term) for c in answer.constraints)
     lines.append(f"  constraints: {constraints}")
     if answer.conflict:
@@ -60,6 +74,14 @@ def answer_text(answer: Answer, naming) -> str:
 def _literals(literals: list[str]) -> str:
     """Literals of reasons, long ones shortened (``--json`` has them whole)."""
     return ", ".join(shorten_literal(literal) for literal in literals) or "none"
+
+
+def unmeetable_text(answer: Answer, naming) -> str:
+    """What the dialogue says when no plan can meet the questions imposed."""
+    conflict = ", ".join(naming.constraint(c.term) for c in answer.conflict)
+    return ("No plan can meet the questions asked so far together (conflicting constraints: "
+            f"{conflict}); they stay imposed, so every later question would have no contrast "
+            "plan either. Type drop to take back the last question.")
 
 
 def _verdict(side) -> str:
@@ -105,10 +127,18 @@ class Prompt:
         if command in ("quit", "exit"):
             return False
         if command == "help":
-            self.say(HELP)
+            self.say(HELP.format(principles=textwrap.fill(
+                ", ".join(restricting_principles()), 74, initial_indent=" " * 21,
+                subsequent_indent=" " * 21, break_on_hyphens=False)))
+        elif command == "why" and step_question(line) is not None:
+            step = step_question(line)
+            explanation = self.dialogue.explain_step(step)
+            self.say(explanation.step_text(step, self.dialogue.model))
         elif command == "why":
             answer = self.dialogue.ask(line.strip())
             self.say(answer_text(answer, self.dialogue.model.naming))
+            if self.dialogue.unmeetable is not None:
+                self.say(unmeetable_text(answer, self.dialogue.model.naming))
         elif command == "principle":
             if not rest:
                 self.say(f"next contrasts must satisfy: {self.dialogue.under}")
@@ -128,6 +158,13 @@ class Prompt:
         elif command == "undo":
             step = self.dialogue.undo()
             self.say(f"took back: {step.question}")
+            self.show_current()
+        elif command == "drop":
+            if self.dialogue.unmeetable is None:
+                raise InputError("drop: the last question does not conflict (no question to "
+                                 "drop); undo takes back any last question")
+            step = self.dialogue.undo()
+            self.say(f"dropped: {step.question} (its constraints are no longer imposed)")
             self.show_current()
         elif command == "save":
             if not rest:

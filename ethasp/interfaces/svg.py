@@ -285,16 +285,76 @@ def _width(columns: int) -> float:
     return _column_x(columns) - GAP
 
 
+@dataclass(frozen=True)
+class Arrow:
+    """A causal link drawn as an arrow above a timeline: from the column of
+    step ``source`` to that of step ``target`` (None: the final state),
+    labelled with the fact it carries; ``event`` when an event of the source
+    step set the fact."""
+
+    source: int
+    target: int | None
+    label: str
+    event: bool = False
+
+
+ARROW = "#2563eb"
+ARROW_LEVEL = 18      # height between stacked arrows
+
+
+def _arrow_levels(arrows: list[Arrow], end_index: int) -> list[tuple[Arrow, int, int, int]]:
+    """Each arrow with its columns and a level, so that arrows over the same
+    columns are stacked (a greedy interval colouring)."""
+    placed: list[tuple[Arrow, int, int, int]] = []
+    spans = sorted(((arrow, arrow.source, end_index if arrow.target is None else arrow.target)
+                    for arrow in arrows), key=lambda item: (item[2] - item[1], item[1]))
+    for arrow, start, end in spans:
+        level = 0
+        while any(level == other and not (end <= a or start >= b)
+                  for _, a, b, other in placed):
+            level += 1
+        placed.append((arrow, start, end, level))
+    return placed
+
+
+def _draw_arrows(canvas: _Canvas, arrows: list[Arrow], end_index: int, bottom: float) -> None:
+    """Arrows as arcs whose feet stand on ``bottom`` (above the step numbers)."""
+    canvas.add(f'<defs><marker id="arrowhead" markerWidth="8" markerHeight="8" refX="7" '
+               f'refY="4" orient="auto"><path d="M0,0 L8,4 L0,8 z" fill="{ARROW}"/></marker>'
+               "</defs>")
+    for arrow, start, end, level in _arrow_levels(arrows, end_index):
+        x1 = _column_x(start) + COLUMN / 2 + 12
+        x2 = _column_x(end) + COLUMN / 2 - 12
+        apex = bottom - 16 - level * ARROW_LEVEL
+        dash = ' stroke-dasharray="5 3"' if arrow.event else ""
+        canvas.add(f"<g><title>{escape(arrow.label)}</title>"
+                   f'<path d="M{x1:.0f},{bottom:.0f} C{x1:.0f},{apex:.0f} {x2:.0f},{apex:.0f} '
+                   f'{x2:.0f},{bottom:.0f}" fill="none" stroke="{ARROW}" stroke-width="1.6"'
+                   f'{dash} marker-end="url(#arrowhead)"/>')
+        middle = (x1 + x2) / 2
+        room = max(x2 - x1 - 8, 60)
+        top = bottom - 0.75 * (bottom - apex)      # the highest point of the curve
+        canvas.add(_text(middle, top - 3, _fit(arrow.label, 10, room), 10, ARROW, "bold",
+                         "middle"))
+        canvas.add("</g>")
+
+
 def plan_svg(timeline: Timeline, naming: Naming = Naming(), title: str = "",
-             notes: list | None = None) -> str:
+             notes: list | None = None, arrows: list[Arrow] | None = None) -> str:
     """A plan as a timeline; ``title`` and ``notes`` (e.g. verdicts) above it
-    (a note ``(text, True)`` is emphasised)."""
+    (a note ``(text, True)`` is emphasised); ``arrows`` (causal links) drawn
+    as arcs above the steps."""
     canvas = _Canvas([])
     end_index = len(timeline.columns) + 1
     width = max(_width(end_index + 1), 560)
     title = title or f"plan: {naming.actions(timeline.plan) or '(empty)'}"
     y = _heading(canvas, MARGIN - 6, [title], width, 15, weight="bold")
     y = _heading(canvas, y, notes or [], width, 12, MUTED)
+    if arrows:
+        levels = max(level for *_, level in _arrow_levels(arrows, end_index)) + 1
+        bottom = y + 24 + levels * ARROW_LEVEL
+        _draw_arrows(canvas, arrows, end_index, bottom)
+        y = bottom - 12
     lowest = _draw_lane(canvas, _Lane(timeline, "plan", y + 22), naming, end_index)
     _legend(canvas, lowest + 4)
     canvas.grow(width, 0)

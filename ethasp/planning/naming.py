@@ -156,6 +156,10 @@ class PddlNaming(Naming):
             return str(term)
         parts = []
         for argument in term.arguments:
+            if argument.type == clingo.SymbolType.Function and argument.name in ("true", "false") \
+                    and not argument.arguments:
+                parts.append(argument.name)
+                continue
             if argument.type == clingo.SymbolType.Function and argument.name:
                 try:
                     parts.append(term_to_pddl(argument))

@@ -323,6 +323,12 @@ class Planner:
         return self._atoms[key]
 
     @_locked
+    def defines(self, name: str, argument: clingo.Symbol) -> bool:
+        """Is ``name(argument)`` an atom of the model's base grounding (e.g. is
+        a term an ``action/1`` or a ``variable/1`` of the model)?"""
+        return self.ctl.symbolic_atoms[clingo.Function(name, [argument])] is not None
+
+    @_locked
     def bound(self) -> Answer:
         """``upper_bound/1`` and ``best_fact/2`` of planning/relaxed.lp: no reachable
         state is worth more than the upper bound (a small program of its own:
@@ -607,6 +613,26 @@ class Planner:
             self._questions[name] = own
             self._question_ids[key] = name
         return list(self._questions[self._question_ids[key]])
+
+    @_locked
+    def impossible(self, constraints: Iterable[Constraint]) -> list[tuple[Constraint, str]]:
+        """The question constraints that no plan can meet, known from the grounding
+        (``questions/questions.lp``): each with why (``goal``: it contradicts the
+        goal; ``relaxed``: relaxed reachability excludes what it needs).  Their
+        rules read the question's input atom and facts of the model and of
+        relaxed reachability only, so an atom is grounded exactly when its
+        rule holds for the question (the grounder drops a rule with a false
+        body)."""
+        found = []
+        for constraint in constraints:
+            for name, why in (("question_against_goal", "goal"),
+                              ("question_unreachable", "relaxed")):
+                atom = self.ctl.symbolic_atoms[clingo.Function(
+                    name, [constraint.question, constraint.term])]
+                if atom is not None:
+                    found.append((constraint, why))
+                    break
+        return found
 
     @_locked
     def avoid(self, state: Iterable[tuple[clingo.Symbol, bool]]) -> int:

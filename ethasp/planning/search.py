@@ -341,11 +341,14 @@ def _checked(planner: Planner, actions, engine: str) -> Plan:
 def shortest(planner: Planner, setting: Setting, budget: Budget,
              max_horizon: int = DEFAULT_MAX_HORIZON, start: int = 0, start_proof: str = "",
              all_plans: bool = False, task: str = "plan search",
-             threads: bool = True) -> SearchResult:
+             longest: int | None = None, threads: bool = True) -> SearchResult:
     """A shortest plan under a setting, searching horizons ``start`` to ``max_horizon``.
 
     ``start`` must be a proven lower bound on the length of every plan under
     the setting (``start_proof`` says why); horizons below it are not solved.
+    ``longest``, if given, is a proven upper bound (a question constraint
+    allows no longer plan): once the horizons up to it are refuted, there is
+    no plan.
     Exact layers run beside the solver (see :class:`_Exact`): their lower
     bounds skip horizons, and for plain plan search (no restriction, no
     question constraint, one plan) a shortest plan read off them, checked by
@@ -361,6 +364,11 @@ def shortest(planner: Planner, setting: Setting, budget: Budget,
     if setting.goal and planner.is_fact("unreachable_goal"):
         return SearchResult(NONE, horizon=0,
                             proof="the goal is unreachable even ignoring delete effects")
+    impossible = _impossible(planner, setting)
+    if impossible:
+        return SearchResult(NONE, horizon=0, proof=impossible)
+    if longest is not None and start > longest:
+        return SearchResult(NONE, horizon=start, proof=_too_long(longest, start_proof))
     if start > max_horizon:
         return SearchResult(BOUNDED, horizon=max_horizon,
                             proof=f"every plan has more than {steps(max_horizon)} ({start_proof}), "
@@ -372,15 +380,39 @@ def shortest(planner: Planner, setting: Setting, budget: Budget,
         setting = replace(setting, canonical=True)
     try:
         return _shortest(planner, setting, budget, max_horizon, start, start_proof, all_plans,
-                         task, exact)
+                         task, exact, longest)
     finally:
         exact.stop()
         planner.threads(1)      # later searches on this grounding: one answer each time
 
 
+def _impossible(planner: Planner, setting: Setting) -> str:
+    """Why no plan meets the setting's question constraints, if the grounding
+    knows it before any search (a constraint against the goal, or one that
+    needs what relaxed reachability excludes); else the empty text."""
+    if not setting.goal or not setting.constraints:
+        return ""
+    found = planner.impossible(sorted(setting.constraints, key=str))
+    if not found:
+        return ""
+    constraint, why = found[0]
+    if why == "goal":
+        return f"the question's constraint {constraint} contradicts the goal"
+    return (f"the question's constraint {constraint} needs an action or a fact that is "
+            "unreachable even ignoring delete effects")
+
+
+def _too_long(longest: int, why: str) -> str:
+    """Why no plan exists when every plan has more steps than the question allows."""
+    return (f"every plan has more than {steps(longest)} ({why}), and the question allows at "
+            f"most {steps(longest)}")
+
+
 def _shortest(planner: Planner, setting: Setting, budget: Budget, max_horizon: int,
               start: int, start_proof: str, all_plans: bool, task: str,
-              exact: _Exact) -> SearchResult:
+              exact: _Exact, longest: int | None = None) -> SearchResult:
+    if longest is not None:
+        max_horizon = min(max_horizon, longest)
     checkpoints = _checkpoints(max_horizon)
     bound, why = start, start_proof          # every plan has at least `bound` steps
     horizon = start
@@ -404,6 +436,8 @@ def _shortest(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
         if bound > horizon:
             horizon = bound
         if horizon > max_horizon:
+            if longest is not None and max_horizon >= longest:
+                return SearchResult(NONE, horizon=max_horizon, proof=_too_long(longest, why))
             return SearchResult(BOUNDED, horizon=max_horizon,
                                 proof=f"every plan has more than {steps(max_horizon)} ({why}), "
                                       "the maximal horizon")
@@ -437,6 +471,10 @@ def _shortest(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
                                         proof=f"{budget.why_stopped()} at horizon {horizon}")
             elif not exists:
                 return SearchResult(NONE, horizon=horizon, proof=_searched(horizon))
+        if longest is not None and horizon >= longest:
+            return SearchResult(NONE, horizon=horizon, proof=(
+                f"no plan up to horizon {horizon}, and the question allows at most "
+                f"{steps(longest)}"))
         if horizon >= max_horizon:
             if exact.settle(max_horizon):
                 return SearchResult(NONE, horizon=horizon, proof=_settled(max_horizon))
@@ -447,9 +485,10 @@ def _shortest(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
 
 def any_plan(planner: Planner, setting: Setting, budget: Budget,
              max_horizon: int = DEFAULT_SATISFICING_HORIZON, start: int = 0,
-             start_proof: str = "", task: str = "plan search") -> SearchResult:
+             start_proof: str = "", task: str = "plan search",
+             longest: int | None = None) -> SearchResult:
     """Some plan under a setting, found fast and not proven shortest
-    (``optimal`` False).
+    (``optimal`` False); ``longest`` as in :func:`shortest`.
 
     The solver gets each horizon for a slice of time only: a horizon it
     refutes in time is a lower bound (as in :func:`shortest`); one it cannot
@@ -470,19 +509,29 @@ def any_plan(planner: Planner, setting: Setting, budget: Budget,
     if setting.goal and planner.is_fact("unreachable_goal"):
         return SearchResult(NONE, horizon=0, optimal=False,
                             proof="the goal is unreachable even ignoring delete effects")
+    impossible = _impossible(planner, setting)
+    if impossible:
+        return SearchResult(NONE, horizon=0, optimal=False, proof=impossible)
+    if longest is not None and start > longest:
+        return SearchResult(NONE, horizon=start, optimal=False,
+                            proof=_too_long(longest, start_proof))
     plain = not setting.constraints
     exact = _Exact(planner, setting, budget, read_plan=plain, greedy=True)
     exact.max_horizon = max_horizon
     setting = replace(setting, satisficing=True,
                       canonical=plain and _one_plan_wanted(setting))
     try:
-        return _any_plan(planner, setting, budget, max_horizon, start, start_proof, task, exact)
+        return _any_plan(planner, setting, budget, max_horizon, start, start_proof, task, exact,
+                         longest)
     finally:
         exact.stop()
 
 
 def _any_plan(planner: Planner, setting: Setting, budget: Budget, max_horizon: int, start: int,
-              start_proof: str, task: str, exact: _Exact) -> SearchResult:
+              start_proof: str, task: str, exact: _Exact,
+              longest: int | None = None) -> SearchResult:
+    if longest is not None:
+        max_horizon = min(max_horizon, longest)
     bound, why = start, start_proof          # every plan has at least `bound` steps
     horizon, slice_, checked = start, SLICE, 0
     exact.head_start()
@@ -512,6 +561,9 @@ def _any_plan(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
                 why = f"exact reachability found no goal state within {steps(bound - 1)}"
         horizon = max(horizon, bound)
         if horizon > max_horizon:
+            if longest is not None and max_horizon >= longest:
+                return SearchResult(NONE, horizon=max_horizon, optimal=False,
+                                    proof=_too_long(longest, why))
             return SearchResult(BOUNDED, horizon=max_horizon, optimal=False,
                                 proof=f"no plan found up to horizon {max_horizon} (the maximal "
                                       f"horizon; every plan has at least {steps(bound)})")
@@ -538,6 +590,10 @@ def _any_plan(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
             return SearchResult(FOUND, plan=plan, horizon=horizon, optimal=False,
                                 proof=f"a plan found at horizon {horizon} (not proven shortest)")
         bound, why = horizon + 1, f"horizon {horizon} refuted"
+        if longest is not None and horizon >= longest:
+            return SearchResult(NONE, horizon=horizon, optimal=False, proof=(
+                f"no plan up to horizon {horizon}, and the question allows at most "
+                f"{steps(longest)}"))
         if horizon >= 4 * checked or horizon == max_horizon:
             checked = max(horizon, 1)
             exists = planner.simple_path_exists(horizon + 1, setting, exact.watch(horizon))

@@ -35,7 +35,8 @@ from ethasp.planning.planner import Constraint, Setting
 from ethasp.planning.search import (BOUNDED, DEFAULT_MAX_HORIZON, DEFAULT_SATISFICING_HORIZON,
                                     FOUND, NONE, any_plan, shortest)
 from ethasp.principles.hmodel import Restriction, compiled, hmodel
-from ethasp.principles.principle import Principle, select_principles
+from ethasp.principles.principle import (GROUPS, Principle, available_principles,
+                                         select_principles)
 from ethasp.resources import ENCODINGS
 from ethasp.principles.utilitarianism import PROVEN, BestReachable, best_reachable
 
@@ -51,11 +52,40 @@ def _principles(names: Sequence[str]) -> list[Principle]:
     """
     chosen = select_principles(names)
     for principle in chosen:
-        if not (ENCODINGS / RESTRICTIONS / f"{principle.asp_name}.lp").is_file():
+        if not restricts(principle):
             raise InputError(f"principle {principle.name} has no restriction encoding "
                              f"({RESTRICTIONS}/{principle.asp_name}.lp): it can judge plans "
-                             "but not generate them")
+                             "but not generate them (plans are generated under "
+                             f"{', '.join(restricting_principles())})")
     return chosen
+
+
+def restricts(principle: Principle) -> bool:
+    """Can the principle restrict plan search (``encodings/restrictions/NAME.lp``)?"""
+    return (ENCODINGS / RESTRICTIONS / f"{principle.asp_name}.lp").is_file()
+
+
+def restricting_principles() -> list[str]:
+    """The names of the principles that can restrict plan search (make HPlans
+    and contrast plans), in the order of :func:`available_principles`."""
+    return [principle.name for principle in available_principles() if restricts(principle)]
+
+
+def one_restricting_principle(name: str,
+                              what: str = "contrast plans are made under one of") -> str:
+    """The one principle a name names, which must restrict plan search: a group
+    (``paper``, ``hera``, ``all``) or a principle without a restriction
+    encoding is refused with one line naming those that can (``what`` comes
+    before their list)."""
+    known = ", ".join(restricting_principles())
+    key = name.strip().lower()
+    if key == "all" or key in GROUPS:
+        raise InputError(f"principle {name!r} names a group, but {what}: {known}")
+    principle = select_principles([name])[0]
+    if not restricts(principle):
+        raise InputError(f"principle {principle.name} cannot restrict plan search (it judges "
+                         f"plans only); {what}: {known}")
+    return principle.name
 
 
 def principle_names(names: Sequence[str]) -> list[str]:
@@ -129,10 +159,13 @@ def plan_with_principles(model: Model, principles: Sequence[str],
                          all_plans: bool = False,
                          constraints: Sequence[Constraint] = (),
                          budget: Budget | None = None,
-                         satisficing: bool = False) -> HPlanResult:
+                         satisficing: bool = False,
+                         max_length: int | None = None) -> HPlanResult:
     """A shortest HPlan: a plan of the model permissible under all the principles.
 
-    ``constraints`` (of contrastive questions) restrict the HModel further.
+    ``constraints`` (of contrastive questions) restrict the HModel further;
+    ``max_length``: they allow no plan of more steps (``at_most(N)``), so a
+    search that refutes every horizon up to it proves that there is none.
     ``budget`` (or else ``time_limit``) bounds the searches.  With
     ``satisficing``, an HPlan found fast and not proven shortest (an any-plan
     search, :func:`ethasp.planning.search.any_plan`): the restrictions apply
@@ -170,10 +203,10 @@ def plan_with_principles(model: Model, principles: Sequence[str],
     # Constraints that no HModel writes are imposed on its search (in ASP).
     setting = Setting(constraints=frozenset(planner.question(rest)) if rest else frozenset())
     task = f"plan search under {under}" if names else "plan search"
-    result = (any_plan(planner, setting, budget, max_horizon, task=task)
+    result = (any_plan(planner, setting, budget, max_horizon, task=task, longest=max_length)
               if satisficing else
               shortest(planner, setting, budget, max_horizon, all_plans=all_plans, task=task,
-                       threads=restriction.empty))
+                       longest=max_length, threads=restriction.empty))
     if result.status == FOUND and best is not None and best.status != PROVEN:
         # A plan reaching the best utility found is no proof: a better state may
         # exist.  The plan is reported, bounded: permissible as far as searched.

@@ -1,17 +1,20 @@
 """Contrastive questions answered (steps 1 to 5 of the paper's iterative process).
 
-A question "Why A rather than B?" about the original plan becomes constraint
-facts (``contrast(Q,C)``, :mod:`ethasp.questions.question`) that the fixed encoding
-``encodings/questions/questions.lp`` reads.  The question's constraints and the chosen
-principle restrict the model (the HModel, :mod:`ethasp.principles.restriction`), which is
-solved for the contrast plan (the HPlan).  If the HModel has no plan, the
-principle is dropped and the model solved again (step 3), so that the
-explanation shows why the contrast is impermissible.  If there is no plan even
-then, a minimal subset of the question's constraints that conflict is found
-with solver assumptions (each constraint is switched on by an assumption on
+A question "Why A rather than B?" (or any form of :mod:`ethasp.questions.question`)
+about the original plan becomes constraint facts (``contrast(Q,C)``) that the
+fixed encoding ``encodings/questions/questions.lp`` reads.  The question's
+constraints and the chosen principle restrict the model (the HModel,
+:mod:`ethasp.principles.restriction`), which is solved for the contrast plan
+(the HPlan).  If the search proves that the HModel has no plan (status
+``none``), the principle is dropped and the model solved again (step 3), so
+that the explanation shows why the contrast is impermissible; if the search
+under the principle was cut short (``bounded``), the principle is kept and
+the answer is ``bounded``.  If no plan meets the question at all (proven), a
+minimal subset of the constraints that conflict is found with solver
+assumptions (each constraint is switched on by an assumption on
 ``active(Q,C)``).  Both plans are judged and explained (step 4,
-:mod:`ethasp.principles.judgement`), and the contrastive explanation sets the reasons of
-the two side by side (step 5).
+:mod:`ethasp.principles.judgement`), and the contrastive explanation sets the
+reasons of the two side by side (step 5).
 """
 
 from __future__ import annotations
@@ -25,82 +28,218 @@ from clorm import unify
 from ethasp.errors import InputError
 from ethasp.planning.budget import Budget
 from ethasp.planning.model import Model
-from ethasp.planning.plan import Plan, parse_action
-from ethasp.planning.naming import Naming
+from ethasp.planning.plan import Plan, parse_action, steps
 from ethasp.planning.planner import Constraint, occurrences
 from ethasp.planning.search import BOUNDED, DEFAULT_MAX_HORIZON, FOUND, NONE
 from ethasp.planning.validation import static_failures, validate
 from ethasp.principles.judgement import Judgement
-from ethasp.principles.principle import select_principles
-from ethasp.principles.restriction import HPlanResult, plan_with_principles
-from ethasp.questions.question import Question
+from ethasp.principles.principle import GROUPS, available_principles, select_principles
+from ethasp.principles.restriction import (HPlanResult, one_restricting_principle,
+                                           plan_with_principles)
+from ethasp.questions.question import EITHER, Question
 from ethasp.reasons import words
 from ethasp.reasons.reasons import DEFAULT_LIMIT, judge
-from ethasp.vocabulary import Answered, UnknownAction
+from ethasp.vocabulary import Met
 
 QUESTIONS = "questions/questions.lp"
+# A given plan's states, for questions about facts (questions/given.lp).
+GIVEN = ("planning/model.lp", "planning/trace.lp", "planning/trace_events.lp",
+         "planning/steps.lp", "questions/given.lp", QUESTIONS)
+# Constraint terms about the plan's actions only (no states needed to check them).
+ACTION_TERMS = ("used", "unused", "before", "at", "not_at", "within", "not_within", "at_most")
 DEFAULT_PRINCIPLE = "deontology"
 
 
+@dataclass(frozen=True)
+class Resolved:
+    """A question with its names resolved against a model: whether it is about
+    a fact, its constraint terms, and what the plan asked about must meet."""
+
+    question: Question
+    fact: bool
+    terms: list[clingo.Symbol]
+    presupposed: list[clingo.Symbol]
+
+
+def _is_variable(model: Model, term: clingo.Symbol) -> bool:
+    return model.planner.defines("variable", term) or model.planner.defines("derived", term)
+
+
+def _unknown_action(model: Model, question: Question, term: clingo.Symbol, also: str = "") -> str:
+    """The one line for a name that is no action of the model."""
+    failing = static_failures(model, [term])
+    if failing:
+        facts = ", ".join(map(model.naming.fact, failing[term]))
+        return (f"question '{question}': action {model.naming.action(term)} never applies: "
+                f"precondition {facts} does not hold and no action changes it")
+    return f"question '{question}': unknown action {term}{also}"
+
+
+def resolve(model: Model, question: Question) -> Resolved:
+    """Resolve the names of a question: an action or a state variable (one line
+    for a name that is both, unless the question says which, or neither)."""
+    subject = parse_action(question.action) if question.action is not None else None
+    other = parse_action(question.other) if question.other is not None else None
+    fact = False
+    if question.kind in EITHER:
+        is_action = model.planner.defines("action", subject)
+        is_variable = _is_variable(model, subject)
+        if question.what is None and is_action and is_variable:
+            raise InputError(f"question '{question}': {question.action} is both an action and a "
+                             f"state variable; say which: '{question.about_fact(False)}' or "
+                             f"'{question.about_fact(True)}'")
+        if question.what == "fact" or (question.what is None and is_variable and not is_action):
+            if not is_variable:
+                raise InputError(f"question '{question}': unknown state variable {subject}")
+            fact = True
+        elif not is_action:
+            raise InputError(_unknown_action(model, question, subject,
+                                             "" if question.what else " (nor a state variable)"))
+        if fact and question.within is not None:
+            raise InputError(f"question '{question}': {question.action} is a state variable; a "
+                             "window of steps applies to actions (ask: why [not] F at T)")
+    else:
+        for term in (subject, other):
+            if term is not None and not model.planner.defines("action", term):
+                raise InputError(_unknown_action(model, question, term))
+    return Resolved(question, fact, question.contrasts(subject, other, fact),
+                    question.presupposes(subject))
+
+
 def constraints_of(model: Model, questions: Sequence[Question], first: int = 1) -> list[Constraint]:
-    """The constraints of the questions, their actions resolved to model terms."""
+    """The constraints of the questions, their names resolved to model terms."""
     result = []
     for number, question in enumerate(questions, start=first):
         name = clingo.Function("q", [clingo.Number(number)])
-        action = parse_action(question.action)
-        other = parse_action(question.other) if question.other is not None else None
-        result += [Constraint(name, term) for term in question.contrasts(action, other)]
+        result += [Constraint(name, term) for term in resolve(model, question).terms]
     return result
+
+
+def _met(model: Model, plan: Plan, terms: Sequence[clingo.Symbol]) -> set[clingo.Symbol]:
+    """The constraint terms that the plan meets (questions.lp run on the plan:
+    its actions only, or its states too (questions/given.lp) when a term is
+    about facts)."""
+    name = clingo.Function("q")
+    symbols = [clingo.Function("contrast", [name, term]) for term in terms]
+    if all(term.name in ACTION_TERMS for term in terms):
+        horizon = len(plan)
+        facts = [f"time(0..{horizon}).", f"horizon({horizon})."]
+        if horizon:
+            facts += [f"step(1..{horizon}).", f"acted(1..{horizon})."]
+        ctl = model.planner.program([QUESTIONS], "\n".join(facts) + "\n",
+                                    symbols=symbols + occurrences(plan))
+    else:
+        ctl = model.planner.program(GIVEN, symbols=symbols + occurrences(plan))
+    found: list[clingo.Symbol] = []
+    with ctl.solve(yield_=True) as handle:
+        for answer in handle:
+            found = list(answer.symbols(shown=True))
+            break
+    answer = unify([Met], found)
+    return {atom.constraint.symbol for atom in answer.query(Met).all()}
+
+
+def _subject_words(model: Model, resolved: Resolved) -> str:
+    question = resolved.question
+    if resolved.fact:
+        return model.naming.fact(str(parse_action(question.action)))
+    return model.naming.action(parse_action(question.action))
+
+
+def _already(model: Model, resolved: Resolved, plan: Plan) -> str:
+    """Why the plan already meets a question's contrast, in words."""
+    question, naming = resolved.question, model.naming
+    name = _subject_words(model, resolved) if question.action is not None else ""
+    other = naming.action(parse_action(question.other)) if question.other else ""
+    kind, length = question.kind, len(plan)
+    if kind == "length":
+        return f"the plan has {steps(length)}, at most {question.steps}"
+    if kind == "rather-than":
+        return f"the plan does not use {name} and uses {other}"
+    if kind == "before":
+        return f"the plan uses {other} before {name}"
+    if kind == "after":
+        return f"the plan uses {name} before {other}"
+    negative = kind == "why"
+    if resolved.fact:
+        value = "false" if negative else "true"
+        if question.at is not None and question.at > length:
+            return (f"{name} is {value} at the end of the plan, which has only "
+                    f"{steps(length)}")
+        where = f"after step {question.at}" if question.at is not None \
+            else "at the end of the plan"
+        return f"{name} is {'already ' if not negative else ''}{value} {where}"
+    if question.at is not None:
+        if negative:
+            if question.at > length:
+                return f"the plan has only {steps(length)}"
+            there = naming.action(plan.actions[question.at - 1])
+            return f"step {question.at} of the plan is {there}"
+        return f"step {question.at} of the plan already is {name}"
+    if question.within is not None:
+        first, last = question.within
+        if negative:
+            return f"the plan does not use {name} at any step from {first} to {last}"
+        term = parse_action(question.action)
+        at = next(step for step in range(first, min(last, length) + 1)
+                  if plan.actions[step - 1] == term)
+        return f"the plan already uses {name} at step {at}"
+    return f"the plan does not use {name}" if negative else f"the plan already uses {name}"
 
 
 def check_question(model: Model, question: Question, plan: Plan) -> list[Constraint]:
     """The question's constraints, after checking it against the plan it is about.
 
-    Raises InputError if it names an action the model lacks, or if the plan
-    already meets all its constraints (then there is nothing to contrast: e.g.
-    "why not A" about a plan that uses A).
+    Raises InputError (one line) if it names an action or state variable the
+    model lacks, or a name that is both, or if its presupposition fails: the
+    plan already meets all its constraints (then there is nothing to
+    contrast: e.g. "why not A" about a plan that uses A, "why F" about a plan
+    that ends with F false), or a question about two actions names an A that
+    the plan does not use.
     """
-    constraints = constraints_of(model, [question])
-    horizon = len(plan)
-    facts = [f"time(0..{horizon}).", f"horizon({horizon})."]
-    if horizon:
-        facts.append(f"step(1..{horizon}).")
-    symbols = [clingo.Function("contrast", [c.question, c.term]) for c in constraints]
-    ctl = model.planner.program([QUESTIONS], "\n".join(facts) + "\n",
-                                symbols=symbols + occurrences(plan))
-    symbols: list[clingo.Symbol] = []
-    with ctl.solve(yield_=True) as handle:
-        for answer in handle:
-            symbols = list(answer.symbols(shown=True))
-            break
-    answer = unify([Answered, UnknownAction], symbols)
-    unknown = sorted((atom.action.symbol for atom in answer.query(UnknownAction).all()), key=str)
-    if unknown:
-        failing = static_failures(model, unknown[:1])
-        if failing:
-            facts = ", ".join(map(model.naming.fact, failing[unknown[0]]))
-            raise InputError(f"question '{question}': action {model.naming.action(unknown[0])} "
-                             f"never applies: precondition {facts} does not hold and no "
-                             "action changes it")
-        raise InputError(f"question '{question}': unknown action "
-                         f"{model.naming.action(unknown[0])}")
-    if list(answer.query(Answered).all()):
-        raise InputError(f"question '{question}': the plan already meets its contrast "
-                         f"({', '.join(model.naming.constraint(c.term) for c in constraints)}); "
+    resolved = resolve(model, question)
+    met = _met(model, plan, resolved.terms + resolved.presupposed)
+    for term in resolved.presupposed:
+        if term not in met:
+            raise InputError(f"question '{question}': the plan does not use "
+                             f"{_subject_words(model, resolved)}; ask about what the plan does")
+    if all(term in met for term in resolved.terms):
+        raise InputError(f"question '{question}': {_already(model, resolved, plan)} (the plan "
+                         f"already meets its contrast "
+                         f"{', '.join(model.naming.constraint(t) for t in resolved.terms)}); "
                          "ask about what the plan does")
-    return constraints
+    return [Constraint(clingo.Function("q", [clingo.Number(1)]), term) for term in resolved.terms]
+
+
+def longest(constraints: Sequence[Constraint]) -> int | None:
+    """The most steps a plan meeting the constraints may have (their
+    ``at_most(N)``), or None."""
+    bounds = [c.term.arguments[0].number for c in constraints
+              if c.term.name == "at_most" and len(c.term.arguments) == 1]
+    return min(bounds) if bounds else None
 
 
 # -- the contrast plan -------------------------------------------------------------
 
 @dataclass
 class ContrastSearch:
-    """The search for the contrast plan: the HPlan, with the principle or without."""
+    """The search for the contrast plan: the HPlan, with the principle or without.
+
+    ``principle_dropped``: the search under the principle proved that no plan
+    meeting the constraints is permissible (``dropped_because``), and the
+    plan was searched without it; ``note``: what else was learnt (a plan
+    meeting the constraints without the principle, when the search under it
+    was cut short and the principle therefore kept); ``impermissible``: no
+    plan meeting the constraints is permissible under the principle (proven),
+    and none meeting them was found without it (bounded).
+    """
 
     result: HPlanResult
     principle_dropped: bool
     conflict: list[Constraint] = field(default_factory=list)
     dropped_because: str = ""
+    note: str = ""
+    impermissible: bool = False
 
 
 def minimal_conflict(model: Model, constraints: Sequence[Constraint], max_horizon: int,
@@ -115,8 +254,8 @@ def minimal_conflict(model: Model, constraints: Sequence[Constraint], max_horizo
     core = list(constraints)
     for constraint in list(core):
         trial = [c for c in core if c != constraint]
-        if plan_with_principles(model, [], max_horizon, constraints=trial,
-                                budget=budget).status == NONE:
+        if plan_with_principles(model, [], max_horizon, constraints=trial, budget=budget,
+                                max_length=longest(trial)).status == NONE:
             core = trial
     return core
 
@@ -125,21 +264,43 @@ def contrast_plan(model: Model, constraints: Sequence[Constraint], under: str,
                   max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
                   budget: Budget | None = None, satisficing: bool = False) -> ContrastSearch:
     """The HPlan of the constraints and the principle ``under`` (steps 2 and 3);
-    with ``satisficing`` any such plan, not proven shortest."""
+    with ``satisficing`` any such plan, not proven shortest.
+
+    The principle is dropped only on a proof (status ``none``) that no plan
+    meeting the constraints is permissible under it; a search under it that
+    ended ``bounded`` (the maximal horizon, the time limit) keeps it, and the
+    answer is ``bounded``.
+    """
     budget = budget or Budget(time_limit)
+    length = longest(constraints)
     result = plan_with_principles(model, [under], max_horizon, constraints=constraints,
-                                  budget=budget, satisficing=satisficing)
+                                  budget=budget, satisficing=satisficing, max_length=length)
     if result.status == FOUND:
         return ContrastSearch(result, False)
+    if result.status == BOUNDED and budget.expired():
+        return ContrastSearch(result, False)
+    # Without the principle: a plan to judge when the principle is proven to stand in
+    # the way, or the proof that no plan meets the question at all.
     dropped = plan_with_principles(model, [], max_horizon, constraints=constraints,
-                                   budget=budget, satisficing=satisficing)
-    if dropped.status == FOUND:
-        return ContrastSearch(dropped, True, [], result.proof)
-    # No plan meets the question at all (or none was found): the principle is not
-    # what stands in the way, and is not said to be dropped.
-    conflict = (minimal_conflict(model, constraints, max_horizon, budget)
-                if dropped.status == NONE else [])
-    return ContrastSearch(dropped, False, conflict, "")
+                                   budget=budget, satisficing=satisficing, max_length=length)
+    if dropped.status == NONE:
+        # No plan meets the question at all: the principle is not what stands in
+        # the way, and is not said to be dropped.
+        return ContrastSearch(dropped, False,
+                              minimal_conflict(model, constraints, max_horizon, budget))
+    if result.status == NONE:
+        if dropped.status == FOUND:
+            return ContrastSearch(dropped, True, [], result.proof)
+        return ContrastSearch(HPlanResult(
+            BOUNDED, [], None, dropped.horizon,
+            f"{result.proof}; without {under}, {dropped.proof}"), False, impermissible=True)
+    note = ""
+    if dropped.status == FOUND and result.plan is None:
+        note = (f"a plan meeting the question exists without {under} "
+                f"({model.naming.actions(dropped.plan) or 'the empty plan'}), but the search "
+                f"under {under} was cut short, so {under} is kept: it is dropped only when "
+                "no plan meeting the question is proven permissible under it")
+    return ContrastSearch(result, False, note=note)
 
 
 # -- answers -----------------------------------------------------------------------
@@ -173,12 +334,15 @@ class Answer:
     ``original`` is the plan asked about, judged under ``principle``;
     ``contrast`` the contrast plan (HPlan) judged under ``under``, or None if
     there is none.  ``status`` is that of the contrast plan's search (found,
-    none: proven, bounded); ``principle_dropped`` says that no plan met the
-    constraints and ``under`` together, so the principle was left out;
+    none: proven, bounded); ``principle_dropped`` says that no plan meeting the
+    constraints is permissible under ``under`` (proven: ``dropped_because``),
+    so the contrast plan was made without it (and is judged under it);
     ``conflict`` lists a minimal set of constraints that no plan meets.
     ``difference`` holds the literals of the chosen reasons that only one side
     has; ``optimal`` is False when the contrast plan comes from an any-plan
-    search (not proven shortest).
+    search (not proven shortest); ``note`` says what else was learnt (a plan
+    that meets the question without the principle, when the search under it
+    was cut short).
     """
 
     questions: list[Question]
@@ -195,6 +359,12 @@ class Answer:
     explanation: str
     dropped_because: str = ""
     optimal: bool = True
+    note: str = ""
+
+    @property
+    def unmeetable(self) -> bool:
+        """No plan meets the constraints imposed (proven, with a conflict)."""
+        return self.contrast is None and self.status == NONE and bool(self.conflict)
 
     def to_json(self) -> dict:
         return {
@@ -210,6 +380,7 @@ class Answer:
             "conflict": [str(c) for c in self.conflict],
             "reason_difference": self.difference,
             "explanation": self.explanation,
+            "note": self.note,
         }
 
 
@@ -233,19 +404,27 @@ def _side_sentences(side: Side, modal: str, opening: str, alternatively: bool) -
 
 
 def contrastive_text(original: Side, contrast: Side | None, conflict: Sequence[Constraint],
-                     status: str, naming: Naming = Naming()) -> str:
-    """The words of a contrastive explanation (step 5); ``naming`` names the
-    constraints (a PDDL model's in PDDL form)."""
+                     status: str, under: str = "", impermissible: bool = False) -> str:
+    """The words of a contrastive explanation (step 5).  Without a contrast
+    plan: why not (``conflict``: the constraints no plan meets together;
+    ``impermissible``: no plan meeting them is permissible under ``under``,
+    and none was found without it)."""
     text = _side_sentences(original, "could", "This would be", alternatively=False)
     if contrast is not None:
         return f"{text} {_side_sentences(contrast, 'could', 'Doing so is', alternatively=True)}"
+    labels = original.judgement.explanation.labels
     if status == NONE:
         if conflict:
-            return (f"{text} There is no alternative plan: no plan meets the question's "
-                    f"constraints {', '.join(naming.constraint(c.term) for c in conflict)}.")
+            phrases = [words.constraint_phrase(labels, c.term) for c in conflict]
+            return (f"{text} There is no alternative plan: no plan can "
+                    f"{words.join(phrases)}.")
         return f"{text} There is no alternative plan: no plan reaches the goal."
-    return (f"{text} No alternative plan was found within the search bounds (one may "
-            "exist).")
+    principle = f" under {words.principle_phrase(under)}" if under else ""
+    if impermissible:
+        return (f"{text} There is no alternative plan that is permissible{principle}, and "
+                "none without it was found within the search bounds (one may exist).")
+    return (f"{text} No alternative plan permissible{principle} was found within the search "
+            "bounds (one may exist).")
 
 
 def _judge_side(model: Model, plan: Plan, principle: str, max_horizon: int,
@@ -266,18 +445,31 @@ def original_plan(model: Model, principle: str, max_horizon: int = DEFAULT_MAX_H
     return result.plan
 
 
+def one_principle(name: str) -> str:
+    """The one principle a name names (a plan is judged under one): a group
+    (``paper``, ``hera``, ``all``) is refused with one line."""
+    key = name.strip().lower()
+    if key == "all" or key in GROUPS:
+        known = ", ".join(p.name for p in available_principles())
+        raise InputError(f"principle {name!r} names a group; a plan asked about is judged "
+                         f"under one principle: {known}")
+    return select_principles([name])[0].name
+
+
 def answer_questions(model: Model, questions: Sequence[Question], plan: Plan,
                      principle: str, under: str, previous: Sequence[Constraint] = (),
                      max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
                      reasons_limit: int = DEFAULT_LIMIT, budget: Budget | None = None,
-                     satisficing: bool = False) -> Answer:
+                     satisficing: bool = False,
+                     conflicting: Sequence[Constraint] = ()) -> Answer:
     """Answer the questions about ``plan`` (judged under ``principle``) with a
     contrast plan under ``under``; ``previous`` constraints stay imposed.
     With ``satisficing`` the contrast plan is any such plan, not proven
-    shortest."""
+    shortest.  ``conflicting``: a subset of ``previous`` that no plan meets
+    (proven before): then no search is needed, and none is made."""
     budget = budget or Budget(time_limit)
-    principle = select_principles([principle])[0].name
-    under = select_principles([under])[0].name
+    principle = one_principle(principle)
+    under = one_restricting_principle(under)
     validation = validate(model, plan)
     if not validation.valid:
         raise InputError(f"not a plan: {validation.message(model.naming)}")
@@ -287,8 +479,14 @@ def answer_questions(model: Model, questions: Sequence[Question], plan: Plan,
         new += model.planner.question(terms)
     constraints = list(dict.fromkeys(list(previous) + new))
     original = _judge_side(model, plan, principle, max_horizon, budget, reasons_limit)
-    search = contrast_plan(model, constraints, under, max_horizon, budget=budget,
-                           satisficing=satisficing)
+    if conflicting and set(conflicting) <= set(previous):
+        search = ContrastSearch(HPlanResult(NONE, [], None, 0, (
+            "no plan meets the constraints imposed by the questions before "
+            f"({', '.join(map(str, conflicting))}: proven when they were asked)")),
+            False, list(conflicting))
+    else:
+        search = contrast_plan(model, constraints, under, max_horizon, budget=budget,
+                               satisficing=satisficing)
     contrast = None
     if search.result.plan is not None:
         contrast = _judge_side(model, search.result.plan, under, max_horizon, budget,
@@ -297,8 +495,8 @@ def answer_questions(model: Model, questions: Sequence[Question], plan: Plan,
                   search.result.proof, search.principle_dropped, constraints, search.conflict,
                   _difference(original, contrast),
                   contrastive_text(original, contrast, search.conflict, search.result.status,
-                                   model.naming),
-                  search.dropped_because, search.result.optimal)
+                                   under, search.impermissible),
+                  search.dropped_because, search.result.optimal, search.note)
 
 
 def ask(model: Model, question: str | Question | Sequence[str | Question],
@@ -306,11 +504,14 @@ def ask(model: Model, question: str | Question | Sequence[str | Question],
         max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
         reasons_limit: int = DEFAULT_LIMIT, budget: Budget | None = None,
         satisficing: bool = False) -> Answer:
-    """Ask "why A rather than B?" about a plan.
+    """Ask "why A rather than B?" (or any form of :mod:`ethasp.questions.question`)
+    about a plan.
 
-    The plan asked about is ``plan``, or else the plan that plan search under
+    The plan asked about is ``plan``, or else the plan the model comes with
+    (a HERA situation's), or else the plan that plan search under
     ``principle`` makes; it is judged under ``principle``.  The contrast plan
-    must satisfy ``under`` (default: ``principle``).  Questions are text (see
+    must satisfy ``under`` (default: ``principle``; a principle that can
+    restrict plan search).  Questions are text (see
     :mod:`ethasp.questions.question`) or :class:`Question` objects.  With
     ``satisficing``, both plans that are searched (the plan asked about when
     none is given, and the contrast plan) come from any-plan searches: found
@@ -321,6 +522,10 @@ def ask(model: Model, question: str | Question | Sequence[str | Question],
     if not questions:
         raise InputError("no question given")
     budget = budget or Budget(time_limit)
+    one_principle(principle)
+    one_restricting_principle(under or principle)
+    if plan is None:
+        plan = model.own_plan()
     if plan is None:
         plan = original_plan(model, principle, max_horizon, budget=budget,
                              satisficing=satisficing)

@@ -1,11 +1,16 @@
 """The iterative explanation process (step 6 of the paper) as a dialogue.
 
-A dialogue starts from a plan (given, or made by plan search under a
-principle).  Each question asked is about the current plan; its constraints
-join those of the questions before (the HModel grows), and the contrast plan
-found becomes the current plan.  Questions can be undone, the principle the
-next contrast must satisfy can be switched, and the whole dialogue can be
-saved to JSON and loaded again (loading asks the saved questions anew).
+A dialogue starts from a plan (given, or the model's own plan, or made by
+plan search under a principle).  Each question asked is about the current
+plan; its constraints join those of the questions before (the HModel grows),
+and the contrast plan found becomes the current plan.  A question that no
+plan can meet together with those before stays imposed until it is taken
+back (:attr:`Dialogue.unmeetable` says so; later questions are then answered
+at once, without a search).  Questions can be undone, the principle the next
+contrast must satisfy can be switched (to a principle that can restrict plan
+search), the causal explanation of a step of the current plan can be asked
+for (:meth:`Dialogue.explain_step`), and the whole dialogue can be saved to
+JSON and loaded again (loading asks the saved questions anew).
 """
 
 from __future__ import annotations
@@ -15,7 +20,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable, Sequence
 
-from ethasp.questions.contrast import Answer, Constraint, answer_questions, original_plan
+from ethasp.questions.contrast import (Answer, Constraint, answer_questions, one_principle,
+                                       original_plan)
 from ethasp.errors import InputError
 from ethasp.principles.judgement import JudgementReport
 from ethasp.reasons.reasons import judge
@@ -23,7 +29,7 @@ from ethasp.planning.budget import Budget, Progress
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan, parse_action
 from ethasp.planning.terms import read_text
-from ethasp.principles.principle import select_principles
+from ethasp.principles.restriction import one_restricting_principle
 from ethasp.questions.question import Question
 from ethasp.reasons.reasons import DEFAULT_LIMIT
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
@@ -75,10 +81,17 @@ class Dialogue:
               model_files: Sequence[str] = (), max_horizon: int = DEFAULT_MAX_HORIZON,
               time_limit: float | None = None, reasons_limit: int = DEFAULT_LIMIT,
               budget: Budget | None = None, satisficing: bool = False) -> "Dialogue":
-        """A dialogue about ``plan``, or about the plan made under ``principle``.
-        With ``satisficing``, the plans searched (that one, and every contrast
-        plan) come from any-plan searches, not proven shortest."""
-        principle = select_principles([principle])[0].name
+        """A dialogue about ``plan``, or else about the plan the model comes
+        with (a HERA situation's), or else about the plan made under
+        ``principle``, which is also the principle the contrast plans must
+        satisfy (one that can restrict plan search).  With ``satisficing``,
+        the plans searched (the first one, and every contrast plan) come from
+        any-plan searches, not proven shortest."""
+        principle = one_restricting_principle(
+            principle, "a dialogue starts under the principle that its contrast plans "
+                       "must satisfy, one of")
+        if plan is None:
+            plan = model.own_plan()
         if plan is None:
             plan = original_plan(model, principle, max_horizon, time_limit, budget=budget,
                                  satisficing=satisficing)
@@ -97,16 +110,36 @@ class Dialogue:
 
     @property
     def current_principle(self) -> str:
-        """The principle the current plan was made under."""
+        """The principle the current plan is judged under: the one it was made
+        under (or, when no plan meeting the questions was permissible under it,
+        proven, the one it was made without)."""
         for step in reversed(self.steps):
             if step.answer.contrast is not None:
                 return step.under
         return self.principle
 
     @property
+    def current_step(self) -> int:
+        """The number of the question whose contrast plan is the current plan
+        (0: the first plan)."""
+        for number in range(len(self.steps), 0, -1):
+            if self.steps[number - 1].answer.contrast is not None:
+                return number
+        return 0
+
+    @property
     def constraints(self) -> list[Constraint]:
         """The constraints of every question asked so far."""
         return self.steps[-1].answer.constraints if self.steps else []
+
+    @property
+    def unmeetable(self) -> Answer | None:
+        """The last answer, if no plan meets the constraints imposed so far
+        (proven, with a minimal conflict): every later question fails too,
+        until that question is taken back (:meth:`undo`)."""
+        if self.steps and self.steps[-1].answer.unmeetable:
+            return self.steps[-1].answer
+        return None
 
     def current(self, budget: Budget | None = None) -> JudgementReport:
         """The current plan, judged and explained under its principle."""
@@ -123,11 +156,13 @@ class Dialogue:
         """
         if not isinstance(question, Question):
             question = Question.parse(question)
+        blocked = self.unmeetable
         answer = answer_questions(self.model, [question], self.current_plan,
                                   self.current_principle, self.under, self.constraints,
                                   self.max_horizon, reasons_limit=self.reasons_limit,
                                   budget=budget or self.budget(),
-                                  satisficing=self.satisficing)
+                                  satisficing=self.satisficing,
+                                  conflicting=blocked.conflict if blocked else ())
         self.steps.append(Step(question, self.under, answer))
         return answer
 
@@ -138,9 +173,23 @@ class Dialogue:
         return self.steps.pop()
 
     def switch_principle(self, name: str) -> str:
-        """The principle the next contrast plans must satisfy."""
-        self.under = select_principles([name])[0].name
+        """The principle the next contrast plans must satisfy: one principle
+        that can restrict plan search (a group, or a principle that can only
+        judge, is refused with one line naming those that can)."""
+        self.under = one_restricting_principle(name)
         return self.under
+
+    def explain_step(self, step: int):
+        """The causal explanation of one step of the current plan (``why step
+        T``): :class:`ethasp.questions.steps.StepsExplanation` of the plan,
+        with ``step`` checked to be one of its steps."""
+        from ethasp.questions.steps import explain_steps
+
+        plan = self.current_plan
+        if not 1 <= step <= len(plan):
+            raise InputError(f"why step {step}: the current plan has "
+                             f"{'no steps' if not len(plan) else f'steps 1 to {len(plan)}'}")
+        return explain_steps(self.model, plan)
 
     # -- saving -------------------------------------------------------------------
 
@@ -187,7 +236,7 @@ class Dialogue:
             model = Model.load(data["model"])
         try:
             plan = Plan(tuple(parse_action(action) for action in data["plan"]))
-            dialogue = cls(model, select_principles([data["principle"]])[0].name, plan,
+            dialogue = cls(model, one_principle(data["principle"]), plan,
                            data["principle"], [], list(data.get("model", [])), max_horizon,
                            time_limit, reasons_limit, satisficing=satisficing)
             for step in data.get("steps", []):
@@ -243,7 +292,15 @@ def _check_saved(data) -> None:
             raise wrong(f"step {number} must have 'question' (an object) and 'under' "
                         "(a principle's name)")
         question = step["question"]
-        for key in ("kind", "action", "other"):
+        for key in ("kind", "action", "other", "what"):
             if key in question and question[key] is not None \
                     and not isinstance(question[key], str):
                 raise wrong(f"step {number}: the question's '{key}' must be a string")
+        for key in ("at", "steps"):
+            if key in question and question[key] is not None and (
+                    not isinstance(question[key], int) or isinstance(question[key], bool)):
+                raise wrong(f"step {number}: the question's '{key}' must be a whole number")
+        window = question.get("within")
+        if window is not None and (not isinstance(window, list) or len(window) != 2 or not all(
+                isinstance(t, int) and not isinstance(t, bool) for t in window)):
+            raise wrong(f"step {number}: the question's 'within' must be two whole numbers")

@@ -149,6 +149,11 @@ def _labels_of(model: Model) -> Labels:
     return labels
 
 
+def model_labels(model: Model) -> Labels:
+    """The model's label facts (for words about its actions and facts)."""
+    return _labels_of(model)
+
+
 def other_state(model: Model, plan: Plan, budget: Budget,
                 max_horizon: int = DEFAULT_MAX_HORIZON) -> ReachableState | None:
     """A best reachable state that differs from the plan's final state in a

@@ -99,6 +99,11 @@ def _action_name(labels: Labels, action: clingo.Symbol) -> str:
     return labels.naming.action(action) if labels.naming.pddl else str(action)
 
 
+def term_words(term: clingo.Symbol) -> str:
+    """A term in words: a constant with spaces for underscores, else the term."""
+    return _term_words(term)
+
+
 def action_phrase(labels: Labels, action: clingo.Symbol) -> str:
     """An action as a verb phrase, e.g. "pull the lever"."""
     label = labels.actions.get(action)
@@ -355,3 +360,45 @@ def non_contrastive(explanation: Explanation) -> str:
     """The non-contrastive explanation: the plan and why it is (im)permissible."""
     return (f"{option_sentence(explanation.labels, explanation.plan)} "
             f"{verdict_sentence(explanation)}")
+
+
+# -- questions ------------------------------------------------------------------
+
+def _steps_words(count: int) -> str:
+    return f"{count} step" if count == 1 else f"{count} steps"
+
+
+def constraint_phrase(labels: Labels, term: clingo.Symbol) -> str:
+    """A question's constraint (a term of ``contrast(Q,C)``, questions.lp) as
+    what a plan does, a verb phrase: "include pulling a lever at step 2", "end
+    with the door open", "take at most 3 steps"."""
+    name, arguments = term.name, term.arguments
+
+    def doing(index: int = 0) -> str:
+        return gerund(labels, arguments[index])
+
+    def fact(index: int = 0) -> str:
+        variable, value = arguments[index], arguments[index + 1]
+        return fact_phrase(labels, variable, value.name == "true")
+
+    if name == "used":
+        return f"include {doing()}"
+    if name == "unused":
+        return f"avoid {doing()}"
+    if name == "before":
+        return f"include {doing(0)} before {doing(1)}"
+    if name == "at":
+        return f"include {doing()} at step {arguments[1]}"
+    if name == "not_at":
+        return f"avoid {doing()} at step {arguments[1]}"
+    if name == "within":
+        return f"include {doing()} at some step from {arguments[1]} to {arguments[2]}"
+    if name == "not_within":
+        return f"avoid {doing()} from step {arguments[1]} to {arguments[2]}"
+    if name == "ends":
+        return f"end with {fact()}"
+    if name == "fact_at":
+        return f"have {fact()} after step {arguments[2]}"
+    if name == "at_most":
+        return f"take at most {_steps_words(arguments[0].number)}"
+    return f"meet {term}"

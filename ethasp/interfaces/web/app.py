@@ -18,7 +18,7 @@ from flask import Flask, Response, jsonify, request
 from werkzeug.exceptions import HTTPException
 
 from ethasp.errors import InputError
-from ethasp.interfaces.web.views import model_json, state_json
+from ethasp.interfaces.web.views import explain_json, model_json, state_json
 from ethasp.interfaces.web.workspace import Refused, Workspace
 
 LOOPBACK_NAMES = {"127.0.0.1", "localhost", "::1"}
@@ -123,6 +123,16 @@ def create_app(workspace: Workspace, loopback: bool = True) -> Flask:
     def state(key: str):
         return jsonify(state_json(workspace, workspace.session(key)))
 
+    @app.get("/api/sessions/<key>/explain")
+    def explain(key: str):
+        session = workspace.session(key)
+        step = request.args.get("step")
+        if step is not None:
+            if not step.isdigit() or len(step) > 7:
+                raise InputError(f"why step {step}: expected a step number")
+            step = int(step)
+        return jsonify(explain_json(workspace, session, step))
+
     @app.get("/api/sessions/<key>/job")
     def job(key: str):
         session = workspace.session(key)
@@ -181,6 +191,12 @@ def create_app(workspace: Workspace, loopback: bool = True) -> Flask:
         return _svg(workspace.pictures.report(
             report, f"current plan: {workspace.model.naming.actions(report.plan) or '(empty)'}",
             words=_words()))
+
+    @app.get("/api/sessions/<key>/explain.svg")
+    def explain_picture(key: str):
+        dialogue = workspace.session(key).require()
+        return _svg(workspace.pictures.explained(workspace.explained(dialogue.current_plan),
+                                                 words=_words()))
 
     @app.get("/api/sessions/<key>/steps/<int:number>.svg")
     def step_picture(key: str, number: int):

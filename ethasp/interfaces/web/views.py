@@ -9,6 +9,7 @@ from ethasp.interfaces.version import package_version
 from ethasp.interfaces.web.workspace import Session, Workspace
 from ethasp.planning.plan import Plan
 from ethasp.principles.principle import available_principles
+from ethasp.principles.restriction import restricting_principles
 from ethasp.questions.dialogue import Step
 
 
@@ -30,6 +31,7 @@ def model_json(workspace: Workspace) -> dict:
         "version": package_version(),
         "principle": workspace.principle,
         "principles": [p.name for p in principles],
+        "restricting": restricting_principles(),
         "model": workspace.pictures.valuation.to_json(workspace.model.naming),
         "limits": {"question": limits.question, "plan": limits.plan,
                    "questions": limits.questions},
@@ -75,6 +77,12 @@ def state_json(workspace: Workspace, session: Session) -> dict:
     current["shown"] = _actions(workspace, plan)
     current["final_shown"] = [naming.fact(literal) for literal in report.final_state]
     current["principle"] = dialogue.current_principle
+    # Which question's contrast plan this is (0: the first plan), and whether
+    # it was made without the principle (dropped on a proof).
+    source = dialogue.current_step
+    current["from_question"] = source
+    current["made_without_principle"] = (source > 0 and
+                                         dialogue.steps[source - 1].answer.principle_dropped)
     data.update({
         "dialogue": dialogue.to_json(),
         "principle": dialogue.principle,
@@ -83,5 +91,20 @@ def state_json(workspace: Workspace, session: Session) -> dict:
         "current": current,
         "steps": [_step_json(workspace, number, step)
                   for number, step in enumerate(dialogue.steps, start=1)],
+        "unmeetable": dialogue.unmeetable is not None,
     })
+    return data
+
+
+def explain_json(workspace: Workspace, session: Session, step: int | None = None) -> dict:
+    """The current plan explained step by step (``why step T`` with ``step``)."""
+    dialogue = session.require()
+    explanation = workspace.explained(dialogue.current_plan)
+    naming = workspace.model.naming
+    data = explanation.to_json(naming)
+    data["lines"] = explanation.lines()
+    data["shown"] = _actions(workspace, dialogue.current_plan)
+    if step is not None:
+        data["step"] = step
+        data["step_text"] = explanation.step_text(step)
     return data

@@ -26,9 +26,10 @@ from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
 from ethasp.principles.judgement import JudgementReport
-from ethasp.principles.principle import select_principles
+from ethasp.principles.restriction import one_restricting_principle
 from ethasp.questions.dialogue import Dialogue
-from ethasp.questions.question import Question
+from ethasp.questions.question import Question, step_question
+from ethasp.questions.steps import StepsExplanation, explain_steps
 from ethasp.reasons.reasons import DEFAULT_LIMIT, judge
 
 
@@ -98,11 +99,14 @@ class Workspace:
                  options: Options = Options(), limits: Limits = Limits()):
         self.model = model
         self.files = list(files)
-        self.principle = select_principles([principle])[0].name
+        self.principle = one_restricting_principle(
+            principle, "the page starts dialogues under the principle that their contrast "
+                       "plans must satisfy, one of")
         self.options = options
         self.limits = limits
         self.pictures = Pictures(model)
         self._reports: OrderedDict[tuple[str, ...], JudgementReport] = OrderedDict()
+        self._explained: OrderedDict[tuple[str, ...], StepsExplanation] = OrderedDict()
         self._sessions: OrderedDict[str, Session] = OrderedDict()
         self._jobs: list[Job] = []
         self._lock = threading.Lock()
@@ -126,6 +130,20 @@ class Workspace:
             while len(self._reports) > 64:
                 self._reports.popitem(last=False)
         return report
+
+    def explained(self, plan: Plan) -> StepsExplanation:
+        """The plan explained step by step (causal links; one clingo call), kept."""
+        key = tuple(plan.to_list())
+        with self._lock:
+            if key in self._explained:
+                self._explained.move_to_end(key)
+                return self._explained[key]
+        explanation = explain_steps(self.model, plan)
+        with self._lock:
+            self._explained[key] = explanation
+            while len(self._explained) > 64:
+                self._explained.popitem(last=False)
+        return explanation
 
     def _prepare(self, dialogue: Dialogue, budget: Budget) -> None:
         """Judge and draw the dialogue's current plan (and the last answer's
@@ -197,7 +215,9 @@ class Workspace:
         """A new dialogue about the typed plan, or about the plan made under the principle."""
         self.free(session)
         name = self.limits.check("principle", principle or self.principle, self.limits.name)
-        chosen = select_principles([name])[0].name
+        chosen = one_restricting_principle(
+            name, "a dialogue starts under the principle that its contrast plans must "
+                  "satisfy, one of")
         plan_text = self.limits.check("plan", plan_text or "", self.limits.plan)
         plan = Plan.parse(plan_text) if plan_text.strip() else None
 
@@ -212,13 +232,20 @@ class Workspace:
             return commit
 
         what = (f"judging the plan under {chosen}" if plan is not None
-                else f"making a plan under {chosen}")
+                else f"making a plan under {chosen}" if self.model.own_plan() is None
+                else f"judging the model's own plan under {chosen}")
         return self.submit(session, "start", what, work)
 
     def ask(self, session: Session, text: str) -> Job:
-        """Ask a question (typed, the grammar of ``ethasp ask``) about the current plan."""
+        """Ask a question (typed, the grammar of ``ethasp ask``) about the current plan
+        (``why step T`` asks for an explanation instead: :meth:`explain`)."""
         self.free(session)
-        question = Question.parse(self.limits.check("question", text, self.limits.question))
+        text = self.limits.check("question", text, self.limits.question)
+        if step_question(text) is not None:
+            raise InputError(f"'{text.strip()}' asks how a step serves the goal, not for a "
+                             "contrast: the page shows it without a search (GET "
+                             f"/api/sessions/ID/explain?step={step_question(text)})")
+        question = Question.parse(text)
         dialogue = session.require()
         if len(dialogue.steps) >= self.limits.questions:
             raise InputError(f"at most {self.limits.questions} questions in one dialogue; "

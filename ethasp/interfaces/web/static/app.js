@@ -13,6 +13,7 @@ let state = null;     // GET /api/sessions/<sid>
 let viewing = null;   // the number of the answer shown
 let selected = null;  // the action chosen by a click: {term, shown}
 let running = false;  // a job is running
+let explainedPlan = null;  // the plan whose step-by-step explanation may be shown
 
 // -- HTTP ------------------------------------------------------------------------------
 
@@ -127,7 +128,7 @@ function remembered() {
 function setBusy(job) {
   running = Boolean(job && job.state === "running");
   $("status").hidden = !running;
-  for (const button of document.querySelectorAll("#ask-form button, #undo, #start, #action-menu button")) {
+  for (const button of document.querySelectorAll("#ask-form button, #undo, #start, #action-menu button, #drop-question, #shorter, #explain-plan")) {
     button.disabled = running;
   }
   $("under").disabled = running;
@@ -206,7 +207,9 @@ function renderModel() {
         (variable.initial === isTrue) ? el("span", { class: "muted", text: " initially" }) : null,
         goal.has(fact.literal) ? el("span", { class: "muted", text: " goal" }) : null),
       fact.label ? el("div", { class: "label", text: fact.label }) : null);
-    variables.append(el("tr", {}, el("td", {}, el("code", { text: variable.shown })),
+    variables.append(el("tr", {}, el("td", {}, el("button", {
+        class: "chip", type: "button", "data-variable": variable.term,
+        title: `ask about ${variable.shown}`, onclick: () => chooseFact(variable) }, variable.shown)),
       cell(variable.true, true), cell(variable.false, false)));
   }
   box.append(collapsible(`Variables (${glance.variables.length})`, variables,
@@ -214,9 +217,11 @@ function renderModel() {
   box.append(el("p", { class: "muted" },
     "Goal: ", glance.goal.map((fact) => fact.shown).join(", ") || "none"));
 
+  // Contrast plans and first plans are searched under a principle: the menus
+  // offer the principles that can restrict plan search (all judge plans).
   for (const select of [$("under"), $("start-principle")]) {
     clear(select);
-    for (const name of model.principles) select.append(el("option", { value: name, text: name }));
+    for (const name of model.restricting) select.append(el("option", { value: name, text: name }));
   }
   $("start-principle").value = model.principle;
   $("question").maxLength = model.limits.question;
@@ -303,7 +308,8 @@ function planNode(actions, clickable) {
     list.append(el("li", {}, el("span", { class: "step", text: `${index + 1}.` }),
       clickable
         ? el("button", { class: `chip ${moral}`, type: "button", "data-term": action.term,
-            title: "ask about this action", onclick: () => choose(action.term, action.shown) }, action.shown)
+            "data-step": index + 1, title: "ask about this action",
+            onclick: () => choose(action.term, action.shown, index + 1) }, action.shown)
         : el("span", { class: `chip ${moral}`, text: action.shown })));
   });
   return list;
@@ -324,7 +330,8 @@ async function showPicture(box, path) {
   if (typeof content === "string") {
     box.innerHTML = content;  // SVG drawn by the server, text escaped there
     for (const action of box.querySelectorAll("g.action")) {
-      action.addEventListener("click", () => choose(action.dataset.action, action.dataset.shown));
+      const step = box.id === "current-picture" ? Number(action.dataset.step) : null;
+      action.addEventListener("click", () => choose(action.dataset.action, action.dataset.shown, step));
     }
   } else {
     box.replaceChildren(content);
@@ -335,10 +342,22 @@ async function showPicture(box, path) {
 function renderCurrent() {
   const current = state.current;
   const steps = current.plan.length;
+  const count = `${steps} ${steps === 1 ? "step" : "steps"}`;
+  const source = current.from_question || 0;
+  let origin;
+  if (source === 0) origin = `the first plan, judged under ${current.principle}`;
+  else if (current.made_without_principle) {
+    origin = `the contrast plan of question ${source}, made without ${current.principle} ` +
+      `(no plan meeting the questions is permissible under it) and judged under it`;
+  } else origin = `the contrast plan of question ${source}, made and judged under ${current.principle}`;
+  const later = state.steps.length - source;
+  const unanswered = later > 0
+    ? `; ${later === 1 ? `question ${state.steps.length} has` : `questions ${source + 1} to ${state.steps.length} have`} no contrast plan, so it stays the current plan`
+    : "";
   $("current-summary").textContent =
-    `${steps} ${steps === 1 ? "step" : "steps"}, made and judged under ${current.principle}` +
-    `; final state utility ${current.utility}` +
-    (state.steps.length ? ` (the contrast plan of question ${state.steps.length})` : " (the first plan)");
+    `${count}: ${origin}; final state utility ${current.utility}${unanswered}`;
+  $("shorter").hidden = steps === 0;
+  $("shorter").textContent = steps > 0 ? `Why not in ${steps - 1} ${steps - 1 === 1 ? "step" : "steps"}?` : "";
   const plan = planNode(current.shown, true);
   plan.id = "current-actions";
   $("current-actions").replaceWith(plan);
@@ -356,20 +375,30 @@ function renderCurrent() {
   }
 }
 
-function choose(term, shown) {
+function choose(term, shown, step) {
   if (!state || !state.current) return;
-  selected = { term, shown };
+  selected = { term, shown, step: step || null };
+  const steps = state.current.plan.length;
   const inPlan = state.current.plan.includes(term);
   const others = model.model.actions.filter((action) => action.term !== term);
   const menu = clear($("action-menu"));
   const glance = model.model.actions.find((a) => a.term === term);
   menu.append(el("div", {}, el("strong", { text: shown }),
     glance && glance.label ? el("span", { class: "label", text: ` \u2013 ${glance.label}` }) : null,
-    el("span", { class: "muted", text: inPlan ? " (in the current plan)" : " (not in the current plan)" })));
+    el("span", { class: "muted", text: step ? ` (step ${step} of the current plan)`
+      : inPlan ? " (in the current plan)" : " (not in the current plan)" })));
   const select = (id) => el("select", { id }, others.map((a) => el("option", { value: a.shown, text: a.shown })));
+  const stepInput = (id, value) => el("input", { id, type: "number", min: 1, max: 1000000, value, class: "step-number" });
   if (inPlan) {
     menu.append(el("div", { class: "row" },
       el("button", { type: "button", id: "why-this", onclick: () => askText(`why ${shown}`) }, "Why this?")));
+    if (step) {
+      menu.append(el("div", { class: "row" },
+        el("button", { type: "button", id: "why-at", onclick: () => askText(`why ${shown} at ${step}`) },
+          `Why this at step ${step}?`),
+        el("button", { type: "button", id: "why-step", onclick: () => askText(`why step ${step}`) },
+          `How does step ${step} serve the goal?`)));
+    }
     if (others.length) {
       menu.append(el("div", { class: "row" },
         el("button", { type: "button", id: "why-rather", onclick: () => askText(`why ${shown} rather than ${$("rather-other").value}`) },
@@ -377,12 +406,42 @@ function choose(term, shown) {
       menu.append(el("div", { class: "row" },
         el("button", { type: "button", id: "why-before", onclick: () => askText(`why ${shown} before ${$("before-other").value}`) },
           "Why this before"), select("before-other"), "?"));
+      menu.append(el("div", { class: "row" },
+        el("button", { type: "button", id: "why-after", onclick: () => askText(`why ${shown} after ${$("after-other").value}`) },
+          "Why this after"), select("after-other"), "?"));
     }
   } else {
     menu.append(el("div", { class: "row" },
       el("button", { type: "button", id: "why-not", onclick: () => askText(`why not ${shown}`) }, "Why not this?")));
   }
+  menu.append(el("div", { class: "row" },
+    el("button", { type: "button", id: "why-not-at", onclick: () => askText(`why not ${shown} at ${$("not-at-step").value}`) },
+      "Why not this at step"), stepInput("not-at-step", Math.min(steps + 1, step || 1)), "?"));
   menu.append(el("div", { class: "row" }, el("button", { type: "button", onclick: () => { menu.hidden = true; selected = null; } }, "Close")));
+  menu.hidden = false;
+  for (const button of menu.querySelectorAll("button")) button.disabled = running;
+  $("ask-panel").scrollIntoView({ block: "nearest", behavior: "smooth" });
+}
+
+function chooseFact(variable) {
+  // A state variable: ask why the plan ends with its value, or why it has a value after a step.
+  if (!state || !state.current) return;
+  selected = null;
+  const endsTrue = (state.current.final_state || []).includes(variable.term);
+  const name = variable.shown;
+  const menu = clear($("action-menu"));
+  const holding = endsTrue ? variable.true : variable.false;
+  menu.append(el("div", {}, el("strong", { text: name }),
+    el("span", { class: "muted", text: ` (${endsTrue ? "true" : "false"} at the end of the current plan)` }),
+    holding.label ? el("span", { class: "label", text: ` \u2013 ${holding.label}` }) : null));
+  menu.append(el("div", { class: "row" },
+    el("button", { type: "button", id: "why-fact", onclick: () => askText(`why ${endsTrue ? "" : "not "}${name}`) },
+      `Why does the plan end with it ${endsTrue ? "true" : "false"}?`)));
+  const stepInput = el("input", { id: "fact-step", type: "number", min: 1, max: 1000000, value: 1, class: "step-number" });
+  menu.append(el("div", { class: "row" }, "After step", stepInput, ":",
+    el("button", { type: "button", id: "why-fact-at", onclick: () => askText(`why ${name} at ${$("fact-step").value}`) }, "why true?"),
+    el("button", { type: "button", id: "why-not-fact-at", onclick: () => askText(`why not ${name} at ${$("fact-step").value}`) }, "why false?")));
+  menu.append(el("div", { class: "row" }, el("button", { type: "button", onclick: () => { menu.hidden = true; } }, "Close")));
   menu.hidden = false;
   for (const button of menu.querySelectorAll("button")) button.disabled = running;
   $("ask-panel").scrollIntoView({ block: "nearest", behavior: "smooth" });
@@ -408,19 +467,32 @@ function renderAnswer() {
   $("answer-question").textContent = `${step.question}  \u2014 contrast under ${step.under}`;
   $("answer-text").textContent = answer.explanation;
   const notes = clear($("answer-notes"));
-  if (!answer.contrast) {
-    notes.append(el("p", { class: "notice warning", text: `No contrast plan (${answer.status}): ${answer.proof}` }));
+  if (!answer.contrast && answer.status === "none") {
+    notes.append(el("p", { class: "notice warning", id: "no-contrast" },
+      el("strong", { text: "No contrast plan (proven): " }), answer.proof));
+  } else if (!answer.contrast) {
+    notes.append(el("p", { class: "notice warning", id: "no-contrast" },
+      el("strong", { text: "No contrast plan found (bounded): " }),
+      `the search was cut short and proves nothing: ${answer.proof}. ` +
+      `${step.under} is kept: it is dropped only when no plan meeting the questions is proven permissible under it.`));
   }
   if (answer.principle_dropped) {
     notes.append(el("p", { class: "notice warning", id: "principle-dropped" },
       el("strong", { text: "Principle dropped: " }),
-      `no plan meets the question and ${step.under} together, so the contrast plan was searched without ${step.under}` +
-      (answer.principle_dropped_because ? ` (${answer.principle_dropped_because})` : "") + "."));
+      `no plan meeting the questions is permissible under ${step.under}` +
+      (answer.principle_dropped_because ? ` (proven: ${answer.principle_dropped_because})` : "") +
+      `, so the contrast plan was made without ${step.under}; it is judged under ${step.under}.`));
+  }
+  if (answer.note) {
+    notes.append(el("p", { class: "notice", id: "answer-note" }, answer.note));
   }
   if (answer.conflict && answer.conflict.length) {
+    const last = step.number === state.steps.length && state.unmeetable;
     notes.append(el("p", { class: "notice warning", id: "conflict" },
       el("strong", { text: "Minimal conflict: " }), "no plan meets all of ",
-      (answer.conflict_shown || answer.conflict).map((c) => el("span", { class: "literal", text: c })), "."));
+      (answer.conflict_shown || answer.conflict).map((c) => el("span", { class: "literal", text: c })), ".",
+      last ? " These constraints stay imposed: every later question would have no contrast plan either. " : null,
+      last ? el("button", { type: "button", id: "drop-question", onclick: () => dropQuestion() }, "Drop this question") : null));
   }
   notes.append(el("p", { class: "proof" }, "Constraints imposed: ",
     (answer.constraints_shown || answer.constraints).map((c) => el("span", { class: "literal", text: c }))));
@@ -441,7 +513,7 @@ function renderHistory() {
     const answer = step.answer;
     const outcome = answer.contrast
       ? `contrast: ${answer.contrast.shown.map((a) => a.shown).join(" ") || "(empty plan)"}`
-      : `no contrast plan (${answer.status})`;
+      : `no contrast plan (${answer.status === "none" ? "none, proven" : "bounded"})`;
     const words = ` \u2014 under ${step.under}; ${outcome}`;
     // A long contrast plan is shortened here (the answer shows it whole; the tooltip too).
     const shown = words.length > HISTORY_WORDS ? `${words.slice(0, HISTORY_WORDS - 1)}\u2026` : words;
@@ -461,10 +533,12 @@ function render() {
     return;
   }
   $("under").value = state.under;
+  const planKey = JSON.stringify(state.current.plan);
+  if (planKey !== explainedPlan) { $("explain-panel").hidden = true; explainedPlan = planKey; }
   renderCurrent();
   renderAnswer();
   renderHistory();
-  if (selected) choose(selected.term, selected.shown);
+  if (selected) choose(selected.term, selected.shown, selected.step);
 }
 
 // -- moves ---------------------------------------------------------------------------------------------------
@@ -479,9 +553,11 @@ async function ask() {
   if (!text) {
     place($("ask-messages"));
     showNote(null);
-    showError("question: expected 'why ...' (forms: why A | why not A | why A rather than B | why A before B)");
+    showError("question: expected 'why ...' (forms: why A | why not A | why A rather than B | why A before B | why A after B | why [not] A at T | why [not] A within T1..T2 | why [not] F | why [not] F at T | why not in N steps | why step T)");
     return;
   }
+  const step = /^why\s+step\s+(\S+?)\s*\??$/i.exec(text);
+  if (step) { await explainStep(step[1]); return; }
   const job = await move(() => post(`/api/sessions/${sid}/ask`, { question: text }), $("ask-messages"));
   if (job && job.state === "done") {
     viewing = state.steps.length;
@@ -490,6 +566,38 @@ async function ask() {
     render();
     $("answer-panel").scrollIntoView({ block: "start", behavior: "smooth" });
   }
+}
+
+async function explainStep(step) {
+  // "why step T" and "Explain step by step": no search, the current plan's causal links.
+  place($("ask-messages"));
+  showError(null);
+  showNote(null);
+  const query = step === null ? "" : `?step=${encodeURIComponent(step)}`;
+  let data;
+  try { data = await get(`/api/sessions/${sid}/explain${query}`); }
+  catch (error) { showError(error.message); return; }
+  const panel = $("explain-panel");
+  panel.hidden = false;
+  $("explain-step").textContent = data.step_text || "";
+  $("explain-step").hidden = !data.step_text;
+  const list = clear($("explain-lines"));
+  data.lines.forEach((line, index) => list.append(el("li", {
+    class: data.step && data.steps[data.step - 1] && line.startsWith(`Step ${data.step},`) ? "viewing" : null,
+    text: line })));
+  const removable = data.steps.filter((s) => s.removable).map((s) => s.step);
+  $("explain-removable").textContent = removable.length
+    ? `Not needed (the plan without them is still a plan): step ${removable.join(", ")}.`
+    : "Every step is needed: the plan without any one of them is no plan.";
+  showPicture($("explain-picture"), `/api/sessions/${sid}/explain.svg?words=0`);
+  $("explain-svg").href = `/api/sessions/${sid}/explain.svg`;
+  $("action-menu").hidden = true;
+  panel.scrollIntoView({ block: "start", behavior: "smooth" });
+}
+
+async function dropQuestion() {
+  const job = await move(() => post(`/api/sessions/${sid}/undo`, {}), $("ask-messages"));
+  if (job && job.state === "done") showNote(`dropped: ${job.note.replace(/^took back: /, "")} (its constraints are no longer imposed)`);
 }
 
 async function startDialogue(principle, plan, quiet) {
@@ -523,6 +631,11 @@ function bind() {
   });
   $("undo").addEventListener("click", () => move(() => post(`/api/sessions/${sid}/undo`, {}),
     $("history-messages")));
+  $("explain-plan").addEventListener("click", () => explainStep(null));
+  $("shorter").addEventListener("click", () => {
+    const steps = state.current.plan.length;
+    if (steps > 0) askText(`why not in ${steps - 1} ${steps - 1 === 1 ? "step" : "steps"}`);
+  });
   $("cancel").addEventListener("click", async () => {
     try { await post(`/api/sessions/${sid}/cancel`, {}); } catch (error) { showError(error.message); }
   });

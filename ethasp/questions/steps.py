@@ -1,0 +1,373 @@
+"""Step-by-step causal explanations of a plan: which later steps, events and
+goal facts each step serves (causal links), which steps are not needed
+(removable), and each step's moral side.
+
+The semantics are the encodings': ``encodings/questions/links.lp`` (causal
+links, chains to the goal, utilities and the valued facts each step causes)
+and ``encodings/questions/removable.lp`` (the plan without a step), run on
+the plan's trace (``planning/trace.lp``, ``trace_events.lp``, ``steps.lp``).
+In short: step i links variable V with value B to step j (or to the goal)
+when step i sets V to B, step j's precondition (or the goal) needs V = B, and
+no step or event between them sets V.  A conditional effect counts where it
+fires; a value an event sets is linked from that event; a need on a derived
+variable is a need on the state variables that give it its value (the link
+says through which derived variable).  This module reads the atoms back
+and puts them into words (:mod:`ethasp.reasons.words` building blocks).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import clingo
+from clorm import unify
+
+from ethasp.errors import InputError
+from ethasp.planning.model import Model
+from ethasp.planning.plan import Plan
+from ethasp.planning.planner import occurrences
+from ethasp.planning.validation import read_validation
+from ethasp.reasons import words
+from ethasp.reasons.explanation import Labels
+from ethasp.reasons.reasons import model_labels
+from ethasp.vocabulary import (Chain, Link, Removable, ServesGoal, StepCauses, StepUtility)
+
+ENCODINGS = ("planning/model.lp", "planning/trace.lp", "planning/trace_events.lp",
+             "planning/steps.lp", "questions/links.lp", "questions/removable.lp")
+
+# Removable steps are found by tracing the plan once without each step: the
+# work grows with the square of the length, so longer plans are refused.
+MAX_STEPS = 400
+
+
+@dataclass(frozen=True)
+class Node:
+    """Where a link starts or ends: the action of a step (``step``), an event
+    of a step (``event``), or the goal (``goal``)."""
+
+    kind: str
+    step: int | None = None
+    event: clingo.Symbol | None = None
+
+    @classmethod
+    def of(cls, term: clingo.Symbol) -> "Node":
+        if term.name == "step":
+            return cls("step", term.arguments[0].number)
+        if term.name == "event":
+            return cls("event", term.arguments[0].number, term.arguments[1])
+        return cls("goal")
+
+    def to_json(self):
+        """A step number, ``"goal"``, or ``{"event": E, "step": T}``."""
+        if self.kind == "step":
+            return self.step
+        if self.kind == "goal":
+            return "goal"
+        return {"event": str(self.event), "step": self.step}
+
+
+@dataclass(frozen=True)
+class CausalLink:
+    """A causal link: ``provider`` sets ``variable`` to ``value``, which
+    ``consumer`` needs (``kind``: precondition, condition (of the
+    conditional effect ``effect``), event or goal), and nothing sets the
+    variable between them; ``via``: the derived variable that the consumer
+    needs, which has its value because of this one."""
+
+    provider: Node
+    consumer: Node
+    variable: clingo.Symbol
+    value: bool
+    kind: str
+    effect: clingo.Symbol | None = None
+    via: clingo.Symbol | None = None
+
+    def literal(self) -> str:
+        return str(self.variable) if self.value else f"-{self.variable}"
+
+    def to_json(self, naming=None) -> dict:
+        data = {"variable": str(self.variable), "value": self.value,
+                "to": self.consumer.step if self.consumer.kind != "goal" else "goal",
+                "kind": self.kind}
+        if naming is not None:
+            data["shown"] = naming.fact(self.literal())
+        if self.consumer.kind == "event":
+            data["event"] = str(self.consumer.event)
+        if self.effect is not None:
+            data["effect"] = str(self.effect)
+        if self.via is not None:
+            data["via"] = str(self.via)
+        return data
+
+
+@dataclass
+class StepExplanation:
+    """One step: its links, whether the plan without it is still a plan, its
+    utility, the valued facts it causes (variable, value, utility), and a
+    chain of links from it to the goal (empty if it serves no goal fact)."""
+
+    step: int
+    action: clingo.Symbol
+    links: list[CausalLink]
+    removable: bool
+    utility: int
+    causes: list[tuple[clingo.Symbol, bool, int]]
+    chain: list[Node]
+
+    @property
+    def bad(self) -> bool:
+        """Bad under deontology: the action's utility is negative."""
+        return self.utility < 0
+
+    @property
+    def serves_goal(self) -> bool:
+        return bool(self.chain)
+
+    def to_json(self, naming=None) -> dict:
+        def facts(sign: int) -> list[dict]:
+            return [{"variable": str(v), "value": b, "utility": u}
+                    for v, b, u in self.causes if (u < 0) == (sign < 0)]
+
+        data = {"step": self.step, "action": str(self.action)}
+        if naming is not None:
+            data["shown"] = naming.action(self.action)
+        data.update({
+            "links": [link.to_json(naming) for link in self.links],
+            "removable": self.removable,
+            "utility": self.utility,
+            "bad": self.bad,
+            "harms": facts(-1),
+            "goods": facts(1),
+            "serves_goal": self.serves_goal,
+            "chain": [node.to_json() for node in self.chain],
+        })
+        return data
+
+
+@dataclass
+class EventExplanation:
+    """An event that happened at a step and the links from what it set."""
+
+    step: int
+    event: clingo.Symbol
+    links: list[CausalLink]
+
+    def to_json(self, naming=None) -> dict:
+        return {"step": self.step, "event": str(self.event),
+                "links": [link.to_json(naming) for link in self.links]}
+
+
+@dataclass
+class StepsExplanation:
+    """A plan explained step by step (see the module docstring)."""
+
+    plan: Plan
+    steps: list[StepExplanation]
+    events: list[EventExplanation]
+    labels: Labels = field(default_factory=Labels)
+    text: str = ""
+
+    def to_json(self, naming=None) -> dict:
+        return {"plan": self.plan.to_list(),
+                "steps": [step.to_json(naming) for step in self.steps],
+                "events": [event.to_json(naming) for event in self.events if event.links],
+                "explanation": self.text}
+
+    def lines(self) -> list[str]:
+        """The explanation in words, one sentence per step (and per event
+        with links, in its place)."""
+        return plan_lines(self.labels, self.plan, self.steps, self.events)
+
+    @property
+    def links(self) -> list[CausalLink]:
+        """Every link, from steps and events, in the order of the plan."""
+        found = [link for step in self.steps for link in step.links]
+        found += [link for event in self.events for link in event.links]
+        return sorted(found, key=_link_order)
+
+    def step_text(self, step: int, model: Model | None = None) -> str:
+        """``why step T``: the step's links, its chain to the goal, whether it
+        is needed and its moral side, in words."""
+        if not 1 <= step <= len(self.steps):
+            raise InputError(f"why step {step}: the plan has "
+                             f"{'no steps' if not self.steps else f'steps 1 to {len(self.steps)}'}")
+        explained = self.steps[step - 1]
+        text = step_sentence(self.labels, self.plan, explained)
+        if explained.chain:
+            middle = [node for node in explained.chain[1:] if node.kind != "goal"]
+            if middle:
+                text += (" It serves the goal through "
+                         f"{words.join([_node_words(self.labels, self.plan, n) for n in middle])}.")
+            else:
+                text += " It serves the goal directly."
+        else:
+            text += " It serves no goal fact, directly or through later steps."
+        return text
+
+
+def _node_order(node: Node) -> int:
+    if node.kind == "goal":
+        return 1 << 40
+    return 2 * node.step + (1 if node.kind == "event" else 0)
+
+
+def _link_order(link: CausalLink):
+    return (_node_order(link.provider), _node_order(link.consumer), str(link.variable))
+
+
+# -- words ---------------------------------------------------------------------------
+
+def _node_words(labels: Labels, plan: Plan, node: Node) -> str:
+    if node.kind == "goal":
+        return "the goal"
+    if node.kind == "event":
+        return f"the event {words.term_words(node.event)} of step {node.step}"
+    return f"step {node.step}"
+
+
+def _fact_words(labels: Labels, link: CausalLink) -> str:
+    fact = words.fact_phrase(labels, link.variable, link.value)
+    if link.via is not None:
+        return f"{fact}, for {words.term_words(link.via)}"
+    return fact
+
+
+def _clause(labels: Labels, plan: Plan, consumer: Node, links: list[CausalLink]) -> str:
+    """What the links to one consumer let happen, e.g. "lets step 4 unlock
+    the door (the fact holding_key)"."""
+    facts = f" ({words.join(sorted({_fact_words(labels, link) for link in links}))})"
+    if consumer.kind == "goal":
+        return f"brings about the goal{facts}"
+    if consumer.kind == "event":
+        return f"lets {_node_words(labels, plan, consumer)} happen{facts}"
+    phrase = words.action_phrase(labels, plan.actions[consumer.step - 1])
+    kinds = {link.kind for link in links}
+    if kinds == {"condition"}:
+        effects = words.join(sorted({str(link.effect) for link in links}))
+        return (f"makes the conditional effect {effects} of step {consumer.step} "
+                f"({phrase}) fire{facts}")
+    return f"lets step {consumer.step} {phrase}{facts}"
+
+
+def _moral_words(labels: Labels, explained: StepExplanation) -> str:
+    parts = []
+    if explained.utility != 0:
+        value = "inherently bad" if explained.utility < 0 else "inherently good"
+        parts.append(f"{words.gerund(labels, explained.action)} is {value} "
+                     f"(utility {explained.utility})")
+    for variable, value, utility in explained.causes:
+        verb = "causes" if utility < 0 else "brings about"
+        parts.append(f"it {verb} {words.fact_phrase(labels, variable, value)} "
+                     f"(utility {utility})")
+    return words.capitalize("; ".join(parts)) + "." if parts else ""
+
+
+def step_sentence(labels: Labels, plan: Plan, explained: StepExplanation) -> str:
+    """One step in words: what it lets later steps, events and the goal do,
+    whether it is needed, and its moral side."""
+    head = (f"Step {explained.step}, "
+            f"{words.action_phrase(labels, explained.action)},")
+    consumers: dict[Node, list[CausalLink]] = {}
+    for link in explained.links:
+        consumers.setdefault(link.consumer, []).append(link)
+    if consumers:
+        clauses = [_clause(labels, plan, consumer, links)
+                   for consumer, links in sorted(consumers.items(),
+                                                 key=lambda item: _node_order(item[0]))]
+        text = f"{head} {words.join(clauses)}."
+        if explained.removable:
+            text += " It is not needed, though: the plan without it is still a plan."
+    elif explained.removable:
+        text = f"{head} is not needed: the plan without it is still a plan."
+    else:
+        text = (f"{head} is needed (the plan without it is no plan), though no later step, "
+                "event or goal fact needs a value it sets.")
+    moral = _moral_words(labels, explained)
+    return f"{text} {moral}" if moral else text
+
+
+def event_sentence(labels: Labels, plan: Plan, event: EventExplanation) -> str:
+    consumers: dict[Node, list[CausalLink]] = {}
+    for link in event.links:
+        consumers.setdefault(link.consumer, []).append(link)
+    clauses = [_clause(labels, plan, consumer, links)
+               for consumer, links in sorted(consumers.items(),
+                                             key=lambda item: _node_order(item[0]))]
+    return (f"The event {words.term_words(event.event)} of step {event.step} "
+            f"{words.join(clauses)}.")
+
+
+def plan_text(labels: Labels, plan: Plan, steps: list[StepExplanation],
+              events: list[EventExplanation]) -> str:
+    """The whole plan in words, step by step (events with links in their place)."""
+    return " ".join(plan_lines(labels, plan, steps, events))
+
+
+def plan_lines(labels: Labels, plan: Plan, steps: list[StepExplanation],
+               events: list[EventExplanation]) -> list[str]:
+    """The sentences of :func:`plan_text`."""
+    if not steps and not any(event.links for event in events):
+        return ["The plan has no steps: the goal holds without any action."]
+    sentences = [] if steps else ["The plan has no steps."]
+    by_step: dict[int, list[EventExplanation]] = {}
+    for event in events:
+        if event.links:
+            by_step.setdefault(event.step, []).append(event)
+    last = max([len(steps)] + list(by_step))  # events after the plan's end come last
+    for number in range(1, last + 1):
+        if number <= len(steps):
+            sentences.append(step_sentence(labels, plan, steps[number - 1]))
+        sentences += [event_sentence(labels, plan, event) for event in by_step.get(number, [])]
+    return sentences
+
+
+# -- the API -------------------------------------------------------------------------
+
+def explain_steps(model: Model, plan: Plan) -> StepsExplanation:
+    """The causal explanation of a plan, step by step (one clingo call on its
+    trace); InputError if it is not a plan or has more than
+    :data:`MAX_STEPS` steps."""
+    if len(plan) > MAX_STEPS:
+        raise InputError(f"the plan has {len(plan)} steps; step-by-step explanations are made "
+                         f"for plans of at most {MAX_STEPS} steps")
+    ctl = model.planner.program(ENCODINGS, symbols=occurrences(plan))
+    symbols: list[clingo.Symbol] = []
+    with ctl.solve(yield_=True) as handle:
+        for answer in handle:
+            symbols = list(answer.symbols(shown=True))
+            break
+    validation = read_validation(plan, symbols)
+    if not validation.valid:
+        raise InputError(f"not a plan: {validation.message(model.naming)}")
+    atoms = unify([Link, ServesGoal, Chain, StepUtility, StepCauses, Removable], symbols)
+    by_provider: dict[Node, list[CausalLink]] = {}
+    for atom in atoms.query(Link).all():
+        kind = atom.kind.symbol
+        link = CausalLink(Node.of(atom.provider.symbol), Node.of(atom.consumer.symbol),
+                          atom.variable.symbol, atom.value == "true",
+                          "condition" if kind.name == "condition" else kind.name,
+                          kind.arguments[0] if kind.name == "condition" else None,
+                          None if atom.via.symbol.name == "none" else atom.via.symbol)
+        by_provider.setdefault(link.provider, []).append(link)
+    chains: dict[int, list[tuple[int, Node]]] = {}
+    for atom in atoms.query(Chain).all():
+        chains.setdefault(atom.step, []).append((atom.index, Node.of(atom.node.symbol)))
+    utilities = {atom.step: atom.utility for atom in atoms.query(StepUtility).all()}
+    causes: dict[int, list[tuple[clingo.Symbol, bool, int]]] = {}
+    for atom in atoms.query(StepCauses).all():
+        causes.setdefault(atom.step, []).append((atom.variable.symbol, atom.value == "true",
+                                                 atom.utility))
+    removable = {atom.step for atom in atoms.query(Removable).all()}
+    steps = []
+    for number, action in enumerate(plan, start=1):
+        node = Node("step", number)
+        steps.append(StepExplanation(
+            number, action, sorted(by_provider.get(node, []), key=_link_order),
+            number in removable, utilities.get(number, 0),
+            sorted(causes.get(number, []), key=lambda c: (str(c[0]), c[1])),
+            [n for _, n in sorted(chains.get(number, []), key=lambda item: item[0])]))
+    events = [EventExplanation(node.step, node.event, sorted(links, key=_link_order))
+              for node, links in sorted(by_provider.items(), key=lambda i: _node_order(i[0]))
+              if node.kind == "event"]
+    labels = model_labels(model)
+    return StepsExplanation(plan, steps, events, labels, plan_text(labels, plan, steps, events))

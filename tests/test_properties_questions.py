@@ -1,0 +1,179 @@
+"""Property tests of the whole question language and of step-by-step
+explanations on random models (conditional effects and derived variables
+included), against the brute-force oracle of tests/question_oracle.py:
+
+* every form: a contrast plan meets the question and is a shortest one
+  (permissible under the principle, or, with the principle dropped, a
+  shortest one without it); the principle is dropped exactly when no plan
+  meeting the question is permissible under it (and some plan meets it);
+  "none" only when no plan meets the question, with a conflict that no plan
+  meets; a question whose presupposition fails is refused;
+* causal links and removable steps exactly as defined.
+"""
+
+from __future__ import annotations
+
+import random
+
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from ethasp import InputError, Model, Plan
+from ethasp.questions.contrast import ask
+from ethasp.questions.steps import explain_steps
+from oracle import plan_through, random_model
+from question_oracle import links, meets, removable, shortest_meeting, trajectory, value
+
+PRINCIPLES = ["deontology", "utilitarianism", "do-no-harm"]
+FORMS = ["why", "why-not", "rather-than", "before", "after", "at", "not-at", "within",
+         "not-within", "ends", "not-ends", "fact-at", "not-fact-at", "length"]
+MAX_HORIZON = 12
+
+
+def _b(value: bool) -> str:
+    return "true" if value else "false"
+
+
+def question(form: str, spec, plan: list[str], rng: random.Random):
+    """A question of the form about the plan: its text, its constraint terms
+    as the oracle writes them, and as questions.lp writes them.  Most
+    questions ask about what the plan does (their presupposition holds);
+    some pick their names at random."""
+    fitting = rng.random() < 0.8
+    a, b = rng.choice(spec.actions), rng.choice(spec.actions)
+    facts = spec.variables + list(spec.derived)
+    f = rng.choice(facts)
+    t = rng.randint(1, len(plan) + 2)
+    t1 = rng.randint(1, len(plan) + 1)
+    t2 = rng.randint(t1, t1 + 2)
+    states = trajectory(spec, plan)
+    if fitting and plan:
+        if form in ("why", "rather-than", "before", "after"):
+            a = rng.choice(plan)
+        elif form == "at":
+            t = rng.randint(1, len(plan))
+            a = plan[t - 1]
+        elif form == "within":
+            at = rng.randint(1, len(plan))
+            a, t1, t2 = plan[at - 1], rng.randint(1, at), rng.randint(at, len(plan) + 1)
+        elif form in ("why-not", "not-at", "not-within"):
+            a = rng.choice([x for x in spec.actions if x not in plan] or spec.actions)
+    if fitting and form in ("ends", "not-ends", "fact-at", "not-fact-at"):
+        state = states[min(t, len(plan))] if form.endswith("fact-at") else states[-1]
+        wanted = not form.startswith("not")
+        fitting_facts = [x for x in facts if value(spec, state, x) == wanted]
+        f = rng.choice(fitting_facts or facts)
+    table = {
+        "why": (f"why {a}", [("unused", a)]),
+        "why-not": (f"why not {a}", [("used", a)]),
+        "rather-than": (f"why {a} rather than {b}", [("unused", a), ("used", b)]),
+        "before": (f"why {a} before {b}", [("before", b, a)]),
+        "after": (f"why {a} after {b}", [("before", a, b)]),
+        "at": (f"why {a} at {t}", [("not_at", a, t)]),
+        "not-at": (f"why not {a} at {t}", [("at", a, t)]),
+        "within": (f"why {a} within {t1}..{t2}", [("not_within", a, t1, t2)]),
+        "not-within": (f"why not {a} within {t1}..{t2}", [("within", a, t1, t2)]),
+        "ends": (f"why {f}", [("ends", f, False)]),
+        "not-ends": (f"why not {f}", [("ends", f, True)]),
+        "fact-at": (f"why {f} at {t}", [("fact_at", f, False, t)]),
+        "not-fact-at": (f"why not {f} at {t}", [("fact_at", f, True, t)]),
+        "length": (f"why not in {max(len(plan) - 1, 0)} steps",
+                   [("at_most", max(len(plan) - 1, 0))]),
+    }
+    text, terms = table[form]
+    return text, terms, [_asp(term) for term in terms]
+
+
+def solvable(seed: int, **kinds):
+    """The first random model from ``seed`` on that has a plan."""
+    while True:
+        spec = random_model(seed, **kinds)
+        if spec.shortest_plan_length() is not None:
+            return spec, seed
+        seed += 1 << 20
+
+
+def _asp(term: tuple) -> str:
+    return f"{term[0]}({','.join(_b(x) if isinstance(x, bool) else str(x) for x in term[1:])})"
+
+
+def presupposition_fails(spec, plan, form, terms, text) -> bool:
+    if form in ("rather-than", "before", "after"):
+        subject = text.split()[1]
+        if subject not in plan:
+            return True
+    return all(meets(spec, plan, term) for term in terms)
+
+
+@settings(max_examples=120, deadline=None)
+@given(st.integers(min_value=0, max_value=10**9), st.sampled_from(PRINCIPLES),
+       st.sampled_from(FORMS), st.sampled_from(["plain", "conditional", "derived"]))
+def test_every_form_against_brute_force(seed, under, form, kind):
+    spec, seed = solvable(seed, conditional=kind == "conditional", derived=kind == "derived")
+    rng = random.Random(seed)
+    plan = plan_through(spec, rng, rng.randint(0, 2)) or plan_through(spec, rng, 0)
+    text, terms, written = question(form, spec, plan, rng)
+    model = Model.from_string(spec.to_asp())
+    try:
+        answer = ask(model, text, plan=Plan.parse(" ".join(plan)), principle="deontology",
+                     under=under, max_horizon=MAX_HORIZON)
+    except InputError as error:
+        assert presupposition_fails(spec, plan, form, terms, text), str(error)
+        return
+    assert not presupposition_fails(spec, plan, form, terms, text)
+    assert [str(c) for c in answer.constraints] == written
+    permissible = shortest_meeting(spec, terms, [under])
+    anyhow = shortest_meeting(spec, terms)
+    if answer.contrast is not None:
+        contrast = [str(x) for x in answer.contrast.plan]
+        assert spec.is_plan(contrast)
+        assert all(meets(spec, contrast, term) for term in terms), (contrast, terms)
+        if answer.principle_dropped:
+            assert permissible is None and len(contrast) == anyhow
+        else:
+            assert spec.permissible(contrast, under)
+            assert len(contrast) == permissible, (contrast, permissible)
+        assert answer.contrast.judgement.permissible == spec.permissible(contrast, under)
+    elif answer.status == "none":
+        assert anyhow is None
+        conflict = [term for term, c in zip(terms, written)
+                    if c in {str(x) for x in answer.conflict}]
+        assert conflict and shortest_meeting(spec, conflict) is None
+    else:
+        # Bounded: the searches were cut at the maximal horizon without a proof.
+        assert answer.status == "bounded"
+        assert permissible is None or permissible > MAX_HORIZON
+    # The principle is dropped exactly when no plan meeting the question is
+    # permissible under it (proven) and some plan meets the question.
+    if answer.principle_dropped:
+        assert permissible is None and anyhow is not None
+    elif permissible is None and anyhow is not None and anyhow <= MAX_HORIZON:
+        assert answer.status == "bounded"        # no proof found: not dropped
+
+
+@settings(max_examples=150, deadline=None)
+@given(st.integers(min_value=0, max_value=10**9),
+       st.sampled_from(["plain", "conditional", "derived", "both"]))
+def test_links_and_removable_steps_against_brute_force(seed, kind):
+    spec, seed = solvable(seed, conditional=kind in ("conditional", "both"),
+                          derived=kind in ("derived", "both"))
+    rng = random.Random(seed)
+    plan = plan_through(spec, rng, rng.randint(0, 4)) or plan_through(spec, rng, 0)
+    model = Model.from_string(spec.to_asp())
+    explanation = explain_steps(model, Plan.parse(" ".join(plan)))
+    found = set()
+    for link in explanation.links:
+        assert link.provider.kind == "step"       # no events in these models
+        kind_of = ("condition", str(link.effect)) if link.kind == "condition" else link.kind
+        consumer = "goal" if link.consumer.kind == "goal" else link.consumer.step
+        found.add((link.provider.step, consumer, str(link.variable), link.value, kind_of,
+                   None if link.via is None else str(link.via)))
+    assert found == links(spec, plan)
+    assert {step.step for step in explanation.steps if step.removable} == removable(spec, plan)
+    for step in explanation.steps:
+        action = plan[step.step - 1]
+        assert step.utility == spec.action_utility.get(action, 0)
+        assert step.bad == spec.bad_action(action)
+        # A chain ends at the goal and follows links.
+        if step.chain:
+            assert step.chain[0].step == step.step and step.chain[-1].kind == "goal"
