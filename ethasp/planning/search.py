@@ -458,6 +458,10 @@ def _shortest(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
             return SearchResult(FOUND, plan=plans[0], horizon=horizon,
                                 proof=_bound_proof(bound, why, horizon),
                                 plans=plans if all_plans else [])
+        if longest is not None and horizon >= longest:
+            return SearchResult(NONE, horizon=horizon, proof=(
+                f"no plan up to horizon {horizon}, and the question allows at most "
+                f"{steps(longest)}"))
         if horizon in checkpoints:
             # No plan of at most h steps, and no simple path of h + 1 steps: every
             # reachable state is within h steps of the initial one (a shortest
@@ -471,10 +475,6 @@ def _shortest(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
                                         proof=f"{budget.why_stopped()} at horizon {horizon}")
             elif not exists:
                 return SearchResult(NONE, horizon=horizon, proof=_searched(horizon))
-        if longest is not None and horizon >= longest:
-            return SearchResult(NONE, horizon=horizon, proof=(
-                f"no plan up to horizon {horizon}, and the question allows at most "
-                f"{steps(longest)}"))
         if horizon >= max_horizon:
             if exact.settle(max_horizon):
                 return SearchResult(NONE, horizon=horizon, proof=_settled(max_horizon))

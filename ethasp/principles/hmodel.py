@@ -34,11 +34,15 @@ from ethasp.planning.model import Model
 
 HMODEL = "restrictions/hmodel.lp"
 QUESTIONS = "questions/restriction.lp"
+QUESTION_RULES = "questions/questions.lp"
+RELAXED = "planning/relaxed.lp"
 RESTRICTIONS = "restrictions"
 MODEL = "planning/model.lp"
 
-# Constraint terms of questions that questions/restriction.lp compiles.
-COMPILED_CONSTRAINTS = ("unused", "used", "before")
+# Constraint terms of questions that questions/restriction.lp compiles
+# (at_most(N) is the search's maximal horizon: the HModel leaves it out).
+COMPILED_CONSTRAINTS = ("unused", "used", "before", "ends", "at", "not_at", "within",
+                        "not_within", "fact_at", "at_most")
 
 
 @dataclass(frozen=True)
@@ -65,9 +69,13 @@ class Restriction:
         return ", ".join(parts) or "nothing"
 
 
-def compiled(term: clingo.Symbol) -> bool:
-    """Is a question constraint term one that questions/restriction.lp compiles?"""
-    return term.type == clingo.SymbolType.Function and term.name in COMPILED_CONSTRAINTS
+def compiled(term: clingo.Symbol, derived: frozenset = frozenset()) -> bool:
+    """Is a question constraint term one that questions/restriction.lp compiles?
+    (``fact_at`` of a derived variable (in ``derived``) is not: the event that
+    records a fact reads state variables only.)"""
+    if term.type != clingo.SymbolType.Function or term.name not in COMPILED_CONSTRAINTS:
+        return False
+    return not (term.name == "fact_at" and term.arguments[0] in derived)
 
 
 class _Registry:
@@ -97,6 +105,19 @@ _REGISTRY = _Registry()
 def hmodel(model: Model, restriction: Restriction) -> Model:
     """The HModel of the model under the restriction (made once per model and
     restriction): a model whose plans are the model's plans that satisfy it."""
+    return _made(model, restriction)[0]
+
+
+def impossible(model: Model, restriction: Restriction) -> list[tuple[clingo.Symbol, str]]:
+    """The restriction's question constraints that no plan can meet, known
+    before any search (``questions/questions.lp`` over the model and its
+    relaxed reachability), each with why: ``goal`` (it contradicts the goal)
+    or ``relaxed`` (it needs an action or a fact that relaxed reachability
+    excludes)."""
+    return _made(model, restriction)[1]
+
+
+def _made(model: Model, restriction: Restriction):
     made = _REGISTRY.of(model)
     planner = model.planner
     with planner.lock:       # one compilation per restriction, whichever thread asks
@@ -105,17 +126,25 @@ def hmodel(model: Model, restriction: Restriction) -> Model:
         return made[restriction]
 
 
-def _compile(model: Model, restriction: Restriction) -> Model:
+# What questions.lp knows of a question before any search (its rules without a step).
+IMPOSSIBLE = (("question_against_goal", "goal"), ("question_unreachable", "relaxed"))
+
+
+def _compile(model: Model, restriction: Restriction):
     encodings = [MODEL, HMODEL]
     encodings += [f"{RESTRICTIONS}/{principle}.lp" for principle in restriction.principles]
     inputs: list[clingo.Symbol] = []
+    question = clingo.Function("q")
     if restriction.terms:
-        encodings.append(QUESTIONS)
-        question = clingo.Function("q")
-        inputs += [clingo.Function("contrast", [question, term]) for term in restriction.terms
-                   if compiled(term)]
+        encodings += [QUESTIONS, RELAXED, QUESTION_RULES]
+        inputs += [clingo.Function("contrast", [question, term]) for term in restriction.terms]
     if restriction.best_utility is not None:
         inputs.append(clingo.Function("best_utility", [clingo.Number(restriction.best_utility)]))
-    answer = model.planner.solve_program(encodings, symbols=inputs)
+    shown = "".join(f"#show {name}/2.\n" for name, _ in IMPOSSIBLE) if restriction.terms else ""
+    answer = model.planner.solve_program(encodings, shown, symbols=inputs)
     facts = [atom.arguments[0] for atom in answer.get("hmodel", 1)]
-    return Model.of_facts(f"<HModel of {restriction.describe()}>", facts, model.naming)
+    found = []
+    for name, why in IMPOSSIBLE:
+        found += [(atom.arguments[1], why) for atom in answer.get(name, 2)]
+    return (Model.of_facts(f"<HModel of {restriction.describe()}>", facts, model.naming),
+            sorted(found, key=str))

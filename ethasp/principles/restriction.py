@@ -34,7 +34,7 @@ from ethasp.planning.budget import Budget
 from ethasp.planning.planner import Constraint, Setting
 from ethasp.planning.search import (BOUNDED, DEFAULT_MAX_HORIZON, DEFAULT_SATISFICING_HORIZON,
                                     FOUND, NONE, any_plan, shortest)
-from ethasp.principles.hmodel import Restriction, compiled, hmodel
+from ethasp.principles.hmodel import Restriction, compiled, hmodel, impossible
 from ethasp.principles.principle import (GROUPS, Principle, available_principles,
                                          select_principles)
 from ethasp.resources import ENCODINGS
@@ -195,11 +195,23 @@ def plan_with_principles(model: Model, principles: Sequence[str],
                                proof=f"no reachable state valued yet: {best.proof}")
     # The HModel: a planning model of its own, planned for by every engine.
     terms = [constraint.term for constraint in constraints]
-    restriction = Restriction.of([p.asp_name for p in chosen], [t for t in terms if compiled(t)],
+    derived = frozenset(atom.arguments[0] for atom in model.planner.get("derived", 1))
+    restriction = Restriction.of([p.asp_name for p in chosen],
+                                 [t for t in terms if compiled(t, derived) and t.name != "at_most"],
                                  best.utility if best is not None else None)
     restricted = model if restriction.empty else hmodel(model, restriction)
+    against = impossible(model, restriction) if restriction.terms else []
+    if against:
+        # Known before any search (a constraint against the goal, or one that
+        # needs what relaxed reachability excludes).
+        term, why = against[0]
+        shown = model.naming.constraint(term)
+        reason = (f"the question's constraint {shown} contradicts the goal" if why == "goal"
+                  else f"the question's constraint {shown} needs an action or a fact that is "
+                       "unreachable even ignoring delete effects")
+        return HPlanResult(NONE, names, None, 0, f"no {plans_are}: {reason}", best=best)
     planner = restricted.planner
-    rest = [t for t in terms if not compiled(t)]
+    rest = [t for t in terms if not compiled(t, derived)]
     # Constraints that no HModel writes are imposed on its search (in ASP).
     setting = Setting(constraints=frozenset(planner.question(rest)) if rest else frozenset())
     task = f"plan search under {under}" if names else "plan search"
