@@ -168,3 +168,30 @@ def test_a_command_stuck_after_its_time_limit_ends_in_one_line(monkeypatch, caps
     monkeypatch.setattr(cli, "find_plan", lambda *args, **kwargs: clock.sleep(5.0))
     assert cli.main(["plan", "trolley", "--time-limit", "0.05"]) == 2
     assert "no answer within the time limit" in capsys.readouterr().err
+
+
+def test_the_memory_limit_stops_the_search_and_then_the_command(monkeypatch, capsys):
+    """Beyond --memory-limit the command's budget is cancelled with the reason
+    (its searches answer bounded); beyond 1.5 times it the command ends with
+    one line (where clingo cannot be stopped)."""
+    import time as clock
+
+    from ethasp.interfaces import cli
+    from ethasp.planning.search import BOUNDED, SearchResult
+
+    def waits_for_its_budget(model, *args, budget=None, **kwargs):
+        while not budget.expired():
+            clock.sleep(0.01)
+        return SearchResult(BOUNDED, proof=budget.why_stopped())
+
+    assert 2**20 < cli._memory() < 2**40          # the real reading: a plausible size
+    monkeypatch.setattr(cli, "find_plan", waits_for_its_budget)
+    monkeypatch.setattr(cli, "_memory", lambda: int(1.2 * 2**30))
+    assert cli.main(["plan", "trolley", "--memory-limit", "1", "--json"]) == 0
+    out = capsys.readouterr().out
+    assert "the memory limit of 1 GB was reached" in out and '"bounded"' in out
+    monkeypatch.setattr(cli, "find_plan", lambda *args, **kwargs: clock.sleep(5.0))
+    monkeypatch.setattr(cli, "_memory", lambda: 2 * 2**30)
+    assert cli.main(["plan", "trolley", "--memory-limit", "1"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("ethasp: error: out of memory: 2.0 GB in use") and err.count("\n") == 1

@@ -158,9 +158,32 @@ _answer_reasons = _count("reasons limit", MAX_REASONS, smallest=1)   # answers n
 
 
 def budget(args: argparse.Namespace) -> Budget:
-    """The command's budget: its time limit and a progress line on standard error."""
+    """The command's budget: its time limit and a progress line on standard error
+    (kept in ``args.limits``, for the memory limit of :func:`main`)."""
     args.progress = ProgressLine(enabled=False if getattr(args, "quiet", False) else None)
-    return Budget(getattr(args, "time_limit", None), args.progress)
+    args.limits = Budget(getattr(args, "time_limit", None), args.progress)
+    return args.limits
+
+
+def _memory() -> int:
+    """This process's resident memory in bytes (0 where it cannot be read)."""
+    try:
+        with open("/proc/self/statm") as statm:
+            return int(statm.read().split()[1]) * os.sysconf("SC_PAGE_SIZE")
+    except (OSError, ValueError, IndexError):
+        return 0
+
+
+def _gigabytes(text: str) -> float | None:
+    """A --memory-limit: gigabytes, a finite number from 0 to 1,000,000; 0 means none."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number of gigabytes: {text!r}") from None
+    if math.isnan(value) or value < 0 or value > 1_000_000:
+        raise argparse.ArgumentTypeError(
+            f"must be a number of gigabytes from 0 to 1,000,000 (0: no limit): {text!r}")
+    return value if value > 0 else None
 
 
 def _port(text: str) -> int:
@@ -622,6 +645,14 @@ def _hide(parser: argparse.ArgumentParser, option: str) -> None:
             action.help = argparse.SUPPRESS
 
 
+# The memory a command may use (gigabytes): beyond it its searches stop and
+# answer bounded; beyond MEMORY_HARD times it, where clingo cannot be stopped
+# (a grounding), the command ends with one line.
+DEFAULT_MEMORY_LIMIT = 4.0
+MEMORY_HARD = 1.5
+MEMORY_LIMIT_HELP = (f"stop searching when the process uses more than GB gigabytes of memory "
+                     f"and answer 'bounded'; end with one line at {MEMORY_HARD:g} times "
+                     f"that (default {DEFAULT_MEMORY_LIMIT:g}; 0 for no limit)")
 TIME_LIMIT_HELP = (f"stop searching after SECONDS and answer 'bounded' (default "
                    f"{DEFAULT_TIME_LIMIT:g}; 0 for no limit)")
 QUIET_HELP = "no progress line on standard error (shown on a terminal after 2 s)"
@@ -640,6 +671,8 @@ def _add_reasons_limit(parser: argparse.ArgumentParser,
 def _add_limits(parser: argparse.ArgumentParser, per: str = "", quiet: str = QUIET_HELP) -> None:
     parser.add_argument("--time-limit", type=_seconds, default=DEFAULT_TIME_LIMIT,
                         metavar="SECONDS", help=TIME_LIMIT_HELP + per)
+    parser.add_argument("--memory-limit", type=_gigabytes, default=DEFAULT_MEMORY_LIMIT,
+                        metavar="GB", help=MEMORY_LIMIT_HELP)
     parser.add_argument("--quiet", action="store_true", help=quiet)
 
 
@@ -983,8 +1016,22 @@ def main(argv: Sequence[str] | None = None) -> int:
         # (An Event, not Thread.join: an interrupted join can mark a running
         # thread as stopped.)
         threading.Thread(target=work, name="ethasp-command", daemon=True).start()
+        memory = getattr(args, "memory_limit", None)
+        memory = memory * 2**30 if memory else None
         try:
             while not done.wait(0.5):
+                if memory is not None and args.one_answer:
+                    used = _memory()
+                    limits = getattr(args, "limits", None)
+                    if used > memory and limits is not None and not limits.cancelled:
+                        limits.cancel(f"the memory limit of {args.memory_limit:g} GB was "
+                                      "reached")
+                    if used > MEMORY_HARD * memory:
+                        _error(f"out of memory: {used / 2**30:.1f} GB in use, more than "
+                               f"{MEMORY_HARD:g} times the memory limit of "
+                               f"{args.memory_limit:g} GB, where clingo cannot be stopped "
+                               "(--memory-limit GB raises it)")
+                        return _end(2, end_process)
                 if overrun is not None and time.monotonic() - started > overrun:
                     _error(f"no answer within the time limit of {limit:g} s: still working "
                            f"after {overrun:g} s, where clingo cannot be stopped (the model's "

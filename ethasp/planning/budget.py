@@ -64,6 +64,7 @@ class Budget:
         self.deadline = None if time_limit is None else self.started + time_limit
         self.on_progress = on_progress
         self._cancelled = threading.Event()
+        self._reason: list[str] = []     # why it was cancelled, if a reason was given
         self._share = False
 
     def share(self, seconds: float) -> "Budget":
@@ -72,6 +73,7 @@ class Budget:
         part = Budget(None, self.on_progress)
         part.started = self.started
         part._cancelled = self._cancelled
+        part._reason = self._reason
         end = time.monotonic() + seconds
         part.deadline = end if self.deadline is None else min(end, self.deadline)
         part.time_limit = self.time_limit
@@ -86,8 +88,11 @@ class Budget:
 
     # -- limits -------------------------------------------------------------------
 
-    def cancel(self) -> None:
-        """Stop every search under this budget soon (thread-safe)."""
+    def cancel(self, reason: str = "") -> None:
+        """Stop every search under this budget soon (thread-safe); ``reason``
+        replaces "the search was cancelled" in what the searches say."""
+        if reason:
+            self._reason[:] = [reason]
         self._cancelled.set()
 
     @property
@@ -113,7 +118,7 @@ class Budget:
     def why_stopped(self) -> str:
         """Words for a search cut short by this budget."""
         if self.cancelled:
-            return "the search was cancelled"
+            return self._reason[0] if self._reason else "the search was cancelled"
         if self._share:
             return "its share of the time was used"
         if self.time_limit is None:
@@ -162,6 +167,7 @@ class _Until(Budget):
         self.deadline = parent.deadline
         self.time_limit = parent.time_limit
         self._cancelled = parent._cancelled
+        self._reason = parent._reason
         self._share = parent._share
         self.parent = parent
         self.condition = condition
