@@ -360,7 +360,7 @@ class Layers:
         if self.model.events:
             # Exogenous events: explicit layers of configurations (state, time).
             from ethasp.planning import explicit
-            from ethasp.planning.greedy import Task
+            from ethasp.planning.task import Task
 
             task = Task(self.model)
             explicit.search(task, explicit.Events(self.model.events, task.index), self._budget,

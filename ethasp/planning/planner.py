@@ -283,7 +283,6 @@ class Planner:
         self._bound: Answer | None = None
         # A grounding left running when a budget ran out: (done, failure).
         self._pending: tuple[threading.Event, list] | None = None
-        self.memo: dict = {}          # results of the layers above, by question asked
         try:
             with clingo.ast.ProgramBuilder(self.ctl) as builder:
                 for name in MODEL_ENCODINGS:

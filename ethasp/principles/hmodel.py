@@ -23,14 +23,13 @@ keeps the model's action names and adds only state variables named
 
 from __future__ import annotations
 
-import threading
-import weakref
 from dataclasses import dataclass
 from typing import Iterable
 
 import clingo
 
 from ethasp.planning.model import Model
+from ethasp.principles.memo import results
 
 HMODEL = "restrictions/hmodel.lp"
 QUESTIONS = "questions/restriction.lp"
@@ -78,28 +77,6 @@ def compiled(term: clingo.Symbol, derived: frozenset = frozenset()) -> bool:
     return not (term.name == "fact_at" and term.arguments[0] in derived)
 
 
-class _Registry:
-    """The HModels made so far, per model (kept while the model lives)."""
-
-    def __init__(self):
-        self.lock = threading.Lock()
-        self.by_model: dict[int, tuple[weakref.ref, dict[Restriction, Model]]] = {}
-
-    def of(self, model: Model) -> dict[Restriction, Model]:
-        key = id(model)
-        with self.lock:
-            entry = self.by_model.get(key)
-            if entry is None or entry[0]() is not model:
-                entry = (weakref.ref(model, lambda _, key=key: self._forget(key)), {})
-                self.by_model[key] = entry
-            return entry[1]
-
-    def _forget(self, key: int) -> None:
-        with self.lock:
-            self.by_model.pop(key, None)
-
-
-_REGISTRY = _Registry()
 
 
 def hmodel(model: Model, restriction: Restriction) -> Model:
@@ -118,7 +95,7 @@ def impossible(model: Model, restriction: Restriction) -> list[tuple[clingo.Symb
 
 
 def _made(model: Model, restriction: Restriction):
-    made = _REGISTRY.of(model)
+    made = results(model).setdefault("hmodels", {})
     planner = model.planner
     with planner.lock:       # one compilation per restriction, whichever thread asks
         if restriction not in made:

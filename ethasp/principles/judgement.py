@@ -39,6 +39,7 @@ from typing import Iterable, Sequence
 import clingo
 from clorm import unify
 
+from ethasp.principles.memo import results
 from ethasp.errors import InputError
 from ethasp.planning.budget import Budget
 from ethasp.planning.model import Model
@@ -164,7 +165,7 @@ def counterfactuals(model: Model, plan: Plan) -> list[clingo.Symbol]:
     """The counterfactual facts of a plan (``counterfactual(F)``, F a
     ``but_for/2`` or ``instrumental/2`` atom that holds): the brave consequences
     of ``encodings/judgement/counterfactual.lp``, computed once per plan."""
-    memo = model.planner.memo
+    memo = results(model.planner)
     key = ("counterfactuals", plan)
     if key not in memo:
         ctl = model.planner.program(COUNTERFACTUAL, symbols=occurrences(plan))
@@ -183,7 +184,7 @@ def counterfactuals(model: Model, plan: Plan) -> list[clingo.Symbol]:
 
 def goal_reachable(model: Model, budget: Budget, max_horizon: int) -> tuple[bool | None, str]:
     """Does a plan reach the goal (None: not known within the limits), and why."""
-    memo = model.planner.memo
+    memo = results(model.planner)
     key = ("goal_reachable", max_horizon)
     if key in memo:
         return memo[key]
@@ -239,7 +240,7 @@ def _evaluation(model: Model, plan: Plan, principles: Iterable[Principle], budge
         return model.planner.trace(plan, [LANGUAGE, RUNS, EVIDENCE, *encodings]), Inputs()
     inputs = _inputs(model, plan, needs, budget, max_horizon)
     key = ("evaluation", plan, tuple(encodings), tuple(inputs.facts))
-    memo = model.planner.memo
+    memo = results(model.planner)
     if key not in memo:
         memo[key] = model.planner.solve_program(
             list(TRACE_ENCODINGS) + [LANGUAGE, RUNS, EVIDENCE, *encodings],

@@ -31,6 +31,7 @@ from typing import Callable
 import clingo
 from clorm import Raw, unify
 
+from ethasp.principles.memo import results
 from ethasp.planning.budget import Budget
 from ethasp.planning.plan import steps
 from ethasp.planning.planner import Planner, Setting
@@ -184,13 +185,13 @@ def _best_reachable(planner: Planner, budget: Budget, max_horizon: int, within: 
                     other_than: list[tuple[clingo.Symbol, bool]] | None) -> BestReachable:
     """:func:`best_reachable`, under the planner's lock; proven results are kept."""
     key = ("best_reachable", within, frozenset(other_than or ()), max_horizon)
-    if key in planner.memo:
-        return planner.memo[key]
+    if key in results(planner):
+        return results(planner)[key]
     result = _best_exact(planner, budget, max_horizon, within, other_than)
     if result is None:
         result = _best_by_optimisation(planner, budget, max_horizon, within, other_than)
     if result.status == PROVEN:
-        planner.memo[key] = result
+        results(planner)[key] = result
     return result
 
 
@@ -214,14 +215,14 @@ def _bound_states(planner: Planner, r: Reachability):
 
 def _configurations(planner: Planner):
     """The explicit layers of the planner's ground model (events included), made once."""
-    if "configurations" not in planner.memo:
+    if "configurations" not in results(planner):
         from ethasp.planning.explicit import Configurations, Events
-        from ethasp.planning.greedy import Task
+        from ethasp.planning.task import Task
 
         ground = planner.ground_model()
         task = Task(ground)
-        planner.memo["configurations"] = Configurations(task, Events(ground.events, task.index))
-    return planner.memo["configurations"]
+        results(planner)["configurations"] = Configurations(task, Events(ground.events, task.index))
+    return results(planner)["configurations"]
 
 
 def _final_state(planner: Planner, layers, configuration) -> ReachableState:
@@ -396,7 +397,7 @@ def _better_state(planner: Planner, utility: int, budget: Budget,
     bound = upper_bound(planner)
     if bound <= utility:
         return Comparison(PROVEN, f"no reachable state is better: {UB_PROOF.format(u=bound)}")
-    known = planner.memo.get(("best_reachable", "all", frozenset(), max_horizon))
+    known = results(planner).get(("best_reachable", "all", frozenset(), max_horizon))
     if known is not None and known.found is not None:
         # A best reachable state is known (proven): it decides.
         if known.utility > utility:

@@ -37,6 +37,7 @@ from typing import Iterable, Sequence
 import clingo
 from clorm import unify
 
+from ethasp.principles.memo import results
 from ethasp.errors import InputError
 from ethasp.planning.budget import Budget
 from ethasp.planning.model import Model
@@ -192,7 +193,7 @@ def explain(model: Model, plan: Plan, principle: str | Principle, limit: int = D
     require_plan(model, validate(model, plan))
     key = ("explain", plan, chosen.asp_name, limit,
            None if alternative is None else tuple(alternative.facts))
-    memo = model.planner.memo
+    memo = results(model.planner)
     if key in memo:
         return memo[key]
     facts: list = []
