@@ -152,3 +152,16 @@ def test_a_restricted_search_that_only_the_engines_prove_none_is_proven():
     answer = ask(model, "why cheat", plan=Plan.parse("cheat"), principle="deontology",
                  under="deontology", max_horizon=64)
     assert answer.status == "none" and answer.contrast is None
+
+
+def test_a_restriction_that_changes_nothing_keeps_the_model_and_its_grounding():
+    """Deontology on a model without bad actions: the HModel is the model
+    itself, so plans under it are plain plan search on the one grounding."""
+    from ethasp.principles.hmodel import Restriction, hmodel
+
+    model = Model.from_string("variable(g). action(a). eff(a,g,true). goal(g,true).")
+    assert hmodel(model, Restriction.of(["deontology"])) is model
+    assert hmodel(model, Restriction.of(["do_no_harm"])) is model       # nothing is bad
+    bad = Model.from_string("variable(g). action(a;b). eff(a,g,true). eff(b,g,true). "
+                            "goal(g,true). utility(b,-1).")
+    assert hmodel(bad, Restriction.of(["deontology"])) is not bad

@@ -81,7 +81,8 @@ def compiled(term: clingo.Symbol, derived: frozenset = frozenset()) -> bool:
 
 def hmodel(model: Model, restriction: Restriction) -> Model:
     """The HModel of the model under the restriction (made once per model and
-    restriction): a model whose plans are the model's plans that satisfy it."""
+    restriction): a model whose plans are the model's plans that satisfy it
+    (the model itself where the restriction removes and adds nothing)."""
     return _made(model, restriction)[0]
 
 
@@ -118,10 +119,15 @@ def _compile(model: Model, restriction: Restriction):
     if restriction.best_utility is not None:
         inputs.append(clingo.Function("best_utility", [clingo.Number(restriction.best_utility)]))
     shown = "".join(f"#show {name}/2.\n" for name, _ in IMPOSSIBLE) if restriction.terms else ""
+    shown += "#show removed/1. #show extra/1.\n"
     answer = model.planner.solve_program(encodings, shown, symbols=inputs)
-    facts = [atom.arguments[0] for atom in answer.get("hmodel", 1)]
     found = []
     for name, why in IMPOSSIBLE:
         found += [(atom.arguments[1], why) for atom in answer.get(name, 2)]
+    if not answer.get("removed", 1) and not answer.get("extra", 1):
+        # The restriction changes nothing (deontology without bad actions, ...):
+        # the HModel is the model itself, with its one grounding.
+        return model, sorted(found, key=str)
+    facts = [atom.arguments[0] for atom in answer.get("hmodel", 1)]
     return (Model.of_facts(f"<HModel of {restriction.describe()}>", facts, model.naming),
             sorted(found, key=str))

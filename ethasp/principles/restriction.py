@@ -218,7 +218,7 @@ def plan_with_principles(model: Model, principles: Sequence[str],
     result = (any_plan(planner, setting, budget, max_horizon, task=task, longest=max_length)
               if satisficing else
               shortest(planner, setting, budget, max_horizon, all_plans=all_plans, task=task,
-                       longest=max_length, threads=restriction.empty))
+                       longest=max_length, threads=restricted is model))
     if result.status == FOUND and best is not None and best.status != PROVEN:
         # A plan reaching the best utility found is no proof: a better state may
         # exist.  The plan is reported, bounded: permissible as far as searched.
