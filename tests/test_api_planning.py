@@ -123,16 +123,25 @@ def test_missing_file():
 
 
 def test_searches_share_one_grounding():
+    """A model is grounded once; the HModel of a restriction is a model of its
+    own, made and grounded once per model and restriction: searching again
+    grounds nothing new."""
+    from ethasp.principles.hmodel import Restriction, hmodel
+
     model = Model.load([MODELS / "rescue.lp"])
     result = find_plan(model, max_horizon=10)
     planner = model.planner
-    assert result.status == "found" and planner.grounded == len(result.plan)
-    control = planner.ctl
-    # An HPlan search switches a restriction on in the same control, and grounds
-    # only the horizons it needs beyond those already grounded.
+    assert result.status == "found" and planner.grounded >= len(result.plan)
+    control, grounded = planner.ctl, planner.grounded
     hplan = plan_with_principles(model, ["deontology"], max_horizon=10)
     assert hplan.status == "found" and model.planner is planner and planner.ctl is control
-    assert planner.grounded == len(hplan.plan)
-    # Asking again grounds nothing new.
+    restricted = hmodel(model, Restriction.of(["deontology"]))
+    assert restricted is not model                 # rescue's break_door is bad
+    restricted_control, restricted_grounded = restricted.planner.ctl, restricted.planner.grounded
+    # Asking again grounds nothing new, in either.
     assert find_plan(model, max_horizon=10).plan == result.plan
-    assert planner.grounded == len(hplan.plan)
+    assert plan_with_principles(model, ["deontology"], max_horizon=10).plan == hplan.plan
+    assert hmodel(model, Restriction.of(["deontology"])) is restricted
+    assert (planner.ctl, planner.grounded) == (control, grounded)
+    assert (restricted.planner.ctl, restricted.planner.grounded) == (restricted_control,
+                                                                     restricted_grounded)
