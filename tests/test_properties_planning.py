@@ -1,5 +1,6 @@
 """Property tests: plan search against a brute-force explicit-state search."""
 
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -7,6 +8,7 @@ from ethasp import Model, find_plan, validate
 from oracle import random_model
 
 
+@pytest.mark.slow
 @settings(max_examples=200, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9))
 def test_plan_existence_and_shortest_length(seed):
@@ -22,6 +24,7 @@ def test_plan_existence_and_shortest_length(seed):
         assert spec.is_plan([str(a) for a in result.plan])
 
 
+@pytest.mark.slow
 @settings(max_examples=200, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9), st.lists(st.integers(0, 3), max_size=5))
 def test_validation_agrees_with_the_oracle(seed, choices):
