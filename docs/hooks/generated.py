@@ -175,5 +175,8 @@ PLACEHOLDERS = {
 def on_page_markdown(markdown: str, page, config, files) -> str:
     for placeholder, make in PLACEHOLDERS.items():
         if placeholder in markdown:
-            markdown = markdown.replace(placeholder, make())
+            table = make()
+            if table.startswith("|"):   # names in the first column, on one line
+                table = f'<div class="names-table" markdown>\n\n{table}\n\n</div>'
+            markdown = markdown.replace(placeholder, table)
     return markdown
