@@ -110,6 +110,7 @@ def test_any_plan_on_ipc_instances_is_a_valid_plan(domain):
 
 # -- the trace over the facts of the plan's actions -------------------------------
 
+@pytest.mark.slow
 @settings(max_examples=60, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9), st.booleans(), st.booleans(),
        st.lists(st.integers(min_value=0, max_value=7), max_size=5))

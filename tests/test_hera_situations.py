@@ -88,6 +88,7 @@ def test_trace_steps_runs_and_search_agree_on_events():
     assert find_plan(model).plan == Plan.parse("go")
 
 
+@pytest.mark.slow
 @settings(max_examples=40, deadline=None, suppress_health_check=list(HealthCheck))
 @given(situations(max_events=3, max_plan=4))
 def test_the_trace_and_the_runs_give_the_same_final_state(data):

@@ -174,6 +174,7 @@ def test_validation_agrees_with_the_oracle(seed, choice_seed):
             assert set(check.unmet_preconditions) == reasons[term][1], (sequence, context(task))
 
 
+@pytest.mark.slow
 @settings(max_examples=100, deadline=None)
 @given(SEEDS)
 def test_relaxed_reachability_and_mutexes_are_sound(seed):

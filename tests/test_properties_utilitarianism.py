@@ -86,6 +86,7 @@ def test_shortest_utilitarian_hplans_are_right_and_proven(seed):
     assert len(plan) == expected, (plan, expected, spec)
 
 
+@pytest.mark.slow
 @settings(max_examples=30, deadline=None)
 @given(SEEDS, st.sampled_from([["utilitarianism", "deontology"],
                                ["utilitarianism", "do-no-harm"]]))

@@ -93,6 +93,7 @@ def test_satisficing_plans_under_principles_are_permissible(principle):
     assert report.judgements[0].permissible
 
 
+@pytest.mark.slow
 @settings(max_examples=40, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9),
        st.sampled_from(["deontology", "do-no-harm"]))
