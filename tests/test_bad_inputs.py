@@ -91,6 +91,7 @@ def test_bad_input_in_process(row, monkeypatch, tmp_path):
 SUBPROCESS = [row for row in CASES if row.get("subprocess")]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("row", SUBPROCESS, ids=[row["command"][:60] for row in SUBPROCESS])
 def test_bad_input_as_a_process(row):
     fragment = row["fragment"].replace("{f}", str(FIXTURES))

@@ -62,6 +62,7 @@ def first_plan(model: Model, canonical: bool, max_horizon: int = 14):
     return None
 
 
+@pytest.mark.slow
 @settings(max_examples=60, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9), st.booleans(), st.booleans())
 def test_canonical_search_finds_plans_of_the_shortest_length(seed, conditional, derived):

@@ -41,6 +41,7 @@ def test_parentheses_have_no_limit(elements):
     assert str(parsed) == "not Good(pull)"
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("operator", ["not ", "and", "or", "->"])
 def test_operators_nest_up_to_the_limit(trolley, operator):
     atom = "Good(-five_will_die)"

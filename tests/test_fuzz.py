@@ -22,12 +22,15 @@ import sys
 import threading
 from pathlib import Path
 
+import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from conftest import ENCODINGS, MODELS
 from ethasp.interfaces.cli import main
 from ethasp.planning.namespace import reserved
+
+pytestmark = pytest.mark.slow  # every test of this file runs ethasp many times
 
 LIMITS = ["--time-limit", "2", "--max-horizon", "3"]
 # A guard against hangs (not a measure of speed): far beyond the time limit and

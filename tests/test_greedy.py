@@ -29,6 +29,7 @@ def task_of(model: Model) -> Task:
 
 # -- the greedy search against the oracle ----------------------------------------
 
+@pytest.mark.slow
 @settings(max_examples=120, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9), st.booleans(), st.booleans())
 def test_greedy_search_finds_a_plan_exactly_when_one_exists(seed, conditional, derived):
@@ -98,6 +99,7 @@ def test_greedy_engine_in_a_child_process_proposes_a_plan():
     assert status.plan is not None and validate(model, Plan(status.plan)).valid
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("domain", sorted(path.name for path in IPC.iterdir() if path.is_dir()))
 def test_any_plan_on_ipc_instances_is_a_valid_plan(domain):
     model = Model.load([IPC / domain / "domain.pddl", IPC / domain / "p1.pddl"])
@@ -108,6 +110,7 @@ def test_any_plan_on_ipc_instances_is_a_valid_plan(domain):
 
 # -- the trace over the facts of the plan's actions -------------------------------
 
+@pytest.mark.slow
 @settings(max_examples=60, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9), st.booleans(), st.booleans(),
        st.lists(st.integers(min_value=0, max_value=7), max_size=5))

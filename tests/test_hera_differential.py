@@ -37,6 +37,7 @@ from ethasp.principles.judgement import judge
 from ethasp.planning.validation import validate
 from hera_situations import situations
 
+pytestmark = pytest.mark.slow  # random situations through ethasp and HERA both
 ethics = pytest.importorskip("ethics.plans.semantics")
 from ethics.plans import principles as hera  # noqa: E402
 

@@ -88,6 +88,7 @@ def test_trace_steps_runs_and_search_agree_on_events():
     assert find_plan(model).plan == Plan.parse("go")
 
 
+@pytest.mark.slow
 @settings(max_examples=40, deadline=None, suppress_health_check=list(HealthCheck))
 @given(situations(max_events=3, max_plan=4))
 def test_the_trace_and_the_runs_give_the_same_final_state(data):
@@ -105,6 +106,7 @@ def test_the_trace_and_the_runs_give_the_same_final_state(data):
                      for atom in runs}
 
 
+@pytest.mark.slow
 @settings(max_examples=25, deadline=None, suppress_health_check=list(HealthCheck))
 @given(situations(max_actions=2, max_events=2, max_plan=2, goal=True))
 def test_plan_search_with_events_finds_shortest_plans(data):
@@ -215,6 +217,7 @@ def test_a_plan_that_misses_its_goal_is_judged(tmp_path):
 
 # -- HModels ------------------------------------------------------------------------------
 
+@pytest.mark.slow
 @settings(max_examples=15, deadline=None, suppress_health_check=list(HealthCheck))
 @given(situations(max_actions=2, max_events=2, max_plan=2))
 def test_restrictions_find_shortest_permissible_plans(data):

@@ -111,6 +111,7 @@ def hard_gripper(tmp_path, balls: int = 14):
     return [str(MODELS / "pddl" / "gripper-domain.pddl"), str(problem)]
 
 
+@pytest.mark.slow
 def test_long_plan_search_stops_at_once(tmp_path):
     # (Exact reachability solves gripper with a few dozen balls in seconds.)
     process = start("plan", *hard_gripper(tmp_path, balls=100), "--max-horizon", "1000")
@@ -121,6 +122,7 @@ def test_long_plan_search_stops_at_once(tmp_path):
     assert_one_line(err, "ethasp: interrupted")
 
 
+@pytest.mark.slow
 def test_permissible_plan_search_stops_at_once(tmp_path):
     process = start("plan", *hard_gripper(tmp_path, balls=40), "--principle", "utilitarianism")
     time.sleep(5)

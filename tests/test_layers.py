@@ -61,6 +61,7 @@ def check_against_oracle(spec, status, model):
         assert len(plan) == expected and spec.is_plan(plan)
 
 
+@pytest.mark.slow
 @settings(max_examples=80, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9), st.booleans(), st.booleans(), st.booleans())
 def test_layers_prove_the_shortest_length_and_read_a_shortest_plan(seed, conditional, derived,
@@ -99,6 +100,7 @@ def test_search_model_drops_what_never_changes():
     assert [(str(v), b) for v, b in ground.goal] == [("far", True)]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("knob, value", [("LAYERS_AFTER", 0.0),           # after the first solve
                                           ("LAYERS_AT_ONCE_ACTIONS", 1)])  # before any solve
 @settings(max_examples=50, deadline=None)
@@ -180,6 +182,7 @@ def test_budget_until_stops_on_its_condition():
     assert child.expired()
 
 
+@pytest.mark.slow
 @settings(max_examples=60, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9), st.booleans(), st.booleans())
 def test_bidirectional_layers_prove_the_shortest_length_and_read_a_shortest_plan(

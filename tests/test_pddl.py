@@ -63,6 +63,7 @@ def model_atoms(model: Model) -> dict[str, set[str]]:
 
 # -- names ------------------------------------------------------------------------
 
+@pytest.mark.slow
 @given(st.from_regex(r"[A-Za-z][-_A-Za-z0-9]{0,12}", fullmatch=True))
 def test_name_rule_round_trip(name):
     asp = pddl_name_to_asp(name)

@@ -370,11 +370,13 @@ def _plan_length(folder: Path, instance: str) -> int:
     return len(result.plan)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("domain", sorted({d for d, _ in OPTIMAL}))
 def test_ipc_first_instances_plan_with_optimal_length(domain):
     assert _plan_length(DATA / domain, "p1") == OPTIMAL[(domain, "p1")]
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(IPC_FOLDER is None or not IPC_FOLDER.is_dir(),
                     reason="ETHASP_IPC names no folder of IPC domains")
 def test_every_ipc_instance_of_the_folder_is_read():
@@ -386,6 +388,7 @@ def test_every_ipc_instance_of_the_folder_is_read():
             assert model.sources[0].text.count("\naction(") > 0, problem
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(IPC_FOLDER is None or not IPC_FOLDER.is_dir(),
                     reason="ETHASP_IPC names no folder of IPC domains")
 @pytest.mark.parametrize("domain", sorted({d for d, _ in OPTIMAL}))

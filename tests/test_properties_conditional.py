@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import random
 
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -29,6 +30,7 @@ def spec_of(seed: int):
                         events=(seed // 4) % 2 == 0)
 
 
+@pytest.mark.slow
 @settings(max_examples=150, deadline=None)
 @given(SEEDS)
 def test_shortest_plans_agree_with_the_oracle(seed):
@@ -43,6 +45,7 @@ def test_shortest_plans_agree_with_the_oracle(seed):
         assert spec.is_plan([str(a) for a in result.plan])
 
 
+@pytest.mark.slow
 @settings(max_examples=200, deadline=None)
 @given(SEEDS, st.lists(st.integers(0, 3), max_size=6))
 def test_validation_agrees_with_the_oracle(seed, choices):
@@ -80,6 +83,7 @@ PRINCIPLES = [["deontology"], ["do-no-harm"], ["utilitarianism"],
               ["deontology", "do-no-harm", "utilitarianism"]]
 
 
+@pytest.mark.slow
 @settings(max_examples=150, deadline=None)
 @given(SEEDS, st.sampled_from(PRINCIPLES))
 def test_hplans_agree_with_the_oracle(seed, principles):

@@ -5,6 +5,7 @@ question's constraints, and the principle whenever it was not dropped
 
 import random
 
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -26,6 +27,7 @@ def meets(plan: list[str], kind: str, a: str, b: str | None) -> bool:
     return any(x == b and a in plan[i + 1:] for i, x in enumerate(plan))
 
 
+@pytest.mark.slow
 @settings(max_examples=120, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9), st.sampled_from(PRINCIPLES),
        st.sampled_from(["why", "why-not", "rather-than", "before"]))

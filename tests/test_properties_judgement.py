@@ -4,6 +4,7 @@ exogenous events)."""
 
 import random
 
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -46,6 +47,7 @@ def text(formula: tuple) -> str:
     return f"({text(formula[1])}) {operator} ({text(formula[2])})"
 
 
+@pytest.mark.slow
 @settings(max_examples=150, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9), st.integers(min_value=0, max_value=6))
 def test_verdicts_agree_with_the_definitions(seed, walk):
@@ -72,6 +74,7 @@ def test_verdicts_agree_with_the_definitions(seed, walk):
     assert best.status == "proven" and best.utility == spec.best_reachable_utility()
 
 
+@pytest.mark.slow
 @settings(max_examples=200, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9), st.integers(min_value=0, max_value=4))
 def test_formulas_agree_with_the_definitions(seed, walk):
@@ -84,6 +87,7 @@ def test_formulas_agree_with_the_definitions(seed, walk):
         assert result.value == holds(spec, plan, formula), (text(formula), plan)
 
 
+@pytest.mark.slow
 @settings(max_examples=120, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9), st.integers(min_value=1, max_value=150))
 def test_long_sequences_have_the_oracle_final_state_and_failure(seed, length):

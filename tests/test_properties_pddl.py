@@ -46,6 +46,7 @@ def context(task: PddlTask) -> str:
     return task.domain_text() + task.problem_text()
 
 
+@pytest.mark.slow
 @settings(max_examples=150, deadline=None)
 @given(SEEDS)
 def test_shortest_plan_lengths_agree_with_the_oracle(seed):
@@ -109,6 +110,7 @@ def effect_literals(e) -> list:
     return effect_literals(e[2])      # forall, when
 
 
+@pytest.mark.slow
 @settings(max_examples=150, deadline=None)
 @given(SEEDS)
 def test_the_actions_are_those_whose_static_preconditions_hold(seed):
@@ -122,6 +124,7 @@ def test_the_actions_are_those_whose_static_preconditions_hold(seed):
     assert actions == expected, context(task)
 
 
+@pytest.mark.slow
 @settings(max_examples=150, deadline=None)
 @given(SEEDS, st.integers(min_value=0, max_value=10**6))
 def test_validation_agrees_with_the_oracle(seed, choice_seed):
@@ -171,6 +174,7 @@ def test_validation_agrees_with_the_oracle(seed, choice_seed):
             assert set(check.unmet_preconditions) == reasons[term][1], (sequence, context(task))
 
 
+@pytest.mark.slow
 @settings(max_examples=100, deadline=None)
 @given(SEEDS)
 def test_relaxed_reachability_and_mutexes_are_sound(seed):

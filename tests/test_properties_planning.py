@@ -2,6 +2,7 @@
 on random models with every feature (conditional effects, derived variables,
 exogenous events)."""
 
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -9,6 +10,7 @@ from ethasp import Model, find_plan, validate
 from oracle import features, random_model
 
 
+@pytest.mark.slow
 @settings(max_examples=200, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9))
 def test_plan_existence_and_shortest_length(seed):
@@ -24,6 +26,7 @@ def test_plan_existence_and_shortest_length(seed):
         assert spec.is_plan([str(a) for a in result.plan])
 
 
+@pytest.mark.slow
 @settings(max_examples=200, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9), st.lists(st.integers(0, 3), max_size=5))
 def test_validation_agrees_with_the_oracle(seed, choices):

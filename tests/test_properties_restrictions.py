@@ -10,6 +10,7 @@ strong form); when none exists, the status is "none", which needs a proof.
 
 import itertools
 
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -46,18 +47,21 @@ def check_against_oracle(seed: int, principles: list[str]) -> None:
     assert len(plan) == expected, (plan, expected, spec)
 
 
+@pytest.mark.slow
 @settings(max_examples=300, deadline=None)
 @given(SEEDS, st.sampled_from(SINGLE))
 def test_hplans_of_one_principle_agree_with_the_oracle(seed, principles):
     check_against_oracle(seed, principles)
 
 
+@pytest.mark.slow
 @settings(max_examples=200, deadline=None)
 @given(SEEDS, st.sampled_from(PAIRS + [list(PRINCIPLES)]))
 def test_hplans_of_several_principles_agree_with_the_oracle(seed, principles):
     check_against_oracle(seed, principles)
 
 
+@pytest.mark.slow
 @settings(max_examples=100, deadline=None)
 @given(SEEDS)
 def test_the_utilitarian_bound_is_the_proven_best_reachable_utility(seed):

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import random
 
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -51,6 +52,7 @@ def dense_model(seed: int) -> RandomModel:
     return RandomModel(variables, actions, pre, eff, init, goal, action_utility, fact_utility)
 
 
+@pytest.mark.slow
 @settings(max_examples=60, deadline=None)
 @given(SEEDS, st.integers(min_value=0, max_value=8))
 def test_utilitarian_verdicts_are_right_and_proven(seed, walk):
@@ -76,6 +78,7 @@ def test_utilitarian_verdicts_are_right_and_proven(seed, walk):
     assert frozenset(v for v in spec.variables if v in best.state) in spec.distances()
 
 
+@pytest.mark.slow
 @settings(max_examples=60, deadline=None)
 @given(SEEDS)
 def test_shortest_utilitarian_hplans_are_right_and_proven(seed):
@@ -92,6 +95,7 @@ def test_shortest_utilitarian_hplans_are_right_and_proven(seed):
     assert len(plan) == expected, (plan, expected, spec)
 
 
+@pytest.mark.slow
 @settings(max_examples=30, deadline=None)
 @given(SEEDS, st.sampled_from([["utilitarianism", "deontology"],
                                ["utilitarianism", "do-no-harm"]]))
@@ -111,6 +115,7 @@ def test_utilitarian_hplans_with_other_principles_are_right(seed, principles):
     assert all(spec.permissible(plan, p) for p in principles), (plan, spec)
 
 
+@pytest.mark.slow
 @settings(max_examples=40, deadline=None)
 @given(SEEDS, st.integers(min_value=0, max_value=6))
 def test_the_fallback_without_diagrams_is_right_when_it_claims(seed, walk):

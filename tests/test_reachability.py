@@ -6,6 +6,7 @@ variables; and the ground model it reads from the planner."""
 from __future__ import annotations
 
 import clingo
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -43,6 +44,7 @@ def spec_of(seed: int):
                         derived=seed % 3 == 0)
 
 
+@pytest.mark.slow
 @settings(max_examples=200, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9))
 def test_layers_best_states_and_paths_agree_with_breadth_first_search(seed):

@@ -51,6 +51,7 @@ def test_the_heuristic_removes_no_plan():
 
 # -- the API ---------------------------------------------------------------------
 
+@pytest.mark.slow
 @settings(max_examples=80, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9), st.booleans())
 def test_any_plan_is_a_plan_and_none_is_proven(seed, conditional):
@@ -93,6 +94,7 @@ def test_satisficing_plans_under_principles_are_permissible(principle):
     assert report.judgements[0].permissible
 
 
+@pytest.mark.slow
 @settings(max_examples=40, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9),
        st.sampled_from(["deontology", "do-no-harm"]))
@@ -159,6 +161,7 @@ def test_cli_dialogue_takes_satisficing(tmp_path):
 
 # -- IPC instances ---------------------------------------------------------------
 
+@pytest.mark.slow
 @pytest.mark.parametrize("domain", sorted(path.name for path in DATA.iterdir() if path.is_dir()))
 def test_ipc_first_instances_satisficing(domain):
     folder = DATA / domain

@@ -25,6 +25,8 @@ import pytest
 
 from conftest import MODELS, ROOT
 
+pytestmark = pytest.mark.slow  # a real browser, end to end
+
 if os.environ.get("ETHASP_REQUIRE_BROWSER") == "1":
     from selenium import webdriver
 else:
@@ -34,6 +36,7 @@ from selenium.webdriver.common.by import By  # noqa: E402
 from selenium.webdriver.support.ui import Select, WebDriverWait  # noqa: E402
 
 from ethasp import Model  # noqa: E402
+from ethasp.interfaces.version import package_version  # noqa: E402
 from ethasp.interfaces.web.server import Server  # noqa: E402
 from ethasp.interfaces.web.workspace import Workspace  # noqa: E402
 
@@ -201,6 +204,8 @@ def test_conductor_example_in_the_browser(server, browser):
     wait_for(driver, lambda d: "do-no-harm" in text(d, "current-summary")
              and d.find_elements(By.CSS_SELECTOR, "#judgements .card"), "the first plan")
     assert text(driver, "model-name") == "trolley.lp"
+    footer = driver.find_element(By.CSS_SELECTOR, "footer #version").text
+    assert footer == f"ethasp {package_version()}"
     glance = text(driver, "model")
     assert "pull the lever" in glance and "the death of the five persons" in glance
     assert "Agent: the man" in glance

@@ -771,7 +771,7 @@ def build_parser() -> argparse.ArgumentParser:
         description="Evaluate a formula of the language L for a plan and print true or "
                     "false, e.g. 'Caused(one_will_die) and not Bad(pull)'.")
     _add_model_arguments(asking)
-    asking.add_argument("formula", metavar="FORMULA", help="the formula (see the README)")
+    asking.add_argument("formula", metavar="FORMULA", help="the formula (syntax: docs/formulas.md)")
     _add_plan_arguments(asking, required=False)
     asking.set_defaults(run=command_query)
 

@@ -49,7 +49,7 @@ from ethasp.resources import ENCODINGS
 
 # -- the vocabulary a model defines ---------------------------------------------------
 
-#: The model vocabulary: what models are meant to define (see README, "Planning models").
+#: The model vocabulary: what models are meant to define (see docs/models/asp.md).
 MODEL_VOCABULARY: dict[tuple[str, int], str] = {
     ("variable", 1): "variable(V): a Boolean state variable",
     ("action", 1): "action(A): an action",

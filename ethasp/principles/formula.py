@@ -1,6 +1,6 @@
 """Formulas of the moral action query language L as text: parsing and printing.
 
-The syntax (documented in the README, section "Formulas")::
+The syntax (documented in docs/formulas.md)::
 
     formula     ::= disjunction [ "->" formula ]          (right associative)
     disjunction ::= conjunction { "or" conjunction }

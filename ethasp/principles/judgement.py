@@ -21,7 +21,7 @@ reachable states:
 * otherwise ``permissible`` as far as searched, ``bounded``: a better
   reachable state may exist.
 
-HERA's principles (``encodings/principles/``, see the README) evaluate in the
+HERA's principles (``encodings/principles/``, see docs/principles.md) evaluate in the
 same program.  Those whose formulas use counterfactual operators (ButFor,
 Instrumental, Means, Means2) are given the counterfactual facts of the plan
 first, the brave consequences of ``encodings/judgement/counterfactual.lp``
