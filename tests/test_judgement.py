@@ -67,7 +67,9 @@ def test_json_report_of_pull():
     assert data["utility"] == 4
     assert set(data["judgements"][0]) == {"principle", "permissible", "status", "proof",
                                           "sufficient_reasons", "necessary_reasons",
-                                          "chosen_reason", "explanation", "reasons_truncated"}
+                                          "chosen_reason", "explanation", "reasons_truncated",
+                                          "necessary_reasons_truncated",
+                                          "sufficient_reasons_truncated"}
 
 
 def test_text_report_and_principle_selection():

@@ -305,6 +305,10 @@ def test_reasons_are_truncated_only_when_more_exist(principle, limit, truncated)
                            "--plan", "pull", "--principle", principle, "--reasons-limit",
                            str(limit)], capture_output=True, text=True, cwd=ROOT).stdout
     assert ("limit reached" in text) is truncated
+    if principle == "do-no-harm" and limit == 1:
+        # two necessary reasons, one sufficient: only the first kind is cut
+        assert result.necessary_truncated and not result.sufficient_truncated
+        assert text.count("(limit reached; more may exist)") == 1
 
 
 @settings(max_examples=40, deadline=None)

@@ -419,9 +419,11 @@ def _explanation_text(report: "JudgementReport") -> list[str]:
         if explanation is None:
             continue
         lines.append(f"{judgement.principle}: {explanation.text}")
-        for kind, reasons in (("necessary", explanation.necessary_reasons),
-                              ("sufficient", explanation.sufficient_reasons)):
-            kind_lines, cut = reasons_lines(kind, reasons, explanation.truncated, width)
+        for kind, reasons, truncated in (
+                ("necessary", explanation.necessary_reasons, explanation.necessary_truncated),
+                ("sufficient", explanation.sufficient_reasons,
+                 explanation.sufficient_truncated)):
+            kind_lines, cut = reasons_lines(kind, reasons, truncated, width)
             lines += kind_lines
             shortened = shortened or cut
     if shortened:

@@ -55,7 +55,8 @@ class Explanation:
     a list of literals in the formula syntax (``Bad(a2)``, ``not
     Caused(five_will_die)``); at most ``limit`` of each are computed, and
     ``truncated`` says that the limit cut an enumeration short (more reasons
-    may exist).  ``chosen_reason`` is the most relevant necessary reason (empty
+    may exist; ``necessary_truncated`` and ``sufficient_truncated`` say it per
+    kind).  ``chosen_reason`` is the most relevant necessary reason (empty
     when the verdict holds whatever the atoms' values), ``text`` its words.
     ``alternative`` is the state compared with (utilitarianism), as literals
     ``v`` / ``-v``.  ``literals`` holds what the words say as :class:`Literal`
@@ -74,6 +75,8 @@ class Explanation:
     text: str
     truncated: bool
     alternative: list[str] | None = None
+    necessary_truncated: bool = False
+    sufficient_truncated: bool = False
     literals: list[Literal] = field(default_factory=list)
     comparisons: dict[clingo.Symbol, Comparison] = field(default_factory=dict)
     labels: Labels = field(default_factory=Labels)
@@ -83,7 +86,9 @@ class Explanation:
                 "necessary_reasons": self.necessary_reasons,
                 "chosen_reason": self.chosen_reason,
                 "explanation": self.text,
-                "reasons_truncated": self.truncated}
+                "reasons_truncated": self.truncated,
+                "necessary_reasons_truncated": self.necessary_truncated,
+                "sufficient_reasons_truncated": self.sufficient_truncated}
         if self.alternative is not None:
             data["compared_state"] = self.alternative
         return data

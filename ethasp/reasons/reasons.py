@@ -245,6 +245,7 @@ def explain(model: Model, plan: Plan, principle: str | Principle, limit: int = D
         necessary_reasons=[texts(_literals(s)) for s in necessary],
         chosen_reason=texts(literals), text="",
         truncated=not (necessary_done and sufficient_done),
+        necessary_truncated=not necessary_done, sufficient_truncated=not sufficient_done,
         alternative=compared, literals=spoken, comparisons=_comparisons(words),
         labels=_labels_of(model))
     explanation.text = non_contrastive(explanation)
