@@ -35,7 +35,10 @@ def test_conductor_example(trolley):
     assert str(answer.original.plan) == "refrain" and answer.original.judgement.permissible
     assert str(answer.contrast.plan) == "pull" and not answer.contrast.judgement.permissible
     assert answer.principle_dropped and answer.status == "found"
-    assert "every reachable state was searched" in answer.dropped_because
+    # a proof that no permissible plan meets it (the loop-free threshold, or the
+    # exact layers of the HModel, whichever answers first)
+    assert ("every reachable state was searched" in answer.dropped_because
+            or "no goal state is reachable" in answer.dropped_because), answer.dropped_because
     assert [str(c) for c in answer.constraints] == ["unused(refrain)", "used(pull)"]
     assert answer.difference == {"original_only": ["not Caused(five_will_die)"],
                                  "contrast_only": ["Caused(one_will_die)"]}

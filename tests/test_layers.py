@@ -222,6 +222,8 @@ def test_plain_search_solves_with_two_threads_once_the_layers_give_up(seed, monk
     threads = type(planner).threads
     monkeypatch.setattr(Layers, "__init__", giving_up)
     monkeypatch.setattr(search_module, "LAYERS_AT_ONCE_ACTIONS", 0)   # waited for at the start
+    # ... until they report (however busy the machine: they give up at once)
+    monkeypatch.setattr(search_module, "HEAD_START", 60.0)
     monkeypatch.setattr(search_module, "_cores", lambda: 2)
     monkeypatch.setattr(type(planner), "threads",
                         lambda self, count: (counts.append(count), threads(self, count)))

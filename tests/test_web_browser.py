@@ -366,7 +366,7 @@ def test_the_layout_of_a_long_pddl_task(care_server, browser):
     driver.get(care_server.url)
     wait_for(driver, lambda d: idle(d) and len(d.find_elements(By.CSS_SELECTOR, "#judgements .card"))
              == 3 and d.find_elements(By.CSS_SELECTOR, "#current-picture svg"), "the first plan")
-    assert "10 steps, made and judged under do-no-harm" in text(driver, "current-summary")
+    assert "10 steps: the first plan, judged under do-no-harm" in text(driver, "current-summary")
     # Long sections are folded: the model's 32 actions and 122 variables.
     assert driver.execute_script(
         "return [...document.querySelectorAll('#model details')].map(d => d.open)") == [False, False]
@@ -426,7 +426,8 @@ def test_the_layout_of_a_long_pddl_task(care_server, browser):
         document.getElementById("ask-form").requestSubmit();""")
     wait_for(driver, lambda d: idle(d) and text(d, "error"), "the error")
     error = driver.find_element(By.ID, "error")
-    assert error.text == "error: question 'why not (fly kitchen)': unknown action (fly kitchen)"
+    assert error.text == ("error: question 'why not (fly kitchen)': unknown action (fly kitchen) "
+                          "(nor a state variable)")
     assert driver.execute_script("return arguments[0].closest('#ask-panel') !== null", error)
     wait_for(driver, lambda d: in_view(d, error), "the error in view")
     assert layout_problems(driver) == []

@@ -72,7 +72,7 @@ def _unknown_action(model: Model, question: Question, term: clingo.Symbol, also:
         facts = ", ".join(map(model.naming.fact, failing[term]))
         return (f"question '{question}': action {model.naming.action(term)} never applies: "
                 f"precondition {facts} does not hold and no action changes it")
-    return f"question '{question}': unknown action {term}{also}"
+    return f"question '{question}': unknown action {model.naming.action(term)}{also}"
 
 
 def resolve(model: Model, question: Question) -> Resolved:
