@@ -31,6 +31,7 @@ _HOMES = {
     "find_plan": "ethasp.planning.search",
     "Validation": "ethasp.planning.validation",
     "validate": "ethasp.planning.validation",
+    "batch": "ethasp.batch.run",
 }
 
 
@@ -67,4 +68,5 @@ __all__ = [
     "Validation",
     "find_plan",
     "validate",
+    "batch",
 ]
