@@ -42,13 +42,15 @@ class BatchProgress:
         self.total, self.before = total, before
         self.done, self.failed = before, failed_before
         self.started = time.monotonic()
-        self.last = 0.0
+        # A plain line comes after EVERY seconds; the bar at once.
+        self.last = self.started if not self.terminal else 0.0
         self.width = 0
 
     def update(self, done: int, failed: int) -> None:
         """``done`` cases of the total finished (counting earlier runs), ``failed`` of them failed."""
+        changed = (done, failed) != (self.done, self.failed)
         self.done, self.failed = done, failed
-        if not self.enabled:
+        if not self.enabled or not changed:
             return
         now = time.monotonic()
         if now - self.last < (1.0 / RATE if self.terminal else EVERY):
