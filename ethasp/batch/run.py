@@ -141,8 +141,6 @@ class Batch:
         key = (line.get("principle"), line.get("question"))
         if "error" in line and key not in item.hashes:
             key = CASE
-        if key == CASE and "error" in line and line.get("principle") is None:
-            line.pop("principle", None)
         line.setdefault("seconds", None)
         line.setdefault("ethasp_version", version())
         line["files"] = list(item.case.files)

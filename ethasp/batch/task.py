@@ -110,8 +110,8 @@ def one_line(message: str) -> str:
 
 def error_line(case: Case, message: str, principle: str | None = None,
                question: str | None = None, task: str | None = None) -> dict:
-    line = {"case": case.name, "principle": principle, "status": ERROR,
-            "error": one_line(message)}
+    line = {"case": case.name, "principle": principle, "permissible": None, "status": ERROR,
+            "plan": None, "utility": None, "error": one_line(message)}
     if task is not None:
         line["task"] = task
     if question is not None:
