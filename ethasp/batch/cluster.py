@@ -88,7 +88,8 @@ class DaskCluster:
         limit = self.settings.time_limit
         overrun = None if not limit else 2 * limit + self.grace
         pending = set(futures)
-        done = distributed.as_completed(futures, with_results=True, raise_errors=False)
+        done = distributed.as_completed(futures, loop=self.client.loop, with_results=True,
+                                        raise_errors=False)
         looked = time.monotonic()
         try:
             while pending:
