@@ -298,3 +298,23 @@ def test_report_agreement_lists_the_disagreeing_cases(tmp_path):
     assert "a vs b: disagree on 2 of 4 cases" in page
     assert "<a href='#case-2'>c1</a>" in page and "<a href='#case-4'>c3</a>" in page
     assert "50% <a href='#pair-0-1'>(2)</a>" in page
+
+
+def test_progress_is_a_bar_on_a_terminal_and_plain_lines_elsewhere():
+    import io
+
+    from ethasp.batch.progress import BatchProgress
+
+    stream = io.StringIO()
+    bar = BatchProgress(10, before=2, stream=stream, terminal=True)
+    bar.update(5, 1)
+    bar.finish("done")
+    text = stream.getvalue()
+    assert text.startswith("\r[#") and "5/10 cases, 1 failed," in text and "left" in text
+    assert text.endswith("done\n")
+    stream = io.StringIO()
+    plain = BatchProgress(10, stream=stream, terminal=False)
+    plain.last -= 60                  # the first plain line is due
+    plain.update(4, 0)
+    assert stream.getvalue().startswith("ethasp batch: 4/10 cases, none failed, ")
+    assert "\r" not in stream.getvalue()

@@ -25,7 +25,7 @@ import uuid
 from dataclasses import replace
 from typing import Iterable, Iterator
 
-from ethasp.batch import task
+import ethasp.batch.task as task
 from ethasp.batch.pool import OVERRUN_GRACE
 from ethasp.batch.task import Settings, Work, error_line
 from ethasp.errors import InputError

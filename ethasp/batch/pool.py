@@ -29,7 +29,7 @@ from dataclasses import dataclass, replace
 from multiprocessing.connection import wait
 from typing import Iterable, Iterator
 
-from ethasp.batch import task
+import ethasp.batch.task as task
 from ethasp.batch.task import Settings, Work, error_line
 
 # Seconds a case may run beyond twice its time limit before its worker is
