@@ -246,7 +246,7 @@ def _histogram(times: list[float]) -> list[str]:
     labels = [f"&lt;{_seconds(bound)}" for bound in bounds] + [f"&#8805;{_seconds(bounds[-1])}"]
     if not counts[0]:
         counts, labels = counts[1:], labels[1:]
-    width, height, gap = 44, 160, 6
+    width, height, gap = 64, 160, 6
     peak = max(counts) or 1
     svg = [f"<svg xmlns='http://www.w3.org/2000/svg' width='{len(counts) * (width + gap) + 40}'"
            f" height='{height + 50}' role='img' aria-label='histogram of case times'>"]

@@ -232,10 +232,15 @@ def _compute(work: Work, settings: Settings, files: list[str]) -> list[dict]:
     return _ask(model, case, plan, work.keys, settings, budget)
 
 
-def _max_horizon(settings: Settings) -> int:
-    from ethasp.planning.search import DEFAULT_MAX_HORIZON
+def _max_horizon(settings: Settings, searching: bool = False) -> int:
+    """--max-horizon, or its default (as the commands' defaults: larger for the
+    plans of an any-plan search)."""
+    from ethasp.planning.search import DEFAULT_MAX_HORIZON, DEFAULT_SATISFICING_HORIZON
 
-    return DEFAULT_MAX_HORIZON if settings.max_horizon is None else settings.max_horizon
+    if settings.max_horizon is not None:
+        return settings.max_horizon
+    return DEFAULT_SATISFICING_HORIZON if searching and settings.satisficing \
+        else DEFAULT_MAX_HORIZON
 
 
 def _judge(model, case: Case, plan, principles: list[str], settings: Settings,
@@ -306,7 +311,7 @@ def _ask(model, case: Case, plan, keys, settings: Settings, budget) -> list[dict
                 if principle not in originals:
                     try:
                         originals[principle] = original_plan(
-                            model, principle, _max_horizon(settings), budget=budget,
+                            model, principle, _max_horizon(settings, True), budget=budget,
                             satisficing=settings.satisficing)
                     except InputError as error:     # searched once, for every question
                         originals[principle] = error
@@ -314,7 +319,7 @@ def _ask(model, case: Case, plan, keys, settings: Settings, budget) -> list[dict
                 if isinstance(asked, InputError):
                     raise asked
             answer = ask(model, question, asked, principle, settings.under,
-                         _max_horizon(settings), reasons_limit=settings.reasons_limit
+                         _max_horizon(settings, True), reasons_limit=settings.reasons_limit
                          or DEFAULT_LIMIT, budget=budget, satisficing=settings.satisficing)
         except InputError as error:
             lines.append(error_line(case, str(error), principle, question, ASK))
