@@ -27,8 +27,7 @@ WAIT = 180.0
 
 
 def _dask(*arguments: str, folder: Path, log: Path) -> subprocess.Popen:
-    environment = dict(os.environ, DASK_TEMPORARY_DIRECTORY=str(folder),
-                       DASK_DISTRIBUTED__WORKER__DAEMON="False")
+    environment = dict(os.environ, DASK_TEMPORARY_DIRECTORY=str(folder))
     return subprocess.Popen([sys.executable, "-m", "dask", *arguments], cwd=folder,
                             env=environment, stdin=subprocess.DEVNULL,
                             stdout=subprocess.DEVNULL, stderr=open(log, "wb"))
