@@ -32,6 +32,7 @@ _HOMES = {
     "find_plan": "ethasp.planning.search",
     "Validation": "ethasp.planning.validation",
     "validate": "ethasp.planning.validation",
+    "batch": "ethasp.batch.run",
 }
 
 
@@ -69,4 +70,5 @@ __all__ = [
     "Validation",
     "find_plan",
     "validate",
+    "batch",
 ]

@@ -10,7 +10,7 @@ ROOT = Path(__file__).resolve().parent.parent
 PACKAGE = ROOT / "ethasp"
 
 # Lowest first: a group may import itself and the groups before it.
-LAYERS = ["core", "planning", "principles", "reasons", "questions", "interfaces"]
+LAYERS = ["core", "planning", "principles", "reasons", "questions", "batch", "interfaces"]
 CORE = {"ethasp", "ethasp.errors", "ethasp.resources", "ethasp.vocabulary"}
 
 

@@ -1,0 +1,157 @@
+"""A Dask cluster as a batch's workers (``--scheduler tcp://HOST:PORT``).
+
+Needs Dask's ``distributed`` (``pip install 'ethasp[cluster]'``) here and on
+every worker, with ethasp installed there too.  Each case is one Dask task:
+the function :func:`ethasp.batch.task.run` with the case's :class:`Work`,
+which carries the bytes of the case's files (and of the files they include),
+so that workers need no shared file system: a worker writes them to a
+private temporary folder, loads the model from there and deletes them.
+Messages name the files as the batch's machine knows them, so the lines are
+the same as those of the local pool.
+
+Dask reschedules the tasks of a worker that is lost (its machine ends, its
+process is killed) on the workers left: no case is lost.  A task whose
+workers die again and again (the scheduler's
+``distributed.scheduler.allowed-failures``, 3 by default) becomes an error
+line.  A case stuck where clingo cannot be interrupted keeps its worker's
+thread busy; past ``2 x time limit + grace`` the batch records it as an
+error line and goes on without it (restart that worker to free the thread).
+"""
+
+from __future__ import annotations
+
+import time
+import uuid
+from dataclasses import replace
+from typing import Iterable, Iterator
+
+import ethasp.batch.task as task
+from ethasp.batch.pool import OVERRUN_GRACE
+from ethasp.batch.task import Settings, Work, error_line
+from ethasp.errors import InputError
+
+# Seconds to wait for the scheduler when connecting.
+CONNECT_TIMEOUT = 20
+
+
+def _distributed():
+    try:
+        import distributed
+    except ImportError:
+        raise InputError("--scheduler needs Dask's distributed: pip install 'ethasp[cluster]'"
+                         ) from None
+    return distributed
+
+
+class DaskCluster:
+    """The workers of a running Dask scheduler (see the module docstring)."""
+
+    def __init__(self, address: str, settings: Settings, grace: float = OVERRUN_GRACE):
+        distributed = _distributed()
+        self.address = address
+        self.settings = settings
+        self.grace = grace
+        try:
+            self.client = distributed.Client(address, timeout=CONNECT_TIMEOUT,
+                                             set_as_default=False)
+        except (OSError, TimeoutError, ValueError) as error:
+            detail = " ".join(str(error).split()) or type(error).__name__
+            raise InputError(f"--scheduler {address}: cannot connect to a Dask scheduler "
+                             f"({detail})") from None
+        try:
+            self.client.run(task.warm)
+        except Exception:  # noqa: BLE001 (a worker that cannot warm up fails its cases)
+            pass
+
+    def workers(self) -> dict:
+        """The scheduler's workers now (address -> information)."""
+        return self.client.scheduler_info().get("workers", {})
+
+    def close(self) -> None:
+        try:
+            self.client.close()
+        except Exception:  # noqa: BLE001 (closing after a lost scheduler)
+            pass
+
+    def run(self, works: Iterable[Work]) -> Iterator[tuple[Work, list[dict]]]:
+        """Submit every work; yield each with its lines as it finishes."""
+        distributed = _distributed()
+        from ethasp.batch.cases import read_inputs
+
+        futures = {}
+        for work in works:
+            inputs = read_inputs(work.case)
+            shipped = replace(work, contents={**inputs.files, **inputs.included})
+            key = f"ethasp-case-{uuid.uuid4().hex}"
+            future = self.client.submit(task.run, shipped, self.settings, key=key, pure=False)
+            futures[future] = work
+        limit = self.settings.time_limit
+        overrun = None if not limit else 2 * limit + self.grace
+        pending = set(futures)
+        done = distributed.as_completed(futures, loop=self.client.loop, with_results=True,
+                                        raise_errors=False)
+        looked = time.monotonic()
+        try:
+            while pending:
+                batch = done.next_batch(block=overrun is None)
+                if not batch:
+                    # A case may be stuck in grounding: look at the running tasks now and then.
+                    if time.monotonic() - looked > 1.0:
+                        looked = time.monotonic()
+                        for future in self._stuck(pending, overrun):
+                            pending.discard(future)
+                            future.cancel()
+                            yield futures[future], [self._stuck_line(futures[future], overrun)]
+                    time.sleep(0.02)
+                    continue
+                for future, result in batch:
+                    if future not in pending:
+                        continue
+                    pending.discard(future)
+                    work = futures[future]
+                    if future.status == "finished":
+                        yield work, result
+                    else:
+                        yield work, [self._failure(work, result)]
+        finally:
+            for future in pending:
+                future.cancel()
+
+    def _stuck(self, pending, overrun: float) -> list:
+        """The futures whose tasks have run longer than ``overrun`` on their worker."""
+        try:
+            running = self.client.run_on_scheduler(_running_seconds,
+                                                   [future.key for future in pending])
+        except Exception:  # noqa: BLE001 (the next look may succeed)
+            return []
+        return [future for future in pending if running.get(future.key, 0.0) > overrun]
+
+    def _stuck_line(self, work: Work, overrun: float) -> dict:
+        line = error_line(work.case, f"no answer within the time limit of "
+                                     f"{self.settings.time_limit:g} s: still grounding or "
+                                     f"solving after {overrun:g} s (clingo cannot stop "
+                                     "grounding; does the model's grounding end?)")
+        line["seconds"] = round(overrun, 6)
+        return line
+
+    @staticmethod
+    def _failure(work: Work, error) -> dict:
+        name = type(error).__name__
+        if name == "KilledWorker":
+            return error_line(work.case, "its worker processes ended while computing it, "
+                                         "again and again (out of memory, or a crash)")
+        if name == "CancelledError":
+            return error_line(work.case, "its task was cancelled on the cluster")
+        return error_line(work.case, f"internal error on a worker: {name}: {error}")
+
+
+def _running_seconds(keys, dask_scheduler=None) -> dict:
+    """On the scheduler: how long each of the tasks running now has run (as
+    their workers last told it)."""
+    result = {}
+    for key in keys:
+        state = dask_scheduler.tasks.get(key)
+        worker = getattr(state, "processing_on", None)
+        if worker is not None and state in worker.executing:
+            result[key] = worker.executing[state]
+    return result
