@@ -86,7 +86,7 @@ _PLACED = (ast.ASTType.Rule, ast.ASTType.Minimize, ast.ASTType.Heuristic)
 
 
 def _place(statement, step_part: str, switch: clingo.Symbol | None, where: str,
-           base_part: str = "base", kind=None):
+           base_part: str = "base", kind=None, check_part: str = CHECK):
     """The part of a statement (of type ``kind``, if known), the part's
     parameters, and the statement to add there."""
     if (statement.ast_type if kind is None else kind) not in _PLACED:
@@ -119,7 +119,7 @@ def _place(statement, step_part: str, switch: clingo.Symbol | None, where: str,
     if input_name is None:
         if time_kind is None:
             return base_part, (), rewritten
-        return (step_part if time_kind == STEP else CHECK), (TIME,), rewritten
+        return (step_part if time_kind == STEP else check_part), (TIME,), rewritten
     if time_kind is None:
         return input_name, (VALUE,), rewritten
     return part_name(time_kind, input_name), (VALUE, TIME), rewritten
@@ -128,11 +128,11 @@ def _place(statement, step_part: str, switch: clingo.Symbol | None, where: str,
 def add_encoding(builder: ast.ProgramBuilder, path: Path | None, step_part: str = STEP,
                  switch: clingo.Symbol | None = None, text: str | None = None,
                  on_message: Callable[[clingo.MessageCode, str], None] | None = None,
-                 base_part: str = "base") -> dict[str, tuple[str, ...]]:
+                 base_part: str = "base", check_part: str = CHECK) -> dict[str, tuple[str, ...]]:
     """Add an encoding (a file, or ``text``) to a program, split into parts.
 
-    Rules without markers go into ``base_part``.  Returns the parts used,
-    with their parameters.
+    Rules without markers go into ``base_part``, rules about the horizon into
+    ``check_part``.  Returns the parts used, with their parameters.
     """
     where = str(path) if path is not None else "<encoding>"
     parts: dict[str, list] = defaultdict(list)
@@ -144,7 +144,8 @@ def add_encoding(builder: ast.ProgramBuilder, path: Path | None, step_part: str 
             if statement.name != "base" or statement.parameters:
                 raise InputError(f"{where}: encodings for multi-shot solving must not use #program")
             return
-        part, parameters, placed = _place(statement, step_part, switch, where, base_part, kind)
+        part, parameters, placed = _place(statement, step_part, switch, where, base_part, kind,
+                                          check_part)
         parts[part].append(placed)
         params[part] = parameters
 
