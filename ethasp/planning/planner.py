@@ -52,7 +52,7 @@ import functools
 import threading
 import time
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Iterable, Sequence
+from typing import TYPE_CHECKING, Callable, Iterable, Sequence
 
 import clingo
 
@@ -101,6 +101,9 @@ MUTEX = "mutex"
 MUTEX_STEP = "mutex_step"
 MUTEX_MAX_FLUENTS = 400
 MUTEX_MAX_PAIRS = 150_000
+# Seconds of grounding a pair takes, about (to weigh the grounding against a
+# solve's time, ethasp.planning.search).
+MUTEX_SECONDS_PER_PAIR = 20e-6
 MUTEX_AFTER = 0.05
 # The canonical order of independent actions (partial-order reduction): its
 # pairs of independent actions grow with the square of the actions, so it is
@@ -296,6 +299,7 @@ class Planner:
         self._mutexes: bool | None = False   # grounded (True), not yet, or never (None)
         self._canonical: bool | None = False  # the same for the canonical order
         self._state = False           # the state at the horizon grounded (use_state)
+        self._mutex_size: tuple[int, int] | None = None   # (fluents, pairs)
         self._threads = 1             # solver threads (see threads())
         self.grounded = -1            # step and check parts grounded up to this time
         self._loopfree = 0            # loopfree parts grounded up to this time
@@ -533,17 +537,26 @@ class Planner:
             # The mutexes are computed from the actions alone: events may break them.
             self._mutexes = None
             return False
-        reachable = {}
-        for atom in self.search_atoms("reachable", 2):
-            reachable[atom.arguments[0]] = reachable.get(atom.arguments[0], 0) + 1
-        fluents = sum(1 for count in reachable.values() if count == 2)
-        if (fluents > MUTEX_MAX_FLUENTS
-                or fluents * len(self.search_atoms("usable", 1)) > MUTEX_MAX_PAIRS):
+        fluents, pairs = self.mutex_size()
+        if fluents > MUTEX_MAX_FLUENTS or pairs > MUTEX_MAX_PAIRS:
             self._mutexes = None       # never
             return False
         self._ground_from_now(MUTEX, MUTEX_STEP)
         self._mutexes = True
         return True
+
+    @_locked
+    def mutex_size(self) -> tuple[int, int]:
+        """The state variables that may change (both values relaxed reachable),
+        and their number times the usable actions: what the grounding of the
+        h^2 mutexes grows with."""
+        if self._mutex_size is None:
+            reachable: dict[clingo.Symbol, int] = {}
+            for atom in self.search_atoms("reachable", 2):
+                reachable[atom.arguments[0]] = reachable.get(atom.arguments[0], 0) + 1
+            fluents = sum(1 for count in reachable.values() if count == 2)
+            self._mutex_size = (fluents, fluents * len(self.search_atoms("usable", 1)))
+        return self._mutex_size
 
     @_locked
     def use_canonical(self) -> bool:
@@ -681,12 +694,16 @@ class Planner:
 
     @_locked
     def solve(self, horizon: int, setting: Setting, budget: Budget,
-              models: int = 1, mutex_after: float = MUTEX_AFTER) -> Outcome:
+              models: int = 1, mutex_after: float = MUTEX_AFTER,
+              moot: Callable[[], bool] | None = None) -> Outcome:
         """Solve at one horizon under a setting (grounding what it needs first);
         a solve that takes more than ``mutex_after`` seconds has the h^2
         mutexes grounded for the next ones (:meth:`use_mutexes`), and one
         under a canonical setting that takes more than CANONICAL_AFTER (and
-        ``mutex_after``) seconds the canonical order (:meth:`use_canonical`)."""
+        ``mutex_after``) seconds the canonical order (:meth:`use_canonical`);
+        neither when ``moot`` says, after a solve the budget stopped, that the
+        search needs no more solves (another engine proved what it sought: the
+        groundings cannot be interrupted and would only delay its end)."""
         self._prepare(setting)
         # A plan shorter than the last event ends after it: the goal and the
         # state at the horizon are checked there (the steps between idle).
@@ -696,6 +713,8 @@ class Planner:
         began = time.monotonic()
         outcome = self._solve(assumptions, budget, setting.optimize, models)
         seconds = time.monotonic() - began
+        if outcome.satisfiable is None and moot is not None and moot():
+            return outcome
         if seconds > mutex_after and self._mutexes is False:
             self.use_mutexes()          # a hard search: the next solves get them
         if seconds > max(mutex_after, CANONICAL_AFTER) and setting.canonical \

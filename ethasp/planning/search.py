@@ -28,7 +28,7 @@ from ethasp.planning.budget import Budget
 from ethasp.planning import layers as layers_module
 from ethasp.planning.layers import Atoms, Layers, Status
 from ethasp.planning.plan import Plan, steps
-from ethasp.planning.planner import MUTEX_AFTER, Planner, Setting
+from ethasp.planning.planner import MUTEX_AFTER, MUTEX_SECONDS_PER_PAIR, Planner, Setting
 
 FOUND, NONE, BOUNDED = "found", "none", "bounded"
 
@@ -56,7 +56,10 @@ HEAD_START = 0.3
 
 # Seconds a solve takes before the h^2 mutexes are grounded while the layers
 # still work: often they end the search first, and the grounding (which
-# cannot be interrupted) would only delay the end (freecell p01: 0.7 s).
+# cannot be interrupted) would only delay the end (freecell p01: 0.7 s).  At
+# least as long as their grounding is expected to take (planner.
+# MUTEX_SECONDS_PER_PAIR): IPC scanalyzer p1's layers had a plan while the
+# mutexes of 27,000 pairs were being grounded after a solve of 0.3 s.
 MUTEX_AFTER_LAYERS = 0.25
 
 # Solver threads for plain plan search once the layers have given up (their
@@ -212,7 +215,8 @@ class _Exact:
             return float("inf")
         status = self.status()
         if status is not None and status.working:
-            return MUTEX_AFTER_LAYERS
+            return max(MUTEX_AFTER_LAYERS,
+                       self.planner.mutex_size()[1] * MUTEX_SECONDS_PER_PAIR)
         return MUTEX_AFTER
 
     def watch(self, horizon: int) -> Budget:
@@ -367,7 +371,8 @@ def _shortest(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
             planner.threads(SOLVER_THREADS)   # the layers' core, for the solver
         began = time.monotonic()
         outcome = planner.solve(horizon, setting, exact.watch(horizon),
-                                models=0 if all_plans else 1, mutex_after=exact.mutex_after())
+                                models=0 if all_plans else 1, mutex_after=exact.mutex_after(),
+                                moot=lambda: exact.moot(horizon))
         exact.solved(time.monotonic() - began)
         if outcome.satisfiable is None:
             if budget.expired():
@@ -474,7 +479,8 @@ def _any_plan(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
         watch = exact.watch(horizon)
         outcome = planner.solve(horizon, setting,
                                 watch.until(lambda: time.monotonic() > end), models=1,
-                                mutex_after=exact.mutex_after())
+                                mutex_after=exact.mutex_after(),
+                                moot=lambda: exact.moot(horizon))
         exact.solved(time.monotonic() - began)
         if outcome.satisfiable is None:
             if budget.expired():
