@@ -48,6 +48,8 @@ from __future__ import annotations
 
 import argparse
 import compileall
+import contextlib
+import io
 import json
 import math
 import os
@@ -296,7 +298,8 @@ def choose(instance: Instance, plan: list[str]) -> Choices:
     choices = Choices()
     if not plan:
         return choices
-    planner = Model.load(instance.model()).planner
+    with contextlib.redirect_stderr(io.StringIO()):      # the translation's warnings
+        planner = Model.load(instance.model()).planner
     actions = sorted(planner.get("action", 1), key=str)
     preconditions: dict = {}
     for atom in planner.get("pre", 3):
