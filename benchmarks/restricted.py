@@ -214,6 +214,8 @@ def ethasp_command(*arguments: str) -> list[str]:
 
 
 _UNPROVEN_DROP = re.compile(r"\bfound: ")
+# ask without --plan when no plan under the principle exists or was found.
+_NOTHING_TO_ASK = re.compile(r"no plan to ask about: (.*)")
 
 
 def read_outcome(search: str, stdout: str) -> tuple[str, bool, list[str] | None, str]:
@@ -252,6 +254,14 @@ def run(search: str, command: list[str], limit: float, grace: float, repeat: int
             continue
         if code != 0:
             last = (stderr.strip().splitlines() or [""])[-1]
+            asked = _NOTHING_TO_ASK.search(last)
+            if code == 2 and asked:
+                # ask without --plan, when the plan search under the principle
+                # has no plan: an answer, proven or bounded as its words say.
+                proven = not _UNPROVEN_DROP.search(asked.group(1))
+                runs.append(Run(search, command, "none" if proven else "bounded", seconds,
+                                memory, cpu, proven, note=asked.group(1)[:200]))
+                continue
             runs.append(Run(search, command, f"error {code}", seconds, memory, cpu,
                             note=last[:200]))
             continue
