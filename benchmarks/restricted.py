@@ -42,6 +42,7 @@ time at most 1.5x as a geometric mean and at most 3x on every search; under
 Usage: python benchmarks/restricted.py [FOLDER] [--problems 1-4] [--time-limit S]
            [--principles P,...] [--questions why,why-not,...] [--no-ask]
            [--repeat N] [--only TEXT] [--json FILE] [--annotations DIR]
+       python benchmarks/restricted.py --summary FILE   (the summary of a --json file)
 """
 
 from __future__ import annotations
@@ -243,6 +244,17 @@ def read_outcome(search: str, stdout: str) -> tuple[str, bool, list[str] | None,
     return status, proven, plan, note
 
 
+def _reread(fields: dict) -> Run:
+    """A row of a --json file as a run (an ask without --plan that ended with
+    nothing to ask about read as its answer, as :func:`run` does now)."""
+    result = Run(**fields)
+    asked = _NOTHING_TO_ASK.search(result.note)
+    if result.status == "error 2" and asked:
+        result.proven = not _UNPROVEN_DROP.search(asked.group(1))
+        result.status = "none" if result.proven else "bounded"
+    return result
+
+
 def run(search: str, command: list[str], limit: float, grace: float, repeat: int) -> Run:
     """The fastest of ``repeat`` runs (an answered run beats one that was not);
     memory the largest seen."""
@@ -425,6 +437,9 @@ def summary(rows: list[dict], limit: float) -> list[str]:
         lines.append(f"peak memory: {top.memory_mb:.0f} MB ({top_row['instance']} {top.search}; "
                      f"target < {TARGET_MEMORY_MB:.0f} MB)")
     asks = [(row, r) for row in rows for r in row["searches"] if r.search == "ask"]
+    if asks:
+        lines.append(f"ask without --plan: answered with a proof on "
+                     f"{sum(r.proven for _, r in asks)} of {len(asks)} instances")
     reference = []
     for row, r in asks:
         contrast = next((s for s in row["searches"] if s.search == "ask why"), None)
@@ -464,7 +479,18 @@ def main() -> int:
                         help="runs per process, the fastest kept (default 1)")
     parser.add_argument("--only", help="instances whose DOMAIN/PROBLEM contains this text")
     parser.add_argument("--json", type=Path, help="also write every row to this JSON file")
+    parser.add_argument("--summary", type=Path, metavar="JSON",
+                        help="print the summary of an earlier run's --json file and stop")
     args = parser.parse_args()
+    if args.summary is not None:
+        data = json.loads(args.summary.read_text())
+        rows = [{"instance": row["instance"], "plain": _reread(row["plain"]),
+                 "searches": [_reread(r) for r in row["searches"]]} for row in data["rows"]]
+        print(f"{data['started']}; time limit {data['time_limit']:g} s; "
+              f"question forms: {', '.join(data['forms'])}")
+        for line in summary(rows, data["time_limit"]):
+            print(line)
+        return 0
 
     principles = [p for p in args.principles.split(",") if p]
     unknown = set(principles) - set(PRINCIPLES)
