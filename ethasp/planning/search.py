@@ -46,7 +46,7 @@ LAYERS_AT_ONCE_ACTIONS = 32
 # ... and so do models of at least this many state variables: reading their
 # atoms in this process (to start the layers later) would cost more than
 # starting a child process that reads them (PDDL tasks declare an atom for
-# every typed combination of a predicate's arguments).
+# every typed combination of the arguments of a predicate that actions change).
 LAYERS_AT_ONCE_VARIABLES = 1000
 # Seconds the solver waits, at the start of a search, for an engine started
 # with it (layers, greedy search) to finish: where it finishes that soon, the
