@@ -101,9 +101,6 @@ MUTEX = "mutex"
 MUTEX_STEP = "mutex_step"
 MUTEX_MAX_FLUENTS = 400
 MUTEX_MAX_PAIRS = 150_000
-# Seconds of grounding a pair takes, about (to weigh the grounding against a
-# solve's time, ethasp.planning.search).
-MUTEX_SECONDS_PER_PAIR = 20e-6
 MUTEX_AFTER = 0.05
 # The canonical order of independent actions (partial-order reduction): its
 # pairs of independent actions grow with the square of the actions, so it is

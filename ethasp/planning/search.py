@@ -28,7 +28,7 @@ from ethasp.planning.budget import Budget
 from ethasp.planning import layers as layers_module
 from ethasp.planning.layers import Atoms, Layers, Status
 from ethasp.planning.plan import Plan, steps
-from ethasp.planning.planner import MUTEX_AFTER, MUTEX_SECONDS_PER_PAIR, Planner, Setting
+from ethasp.planning.planner import MUTEX_AFTER, Planner, Setting
 
 FOUND, NONE, BOUNDED = "found", "none", "bounded"
 
@@ -56,10 +56,10 @@ HEAD_START = 0.3
 
 # Seconds a solve takes before the h^2 mutexes are grounded while the layers
 # still work: often they end the search first, and the grounding (which
-# cannot be interrupted) would only delay the end (freecell p01: 0.7 s).  At
-# least as long as their grounding is expected to take (planner.
-# MUTEX_SECONDS_PER_PAIR): IPC scanalyzer p1's layers had a plan while the
-# mutexes of 27,000 pairs were being grounded after a solve of 0.3 s.
+# cannot be interrupted) would only delay the end (freecell p01: 0.7 s).
+# (Waiting longer, as long as their grounding is expected to take, slowed IPC
+# scanalyzer on an idle machine: p4 found no shortest plan in 30 s instead of
+# 24 s.)
 MUTEX_AFTER_LAYERS = 0.25
 
 # Solver threads for plain plan search once the layers have given up (their
@@ -207,6 +207,15 @@ class _Exact:
             return False
         return (status.plan is not None or status.complete or status.bound > horizon)
 
+    def done(self) -> bool:
+        """Did an engine end the search: a plan proposed, or every reachable
+        state searched?  (A bound that makes one horizon moot does not: the
+        search goes on, and the groundings a slow solve asks for pay there.)"""
+        if self.greedy_plan() is not None or self.greedy_complete():
+            return True
+        status = self.status()
+        return status is not None and (status.plan is not None or status.complete)
+
     def mutex_after(self) -> float:
         """Seconds a solve takes before the h^2 mutexes are grounded."""
         if self.greedy is not None and self.greedy.status.working:
@@ -215,8 +224,7 @@ class _Exact:
             return float("inf")
         status = self.status()
         if status is not None and status.working:
-            return max(MUTEX_AFTER_LAYERS,
-                       self.planner.mutex_size()[1] * MUTEX_SECONDS_PER_PAIR)
+            return MUTEX_AFTER_LAYERS
         return MUTEX_AFTER
 
     def watch(self, horizon: int) -> Budget:
@@ -372,7 +380,7 @@ def _shortest(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
         began = time.monotonic()
         outcome = planner.solve(horizon, setting, exact.watch(horizon),
                                 models=0 if all_plans else 1, mutex_after=exact.mutex_after(),
-                                moot=lambda: exact.moot(horizon))
+                                moot=exact.done)
         exact.solved(time.monotonic() - began)
         if outcome.satisfiable is None:
             if budget.expired():
@@ -480,7 +488,7 @@ def _any_plan(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
         outcome = planner.solve(horizon, setting,
                                 watch.until(lambda: time.monotonic() > end), models=1,
                                 mutex_after=exact.mutex_after(),
-                                moot=lambda: exact.moot(horizon))
+                                moot=exact.done)
         exact.solved(time.monotonic() - began)
         if outcome.satisfiable is None:
             if budget.expired():
