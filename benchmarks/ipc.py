@@ -19,10 +19,15 @@ optimal plan of Fast Downward's length within 2x its time, and a satisficing
 plan within 3x its time, on every instance Fast Downward solves within 10 s.
 ethasp's modules are compiled to bytecode first, as a wheel installation has
 them.  ``--repeat N`` runs each process N times and keeps the fastest (the
-machine may be shared).  Without ``up-fast-downward`` it prints ethasp's figures alone.
+machine may be shared).  ``--cpu`` prints (and compares) processor seconds
+instead, user and system time of each process and its children: on a busy
+machine they vary far less than the seconds on the clock, but they count
+every core ethasp's engines use.  ``--json FILE`` writes every run (seconds
+and processor seconds).  Without ``up-fast-downward`` it prints ethasp's
+figures alone.
 
 Usage: python benchmarks/ipc.py FOLDER [--time-limit S] [--repeat N] [--only TEXT]
-                                [--modes opt,sat,fd-opt,fd-sat]
+                                [--modes opt,sat,fd-opt,fd-sat] [--cpu] [--json FILE]
 """
 
 from __future__ import annotations
@@ -30,14 +35,16 @@ from __future__ import annotations
 import argparse
 import compileall
 import json
+import math
 import os
+import resource
 import re
 import signal
 import subprocess
 import sys
 import tempfile
 import time
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 from pathlib import Path
 
 from fast_downward import fast_downward_driver
@@ -63,6 +70,7 @@ class Run:
     length: int | None
     seconds: float
     status: str
+    cpu: float = 0.0       # processor seconds (user and system, the process's children too)
 
 
 def instances(folder: Path, only: str | None) -> list[Instance]:
@@ -81,10 +89,17 @@ def instances(folder: Path, only: str | None) -> list[Instance]:
     return result
 
 
+def _children_cpu() -> float:
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
 def timed(command: list[str], cap: float, cwd: Path) -> tuple[subprocess.CompletedProcess | None,
-                                                              float]:
+                                                              float, float]:
     """Run a command (in a session of its own), at most ``cap`` seconds; its
-    result (None on timeout, its processes then killed) and the seconds taken."""
+    result (None on timeout, its processes then killed), the seconds taken and
+    the processor seconds of the process and of the children it waited for."""
+    cpu = _children_cpu()
     start = time.perf_counter()
     process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                text=True, cwd=cwd, start_new_session=True)
@@ -93,9 +108,10 @@ def timed(command: list[str], cap: float, cwd: Path) -> tuple[subprocess.Complet
     except subprocess.TimeoutExpired:
         os.killpg(process.pid, signal.SIGKILL)    # the planner's children too
         process.communicate()
-        return None, time.perf_counter() - start
+        return None, time.perf_counter() - start, _children_cpu() - cpu
     seconds = time.perf_counter() - start
-    return subprocess.CompletedProcess(command, process.returncode, stdout, stderr), seconds
+    return (subprocess.CompletedProcess(command, process.returncode, stdout, stderr), seconds,
+            _children_cpu() - cpu)
 
 
 def run_ethasp(instance: Instance, satisficing: bool, cap: float) -> Run:
@@ -103,14 +119,14 @@ def run_ethasp(instance: Instance, satisficing: bool, cap: float) -> Run:
                str(instance.problem), "--json", "--time-limit", "0"]
     if satisficing:
         command.append("--satisficing")
-    done, seconds = timed(command, cap, ROOT)
+    done, seconds, cpu = timed(command, cap, ROOT)
     if done is None:
-        return Run(None, seconds, "timeout")
+        return Run(None, seconds, "timeout", cpu)
     if done.returncode != 0:
-        return Run(None, seconds, f"error {done.returncode}")
+        return Run(None, seconds, f"error {done.returncode}", cpu)
     data = json.loads(done.stdout)
     length = len(data["plan"]) if data.get("plan") is not None else None
-    return Run(length, seconds, data["status"])
+    return Run(length, seconds, data["status"], cpu)
 
 
 def _fast_downward_outcome(code: int) -> str:
@@ -131,43 +147,51 @@ def run_fast_downward(driver: Path, instance: Instance, search: str, cap: float)
         plan_file = Path(work) / "plan"
         command = [sys.executable, str(driver), "--plan-file", str(plan_file),
                    str(instance.domain), str(instance.problem), "--search", search]
-        done, seconds = timed(command, cap, Path(work))
+        done, seconds, cpu = timed(command, cap, Path(work))
         if done is None:
-            return Run(None, seconds, "timeout")
+            return Run(None, seconds, "timeout", cpu)
         if not plan_file.is_file():
-            return Run(None, seconds, _fast_downward_outcome(done.returncode))
+            return Run(None, seconds, _fast_downward_outcome(done.returncode), cpu)
         steps = [line for line in plan_file.read_text().splitlines()
                  if line.strip() and not line.startswith(";")]
-        return Run(len(steps), seconds, "found")
+        return Run(len(steps), seconds, "found", cpu)
+
+
+# What is compared: seconds on the clock, or processor seconds (--cpu).
+CPU = False
+
+
+def taken(run: Run) -> float:
+    return run.cpu if CPU else run.seconds
 
 
 def best_of(runs: list[Run]) -> Run:
     """The fastest of repeated runs (a run that found a plan beats one that did not)."""
-    return min(runs, key=lambda run: (run.length is None, run.seconds))
+    return min(runs, key=lambda run: (run.length is None, taken(run)))
 
 
 def cell(run: Run | None) -> str:
     if run is None:
         return f"{'-':>4} {'-':>6}"
     length = str(run.length) if run.length is not None else run.status[:7]
-    return f"{length:>4} {run.seconds:6.2f}"
+    return f"{length:>4} {taken(run):6.2f}"
 
 
 def ratio(ours: Run | None, theirs: Run | None) -> float | None:
     if ours is None or theirs is None or ours.length is None or theirs.length is None:
         return None
-    return ours.seconds / theirs.seconds
+    return taken(ours) / taken(theirs)
 
 
 def meets(mode: str, ours: Run | None, theirs: Run | None) -> bool | None:
     """Whether a target applies (None if not) and is met."""
-    if theirs is None or theirs.length is None or theirs.seconds > TARGET_SECONDS:
+    if theirs is None or theirs.length is None or taken(theirs) > TARGET_SECONDS:
         return None
     if ours is None or ours.length is None or ours.status != "found":
         return False
     if mode == "opt" and ours.length != theirs.length:
         return False
-    return ours.seconds <= TARGET_FACTOR[mode] * theirs.seconds
+    return taken(ours) <= TARGET_FACTOR[mode] * taken(theirs)
 
 
 def main() -> int:
@@ -181,7 +205,13 @@ def main() -> int:
     parser.add_argument("--only", help="instances whose DOMAIN/PROBLEM contains this text")
     parser.add_argument("--modes", default=",".join(MODES),
                         help=f"comma-separated, of {','.join(MODES)} (default all)")
+    parser.add_argument("--cpu", action="store_true",
+                        help="print and compare processor seconds (user and system, children "
+                             "included) instead of seconds on the clock")
+    parser.add_argument("--json", type=Path, help="also write every run to this JSON file")
     args = parser.parse_args()
+    global CPU
+    CPU = args.cpu
     modes = [mode for mode in args.modes.split(",") if mode]
     unknown = set(modes) - set(MODES)
     if unknown:
@@ -201,7 +231,8 @@ def main() -> int:
     compileall.compile_dir(ROOT / "ethasp", quiet=1)
     try:
         load = os.getloadavg()[0]
-        print(f"load average at start: {load:.2f}")
+        print(f"load average at start: {load:.2f}; "
+              f"{'processor seconds' if CPU else 'seconds'} ({time.strftime('%Y-%m-%d %H:%M')})")
     except OSError:
         pass
     print(f"{'instance':24} {'ethasp':>11} {'FD astar':>11} {'ratio':>5}   "
@@ -243,8 +274,20 @@ def main() -> int:
         if not applicable:
             continue
         median = f", median ratio {ratios[len(ratios) // 2]:.1f}" if ratios else ""
+        geometric = (f", geometric mean {math.exp(sum(map(math.log, ratios)) / len(ratios)):.2f}"
+                     if ratios else "")
         print(f"{'optimal' if mode == 'opt' else 'satisficing'}: target met on "
-              f"{sum(applicable)} of {len(applicable)} instances{median}")
+              f"{sum(applicable)} of {len(applicable)} instances{median}{geometric}")
+    try:
+        print(f"load average at end: {os.getloadavg()[0]:.2f}")
+    except OSError:
+        pass
+    if args.json:
+        args.json.write_text(json.dumps([
+            {"instance": f"{instance.domain_name}/{instance.name}", "mode": mode,
+             "ethasp": asdict(ours) if ours is not None else None,
+             "fast_downward": asdict(theirs) if theirs is not None else None}
+            for mode in ("opt", "sat") for instance, ours, theirs in results[mode]], indent=1))
     return 0
 
 

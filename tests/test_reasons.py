@@ -129,7 +129,8 @@ def test_other_state_prefers_goal_states_on_ties():
                "other_than(s,five_will_die,false). other_than(s,one_will_die,true). "
                "other_than(s,done,true).")
     answers = optimal_answers(["planning/model.lp", "planning/relaxed.lp", "planning/transition.lp",
-                               "judgement/best.lp", "reasons/other_state.lp", TROLLEY], program)
+                               "judgement/best.lp", "judgement/state.lp",
+                               "reasons/other_state.lp", TROLLEY], program)
     assert answers and all("at_horizon(done,true,1)" in a and "occurs(refrain,1)" in a
                            for a in answers)
 

@@ -88,7 +88,7 @@ _PLACED = (ast.ASTType.Rule, ast.ASTType.Minimize, ast.ASTType.Heuristic)
 
 
 def _place(statement, step_part: str, switch: clingo.Symbol | None, where: str,
-           base_part: str = "base", kind=None):
+           base_part: str = "base", kind=None, check_part: str = CHECK):
     """The part of a statement (of type ``kind``, if known), the part's
     parameters, and the statement to add there."""
     if (statement.ast_type if kind is None else kind) not in _PLACED:
@@ -121,7 +121,7 @@ def _place(statement, step_part: str, switch: clingo.Symbol | None, where: str,
     if input_name is None:
         if time_kind is None:
             return base_part, (), rewritten
-        return (step_part if time_kind == STEP else CHECK), (TIME,), rewritten
+        return (step_part if time_kind == STEP else check_part), (TIME,), rewritten
     if time_kind is None:
         return input_name, (VALUE,), rewritten
     return part_name(time_kind, input_name), (VALUE, TIME), rewritten
@@ -130,20 +130,20 @@ def _place(statement, step_part: str, switch: clingo.Symbol | None, where: str,
 def add_encoding(builder: ast.ProgramBuilder, path: Path | None, step_part: str = STEP,
                  switch: clingo.Symbol | None = None, text: str | None = None,
                  on_message: Callable[[clingo.MessageCode, str], None] | None = None,
-                 base_part: str = "base") -> dict[str, tuple[str, ...]]:
+                 base_part: str = "base", check_part: str = CHECK) -> dict[str, tuple[str, ...]]:
     """Add an encoding (a file, or ``text``) to a program, split into parts.
 
-    Rules without markers go into ``base_part``.  Returns the parts used,
-    with their parameters.
+    Rules without markers go into ``base_part``, rules about the horizon into
+    ``check_part``.  Returns the parts used, with their parameters.
     """
     where = str(path) if path is not None else "<encoding>"
     if text is None:
         # An encoding file is split once per process (and per way of splitting
         # it): every planner of the process (a model's, its HModels') adds the
         # same statements.
-        parts, params = _split_file(str(path), step_part, switch, base_part)
+        parts, params = _split_file(str(path), step_part, switch, base_part, check_part)
     else:
-        parts, params = _split(text, None, step_part, switch, base_part, on_message)
+        parts, params = _split(text, None, step_part, switch, base_part, on_message, check_part)
     location = ast.Location(ast.Position(where, 1, 1), ast.Position(where, 1, 1))
     for part, statements in parts.items():
         builder.add(ast.Program(location, part, [ast.Id(location, p) for p in params[part]]))
@@ -153,14 +153,15 @@ def add_encoding(builder: ast.ProgramBuilder, path: Path | None, step_part: str 
 
 
 @functools.lru_cache(maxsize=None)
-def _split_file(path: str, step_part: str, switch: clingo.Symbol | None,
-                base_part: str) -> tuple[dict[str, list], dict[str, tuple[str, ...]]]:
+def _split_file(path: str, step_part: str, switch: clingo.Symbol | None, base_part: str,
+                check_part: str) -> tuple[dict[str, list], dict[str, tuple[str, ...]]]:
     """An encoding file's statements by part, and the parts' parameters."""
-    return _split(None, path, step_part, switch, base_part, None)
+    return _split(None, path, step_part, switch, base_part, None, check_part)
 
 
 def _split(text: str | None, path: str | None, step_part: str, switch: clingo.Symbol | None,
-           base_part: str, on_message) -> tuple[dict[str, list], dict[str, tuple[str, ...]]]:
+           base_part: str, on_message,
+           check_part: str = CHECK) -> tuple[dict[str, list], dict[str, tuple[str, ...]]]:
     where = path if path is not None else "<encoding>"
     parts: dict[str, list] = defaultdict(list)
     params: dict[str, tuple[str, ...]] = {}
@@ -171,7 +172,8 @@ def _split(text: str | None, path: str | None, step_part: str, switch: clingo.Sy
             if statement.name != "base" or statement.parameters:
                 raise InputError(f"{where}: encodings for multi-shot solving must not use #program")
             return
-        part, parameters, placed = _place(statement, step_part, switch, where, base_part, kind)
+        part, parameters, placed = _place(statement, step_part, switch, where, base_part, kind,
+                                          check_part)
         parts[part].append(placed)
         params[part] = parameters
 

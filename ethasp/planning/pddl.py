@@ -31,7 +31,11 @@ an annotation file that gives an effect on one is refused
 (``encodings/planning/check.lp``), as the pruning would be wrong for it.
 
 The translation also writes ``variable/1`` (``derived/1`` for derived
-predicates) rules for every predicate, ``pddl_object/2`` and
+predicates) rules for every predicate that some effect changes (the atoms
+of a static predicate are variables where the task uses them, by
+``encodings/planning/pddl.lp``: in the initial state, a precondition, a
+condition or the goal; and where an annotation file values or changes
+them), ``pddl_object/2`` and
 ``pddl_subtype/2`` facts for objects and types, and ``init/1`` and
 ``goal/2`` facts.  Names follow the rule of
 :mod:`ethasp.planning.naming` (``five-will-die`` is ``five_will_die``).
@@ -378,8 +382,17 @@ class _Translator:
             scope, names, typing = self.bind(Scope(), params)
             kind = "derived" if predicate in self.derived else "variable"
             atom = term_of(pddl_name_to_asp(predicate), names)
-            self.emit(rule(f"{kind}({atom})", typing))
-            if pddl_name_to_asp(predicate) in self.static:
+            if pddl_name_to_asp(predicate) not in self.static:
+                self.emit(rule(f"{kind}({atom})", typing))
+            else:
+                # A static atom is a variable where the task uses it (pddl.lp):
+                # in the initial state, a precondition, a condition or the
+                # goal.  The others are false in every state, and declaring
+                # every typed combination (IPC nomystery's sum/3: 50,653, of
+                # which 703 hold) cost every engine time and memory.  An atom
+                # that an annotation file values or changes stays a variable.
+                for use in (f"utility({atom},_,_)", f"eff(_,{atom},_)"):
+                    self.emit(rule(f"{kind}({atom})", [*typing, use]))
                 # Pruning trusts that nothing changes it: check.lp refuses an
                 # annotation file's effect on it.
                 self.emit(rule(f"pddl_static({atom})", [f"variable({atom})"]))

@@ -24,6 +24,9 @@ Program parts of the control (``t`` a time, ``x`` an input value):
 * ``mutex`` and ``mutex_step(t)``: the h^2 mutexes of ``planning/mutex.lp``
   and their constraints, grounded (for every step so far and from then on)
   once a solve has been slow (:meth:`Planner.use_mutexes`);
+* ``state_check(t)``: the state at the horizon (``judgement/state.lp``), an
+  atom per variable and horizon, grounded (for every time so far and from
+  then on) once a search reads that state (:meth:`Planner.use_state`);
 * ``canonical`` and ``canonical_step(t)``: the canonical order of
   independent consecutive actions of ``planning/canonical.lp`` (switched by
   ``require(canonical)``), grounded once a search that may use it has been
@@ -47,7 +50,7 @@ import functools
 import threading
 import time
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Iterable, Sequence
+from typing import TYPE_CHECKING, Callable, Iterable, Sequence
 
 import clingo
 
@@ -85,11 +88,16 @@ GOAL_ENCODING = "planning/goal.lp"
 # The h^2 mutexes are redundant constraints: they speed up hard horizons, but
 # their fixpoint grows with the square of the facts.  So they are grounded only
 # once a solve has taken MUTEX_AFTER seconds (easy searches end before), and
-# only for models of at most MUTEX_MAX_FLUENTS state variables that change.
+# only for models of at most MUTEX_MAX_FLUENTS state variables that change and
+# at most MUTEX_MAX_PAIRS pairs of a usable action and such a variable (what
+# the grounding of the fixpoint takes grows with them: 30 to 65 microseconds a
+# pair; IPC freecell p1, 3,408 actions and 74 such variables, took 16 s, which
+# the grounding cannot be interrupted in, after a 0.3 s solve).
 MUTEX_ENCODING = "planning/mutex.lp"
 MUTEX = "mutex"
 MUTEX_STEP = "mutex_step"
 MUTEX_MAX_FLUENTS = 400
+MUTEX_MAX_PAIRS = 150_000
 MUTEX_AFTER = 0.05
 # The canonical order of independent actions (partial-order reduction): its
 # pairs of independent actions grow with the square of the actions, so it is
@@ -103,6 +111,12 @@ CANONICAL_MAX_ACTIONS = 1000
 CANONICAL_AFTER = 0.5
 CANONICAL_SWITCH = clingo.Function("require", [clingo.Function("canonical")])
 LOOPFREE_ENCODING = "planning/loopfree.lp"
+# The state at the horizon (at_horizon/3), for the searches that read it (an
+# optimisation, a utility threshold): an atom per variable and horizon, which
+# plain plan search on a PDDL task with many variables would pay for at every
+# horizon.
+STATE_ENCODING = "judgement/state.lp"
+STATE_CHECK = "state_check"
 
 # The solver configuration of every search (it did best on the planning benchmarks).
 OPTIONS = ("--configuration=trendy", "--heuristic=Domain")
@@ -265,6 +279,8 @@ class Planner:
         self._searching = False
         self._mutexes: bool | None = False   # grounded (True), not yet, or never (None)
         self._canonical: bool | None = False  # the same for the canonical order
+        self._state = False           # the state at the horizon grounded (use_state)
+        self._mutex_size: tuple[int, int] | None = None   # (fluents, pairs)
         self._threads = 1             # solver threads (see threads())
         self.grounded = -1            # step and check parts grounded up to this time
         self._loopfree = 0            # loopfree parts grounded up to this time
@@ -439,6 +455,9 @@ class Planner:
                 # Grounded when a search is found hard (see use_mutexes).
                 files.append((MUTEX_ENCODING, MUTEX_STEP, None, MUTEX))
                 files.append((CANONICAL_ENCODING, CANONICAL_STEP, None, CANONICAL))
+                self._parts.update(incremental.add_encoding(
+                    builder, encoding(STATE_ENCODING), on_message=self.messages,
+                    base_part=SEARCH, check_part=STATE_CHECK))
                 files.append((GOAL_ENCODING, STEP, GOAL_SWITCH, SEARCH))
                 files.append((SATISFICING_ENCODING, STEP, SATISFICING_SWITCH, SEARCH))
                 files.append((LOOPFREE_ENCODING, LOOPFREE, None, SEARCH))
@@ -522,6 +541,8 @@ class Planner:
                 parts.append((MUTEX_STEP, [clingo.Number(t)]))
             if self._canonical:
                 parts.append((CANONICAL_STEP, [clingo.Number(t)]))
+            if self._state:
+                parts.append((STATE_CHECK, [clingo.Number(t)]))
             for name, values in self._inputs.items():
                 if name == "simple_path":
                     continue
@@ -539,7 +560,8 @@ class Planner:
     def use_mutexes(self, budget: Budget | None = None) -> bool:
         """Ground the h^2 mutexes (``planning/mutex.lp``) for every step so far
         and from now on, unless the model has more than MUTEX_MAX_FLUENTS state
-        variables that may change; whether they are in use."""
+        variables that may change or more than MUTEX_MAX_PAIRS pairs of such a
+        variable and a usable action; whether they are in use."""
         self._start_search(budget)
         if self._mutexes:
             return True
@@ -549,16 +571,26 @@ class Planner:
             # The mutexes are computed from the actions alone: events may break them.
             self._mutexes = None
             return False
-        reachable = {}
-        for atom in self.search_atoms("reachable", 2):
-            reachable[atom.arguments[0]] = reachable.get(atom.arguments[0], 0) + 1
-        fluents = sum(1 for count in reachable.values() if count == 2)
-        if fluents > MUTEX_MAX_FLUENTS:
+        fluents, pairs = self.mutex_size()
+        if fluents > MUTEX_MAX_FLUENTS or pairs > MUTEX_MAX_PAIRS:
             self._mutexes = None       # never
             return False
         self._mutexes = True
         self._ground_from_now(MUTEX, MUTEX_STEP, budget)
         return True
+
+    @_locked
+    def mutex_size(self) -> tuple[int, int]:
+        """The state variables that may change (both values relaxed reachable),
+        and their number times the usable actions: what the grounding of the
+        h^2 mutexes grows with."""
+        if self._mutex_size is None:
+            reachable: dict[clingo.Symbol, int] = {}
+            for atom in self.search_atoms("reachable", 2):
+                reachable[atom.arguments[0]] = reachable.get(atom.arguments[0], 0) + 1
+            fluents = sum(1 for count in reachable.values() if count == 2)
+            self._mutex_size = (fluents, fluents * len(self.search_atoms("usable", 1)))
+        return self._mutex_size
 
     @_locked
     def use_canonical(self, budget: Budget | None = None) -> bool:
@@ -576,6 +608,16 @@ class Planner:
         self._canonical = True
         self._ground_from_now(CANONICAL, CANONICAL_STEP, budget)
         return True
+
+    @_locked
+    def use_state(self, budget: Budget | None = None) -> None:
+        """Ground the state at the horizon (``judgement/state.lp``) for every
+        time so far and from now on (:meth:`ground_to` grounds later ones)."""
+        self._start_search(budget)
+        if not self._state:
+            self._state = True
+            self._ground([(STATE_CHECK, [clingo.Number(t)]) for t in range(0, self.grounded + 1)],
+                         budget)
 
     def _ground_from_now(self, part: str, step_part: str, budget: Budget | None = None) -> None:
         """Ground an optional part and its step part for every step so far
@@ -696,15 +738,21 @@ class Planner:
                                  f"{constraint.question} (see Planner.question)")
         if setting.at_least is not None:
             self._threshold("at_least", setting.at_least, budget)
+        if setting.optimize or setting.at_least is not None:
+            self.use_state(budget)    # their answers are read as states
 
     @_locked
     def solve(self, horizon: int, setting: Setting, budget: Budget,
-              models: int = 1, mutex_after: float = MUTEX_AFTER) -> Outcome:
+              models: int = 1, mutex_after: float = MUTEX_AFTER,
+              moot: Callable[[], bool] | None = None) -> Outcome:
         """Solve at one horizon under a setting (grounding what it needs first);
         a solve that takes more than ``mutex_after`` seconds has the h^2
         mutexes grounded for the next ones (:meth:`use_mutexes`), and one
         under a canonical setting that takes more than CANONICAL_AFTER (and
-        ``mutex_after``) seconds the canonical order (:meth:`use_canonical`)."""
+        ``mutex_after``) seconds the canonical order (:meth:`use_canonical`);
+        neither when ``moot`` says, after a solve the budget stopped, that the
+        search needs no more solves (another engine proved what it sought: the
+        groundings would only delay its end)."""
         try:
             self._prepare(setting, budget)
             # A plan shorter than the last event ends after it: the goal and the
@@ -717,6 +765,8 @@ class Planner:
         began = time.monotonic()
         outcome = self._solve(assumptions, budget, setting.optimize, models)
         seconds = time.monotonic() - began
+        if outcome.satisfiable is None and moot is not None and moot():
+            return outcome
         try:
             if seconds > mutex_after and self._mutexes is False:
                 self.use_mutexes(budget)    # a hard search: the next solves get them

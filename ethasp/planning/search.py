@@ -46,7 +46,7 @@ LAYERS_AT_ONCE_ACTIONS = 32
 # ... and so do models of at least this many state variables: reading their
 # atoms in this process (to start the layers later) would cost more than
 # starting a child process that reads them (PDDL tasks declare an atom for
-# every typed combination of a predicate's arguments).
+# every typed combination of the arguments of a predicate that actions change).
 LAYERS_AT_ONCE_VARIABLES = 1000
 # Seconds the solver waits, at the start of a search, for an engine started
 # with it (layers, greedy search) to finish: where it finishes that soon, the
@@ -57,6 +57,9 @@ HEAD_START = 0.3
 # Seconds a solve takes before the h^2 mutexes are grounded while the layers
 # still work: often they end the search first, and the grounding (which
 # cannot be interrupted) would only delay the end (freecell p01: 0.7 s).
+# (Waiting longer, as long as their grounding is expected to take, slowed IPC
+# scanalyzer on an idle machine: p4 found no shortest plan in 30 s instead of
+# 24 s.)
 MUTEX_AFTER_LAYERS = 0.25
 
 # Solver threads for plain plan search once the layers have given up (their
@@ -232,6 +235,15 @@ class _Exact:
             return False
         return ((status.plan is not None and len(status.plan) <= self.max_horizon)
                 or status.complete or status.bound > horizon)
+
+    def done(self) -> bool:
+        """Did an engine end the search: a plan proposed, or every reachable
+        state searched?  (A bound that makes one horizon moot does not: the
+        search goes on, and the groundings a slow solve asks for pay there.)"""
+        if self.greedy_plan() is not None or self.greedy_complete():
+            return True
+        status = self.status()
+        return status is not None and (status.plan is not None or status.complete)
 
     def mutex_after(self) -> float:
         """Seconds a solve takes before the h^2 mutexes are grounded."""
@@ -446,7 +458,8 @@ def _shortest(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
             planner.threads(SOLVER_THREADS)   # the layers' core, for the solver
         began = time.monotonic()
         outcome = planner.solve(horizon, setting, exact.watch(horizon),
-                                models=0 if all_plans else 1, mutex_after=exact.mutex_after())
+                                models=0 if all_plans else 1, mutex_after=exact.mutex_after(),
+                                moot=exact.done)
         exact.solved(time.monotonic() - began)
         if outcome.satisfiable is None:
             if budget.expired():
@@ -573,7 +586,8 @@ def _any_plan(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
         watch = exact.watch(horizon)
         outcome = planner.solve(horizon, setting,
                                 watch.until(lambda: time.monotonic() > end), models=1,
-                                mutex_after=exact.mutex_after())
+                                mutex_after=exact.mutex_after(),
+                                moot=exact.done)
         exact.solved(time.monotonic() - began)
         if outcome.satisfiable is None:
             if budget.expired():
