@@ -235,21 +235,25 @@ def _support(spec: RandomModel, state: frozenset, variable: str, wanted: bool,
 def _event_sets(spec: RandomModel, state: frozenset, step: int) -> dict[str, dict[str, bool]]:
     """What each event of a step sets, from the state after that step's action:
     the events that happen (preconditions hold), each with the variables that
-    one of its firing effects sets to the value that wins on the variable
-    (the greatest key, true between equal keys: RandomModel.happen)."""
+    one of its firing effects sets and wins on: no firing effect of that step
+    (of any event) sets the variable the other way with a greater key, or
+    with an equal key to true (so the greatest key wins, true between equal
+    keys, as RandomModel.happen; an effect overridden by one that is in turn
+    overridden sets nothing)."""
     happening = [event for event in spec.events if event.step == step
                  and all((v in state) == b for v, b in event.pre.items())]
     firing = {event.name: [(key, sets) for key, conditions, sets in event.effects
                            if all((v in state) == b for v, b in conditions.items())]
               for event in happening}
-    winners: dict[str, tuple[int, bool]] = {}
-    for effects in firing.values():
-        for key, sets in effects:
-            for variable, setting in sets.items():
-                if variable not in winners or (key, setting) > winners[variable]:
-                    winners[variable] = (key, setting)
-    return {name: {variable: setting for _, sets in effects
-                   for variable, setting in sets.items() if winners[variable][1] == setting}
+    every = [(key, variable, setting) for effects in firing.values()
+             for key, sets in effects for variable, setting in sets.items()]
+
+    def wins(key: int, variable: str, setting: bool) -> bool:
+        return not any(v == variable and b != setting and (k > key or (k == key and b))
+                       for k, v, b in every)
+
+    return {name: {variable: setting for key, sets in effects
+                   for variable, setting in sets.items() if wins(key, variable, setting)}
             for name, effects in firing.items()}
 
 
