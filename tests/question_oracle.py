@@ -1,19 +1,21 @@
 """Brute-force reference semantics of questions and step-by-step explanations,
 written from their definitions (docs/questions.md) over the explicit states of
-tests/oracle.py's RandomModel (its public methods only: applicable, apply,
-firing, run, is_goal, is_plan, extended, distances, permissible, ...).
+tests/oracle.py's RandomModel (its public methods only: applicable, step,
+trajectory, successor, finish, firing, is_goal, is_plan, extended, caused,
+permissible, ...).
 
 Constraint terms are tuples named as in encodings/questions/questions.lp:
 ("used", a), ("unused", a), ("before", b, a), ("at", a, t), ("not_at", a, t),
 ("within", a, t1, t2), ("not_within", a, t1, t2), ("ends", f, value),
 ("fact_at", f, value, t), ("at_most", n).
 
-A step is simulated in one function, :func:`step_state`, and the states a
-plan passes are listed by :func:`trajectory`; both follow RandomModel's
-actions (applicable, apply).  For models with exogenous events they are the
-two places to switch to the model's own simulation of steps and events (and
-the search of :func:`shortest_meeting` would count its steps up to the last
-event as well).
+Steps are the model's own (RandomModel.step: the action, then the exogenous
+events due at that step), and a plan's states are RandomModel.trajectory:
+the initial state, then the state after each step, up to the later of the
+plan's end and the last event (idle steps after the plan).  So "the state
+after step T" is the T-th state for a plan of at least T steps and the final
+state (after every event) otherwise; ends(F,B) and the goal read the final
+state.
 """
 
 from __future__ import annotations
@@ -23,21 +25,18 @@ from collections import deque
 from oracle import RandomModel
 
 
-def step_state(spec: RandomModel, state: frozenset, step: int, action: str) -> frozenset:
-    """The state after step ``step`` of a plan, its action applicable in ``state``."""
-    return spec.apply(state, action)
-
-
 def trajectory(spec: RandomModel, plan: list[str]) -> list[frozenset] | None:
-    """The states of a plan: the initial state, then the state after each step
+    """The states of a plan: the initial state, then the state after each step,
+    events included, up to the later of the plan's end and the last event
     (its final state last); None if some step is not applicable."""
-    state, states = spec.init, [spec.init]
-    for step, action in enumerate(plan, start=1):
-        if not spec.applicable(state, action):
-            return None
-        state = step_state(spec, state, step, action)
-        states.append(state)
-    return states
+    return spec.trajectory(plan)
+
+
+def after_step(states: list[frozenset], plan: list[str], step: int) -> frozenset:
+    """The state after step ``step`` of a plan whose states are ``states``:
+    after its action and the events of that step, or the final state for a
+    plan of fewer steps."""
+    return states[step] if step <= len(plan) else states[-1]
 
 
 def value(spec: RandomModel, state: frozenset, variable: str) -> bool:
@@ -65,16 +64,14 @@ def meets(spec: RandomModel, plan: list[str], term: tuple) -> bool:
     if kind == "ends":
         return value(spec, states[-1], term[1]) == term[2]
     if kind == "fact_at":
-        state = states[term[3]] if term[3] <= n else states[-1]
-        return value(spec, state, term[1]) == term[2]
+        return value(spec, after_step(states, plan, term[3]), term[1]) == term[2]
     if kind == "at_most":
         return n <= term[1]
     raise ValueError(term)
 
 
-def _clock(terms) -> int:
-    """The largest step a set of constraints names, plus one (the step count
-    is remembered up to it), and one past an at_most bound."""
+def _largest_step(terms) -> int:
+    """The largest step a set of constraints names (an at_most bound counts)."""
     bound = 0
     for term in terms:
         if term[0] in ("at", "not_at"):
@@ -85,7 +82,7 @@ def _clock(terms) -> int:
             bound = max(bound, term[3])
         elif term[0] == "at_most":
             bound = max(bound, term[1])
-    return bound + 1
+    return bound
 
 
 def shortest_meeting(spec: RandomModel, terms, principles=()) -> int | None:
@@ -93,31 +90,43 @@ def shortest_meeting(spec: RandomModel, terms, principles=()) -> int | None:
     permissible under every principle (deontology, do-no-harm,
     utilitarianism), or None if there is none.
 
-    Breadth-first search over nodes (state, step count up to the largest step
-    the constraints name, what the constraints remember: the actions used,
-    the actions at named steps, the values after named steps, the bad facts
-    some action had as an effect); the nodes are finitely many, so None means
-    no such plan of any length.
+    Breadth-first search over nodes (state, time, memory, produced): the
+    time counts the steps up to the later of the last event and one past
+    the largest step the constraints name (exact below it); the memory holds
+    what the constraints remember (the actions used and their order, the
+    actions at named steps, the states after named steps); produced holds,
+    for do-no-harm, the bad facts an action of the plan set (they held after
+    it) that have held ever since (as tests/oracle.py's search).  A node is
+    accepted on the plan's final state, after the events still due.  The
+    nodes are finitely many, so None means no such plan of any length.
     """
     terms = list(terms)
     principles = set(principles)
-    clock = _clock(terms)
+    clock = _largest_step(terms) + 1
+    top = max(clock, spec.last_event)
     limit = min((t[1] for t in terms if t[0] == "at_most"), default=None)
     watched = {t[1] for t in terms if t[0] in ("used", "unused", "at", "not_at", "within",
                                               "not_within")}
     watched |= {a for t in terms if t[0] == "before" for a in t[1:]}
     named_steps = {t[3] for t in terms if t[0] == "fact_at"}
     best = spec.best_reachable_utility() if "utilitarianism" in principles else None
+    harmless = "do-no-harm" in principles
+
+    def carry(state, produced):
+        return frozenset(fact for fact in produced if (fact[0] in state) == fact[1])
 
     def accepted(node) -> bool:
-        state, count, memory, harms = node
+        state, time, memory, produced = node
+        for later in range(time + 1, spec.last_event + 1):
+            state = spec.step(state, later, None)
+            produced = carry(state, produced)
         if not spec.is_goal(state):
             return False
         if best is not None and spec.state_utility(state) < best:
             return False
-        if "do-no-harm" in principles and any((v in state) == b for v, b in harms):
+        if harmless and produced:
             return False
-        return all(_met(spec, term, state, count, memory) for term in terms)
+        return all(_met(spec, term, state, time, memory) for term in terms)
 
     start = (spec.init, 0, frozenset(), frozenset())
     depth = {start: 0}
@@ -126,8 +135,8 @@ def shortest_meeting(spec: RandomModel, terms, principles=()) -> int | None:
         node = queue.popleft()
         if accepted(node):
             return depth[node]
-        state, count, memory, harms = node
-        step = count + 1              # the step taken next (exact while below the clock)
+        state, time, memory, produced = node
+        step = time + 1               # the step taken next (exact while below the top)
         if limit is not None and depth[node] + 1 > limit:
             continue
         for action in spec.actions:
@@ -135,7 +144,7 @@ def shortest_meeting(spec: RandomModel, terms, principles=()) -> int | None:
                 continue
             if "deontology" in principles and spec.bad_action(action):
                 continue
-            after = step_state(spec, state, step, action)
+            after = spec.step(state, step, action)
             remember = set(memory)
             if action in watched:
                 remember.add(("used", action))
@@ -144,22 +153,26 @@ def shortest_meeting(spec: RandomModel, terms, principles=()) -> int | None:
                         remember.add(("before", other, action))
             if step < clock:
                 remember.add(("at", action, step))
-                for t in named_steps:
-                    if t == step:
-                        remember.add(("after", step, frozenset(spec.extended(after)
-                                                               if spec.derived else after)))
-            effected = harms | {(v, b) for v, b in spec.firing(state, action)
-                                if spec.bad_fact(v, b)} if "do-no-harm" in principles else harms
-            succ = (after, min(step, clock), frozenset(remember), effected)
+                if step in named_steps:
+                    remember.add(("after", step, spec.extended(after) if spec.derived
+                                  else after))
+            if harmless:
+                acted = spec.apply(state, action)
+                fired = {(v, b) for v, b in spec.firing(state, action)
+                         if spec.bad_fact(v, b) and (v in acted) == b}
+                produced_after = carry(after, produced | fired)
+            else:
+                produced_after = produced
+            succ = (after, min(step, top), frozenset(remember), produced_after)
             if succ not in depth:
                 depth[succ] = depth[node] + 1
                 queue.append(succ)
     return None
 
 
-def _met(spec: RandomModel, term: tuple, state: frozenset, count: int, memory) -> bool:
-    """A constraint at the end of a plan of ``count`` steps (``count`` exact
-    below the clock) that ends in ``state`` and remembers ``memory``."""
+def _met(spec: RandomModel, term: tuple, final: frozenset, time: int, memory) -> bool:
+    """A constraint at the end of a plan of ``time`` steps (exact below the
+    clock) whose final state is ``final`` and which remembers ``memory``."""
     kind = term[0]
     if kind == "used":
         return ("used", term[1]) in memory
@@ -174,15 +187,15 @@ def _met(spec: RandomModel, term: tuple, state: frozenset, count: int, memory) -
         inside = any(("at", term[1], t) in memory for t in range(term[2], term[3] + 1))
         return inside if kind == "within" else not inside
     if kind == "ends":
-        return value(spec, state, term[1]) == term[2]
+        return value(spec, final, term[1]) == term[2]
     if kind == "fact_at":
-        if count >= term[3]:
+        if time >= term[3]:
             after = next(s for tag, t, s in (m for m in memory if m[0] == "after")
                          if t == term[3])
             return (term[1] in after) == term[2]
-        return value(spec, state, term[1]) == term[2]
+        return value(spec, final, term[1]) == term[2]
     if kind == "at_most":
-        return count <= term[1]
+        return time <= term[1]
     raise ValueError(term)
 
 
@@ -219,39 +232,115 @@ def _support(spec: RandomModel, state: frozenset, variable: str, wanted: bool,
     return result
 
 
-def links(spec: RandomModel, plan: list[str]) -> set[tuple]:
-    """The causal links of a plan, as (provider step, consumer, variable,
-    value, kind, via): consumer a step number or "goal", kind precondition,
-    condition (the effect's name) or goal, via the derived variable or None."""
-    states = trajectory(spec, plan)
-    setters = [_sets(spec, states[i], action) for i, action in enumerate(plan)]
+def _event_sets(spec: RandomModel, state: frozenset, step: int) -> dict[str, dict[str, bool]]:
+    """What each event of a step sets, from the state after that step's action:
+    the events that happen (preconditions hold), each with the variables that
+    one of its firing effects sets and wins on: no firing effect of that step
+    (of any event) sets the variable the other way with a greater key, or
+    with an equal key to true (so the greatest key wins, true between equal
+    keys, as RandomModel.happen; an effect overridden by one that is in turn
+    overridden sets nothing)."""
+    happening = [event for event in spec.events if event.step == step
+                 and all((v in state) == b for v, b in event.pre.items())]
+    firing = {event.name: [(key, sets) for key, conditions, sets in event.effects
+                           if all((v in state) == b for v, b in conditions.items())]
+              for event in happening}
+    every = [(key, variable, setting) for effects in firing.values()
+             for key, sets in effects for variable, setting in sets.items()]
 
-    def provider(variable: str, before: int) -> int | None:
-        for step in range(before - 1, 0, -1):
-            if variable in setters[step - 1]:
-                return step
-        return None
+    def wins(key: int, variable: str, setting: bool) -> bool:
+        return not any(v == variable and b != setting and (k > key or (k == key and b))
+                       for k, v, b in every)
+
+    return {name: {variable: setting for key, sets in effects
+                   for variable, setting in sets.items() if wins(key, variable, setting)}
+            for name, effects in firing.items()}
+
+
+def _event_needs(spec: RandomModel, state: frozenset, step: int) -> dict[str, dict[str, bool]]:
+    """The needs of the events of a step that happen, read in the state after
+    that step's action: their preconditions and the conditions of their
+    effects that fire."""
+    needs = {}
+    for event in spec.events:
+        if event.step != step or not all((v in state) == b for v, b in event.pre.items()):
+            continue
+        needs[event.name] = dict(event.pre)
+        for _, conditions, _ in event.effects:
+            if all((v in state) == b for v, b in conditions.items()):
+                needs[event.name].update(conditions)
+    return needs
+
+
+def links(spec: RandomModel, plan: list[str]) -> set[tuple]:
+    """The causal links of a plan, as (provider, consumer, variable, value,
+    kind, via): the provider a step number or ("event", step, name), the
+    consumer a step number, ("event", step, name) or "goal"; kind
+    precondition, condition (the effect's name), event or goal; via the
+    derived variable or None.
+
+    Things happen at points in order: the action of step T (point 2T), then
+    the events of step T (point 2T+1), up to the later of the plan's end and
+    the last event (N); the goal reads the final state (point 2N+2).  A need
+    is linked from the last provider of the variable (either value) before
+    the consumer's point, when that provider set the value needed."""
+    states = trajectory(spec, plan)
+    end = len(states) - 1
+    providers: list[tuple[int, object, dict[str, bool]]] = []
+    consumers: list[tuple[int, object, frozenset, dict[str, bool], object]] = []
+    for j in range(1, end + 1):
+        before = states[j - 1]
+        mid = before
+        if j <= len(plan):
+            action = plan[j - 1]
+            providers.append((2 * j, j, _sets(spec, before, action)))
+            consumers.append((2 * j, j, before, spec.pre[action], "precondition"))
+            for name, conditions, _ in spec.ceff.get(action, []):
+                if spec.satisfies(before, conditions):
+                    consumers.append((2 * j, j, before, conditions, ("condition", name)))
+            mid = spec.apply(before, action)
+        for name, sets in _event_sets(spec, mid, j).items():
+            providers.append((2 * j + 1, ("event", j, name), sets))
+        for name, needs in _event_needs(spec, mid, j).items():
+            consumers.append((2 * j + 1, ("event", j, name), mid, needs, "event"))
+    consumers.append((2 * end + 2, "goal", states[-1], spec.goal, "goal"))
 
     found = set()
-
-    def need(consumer, before: int, state, variable, wanted, kind):
-        via = variable if variable in spec.derived else None
-        for v, b in _support(spec, state, variable, wanted):
-            step = provider(v, before)
-            if step is not None and setters[step - 1][v] == b:
-                found.add((step, consumer, v, b, kind, via))
-
-    for j, action in enumerate(plan, start=1):
-        before = states[j - 1]
-        for variable, wanted in spec.pre[action].items():
-            need(j, j, before, variable, wanted, "precondition")
-        for name, conditions, _ in spec.ceff.get(action, []):
-            if spec.satisfies(before, conditions):
-                for variable, wanted in conditions.items():
-                    need(j, j, before, variable, wanted, ("condition", name))
-    for variable, wanted in spec.goal.items():
-        need("goal", len(plan) + 1, states[-1], variable, wanted, "goal")
+    for point, consumer, state, needs, kind in consumers:
+        for variable, wanted in needs.items():
+            via = variable if variable in spec.derived else None
+            for v, b in _support(spec, state, variable, wanted):
+                earlier = [p for p in providers if p[0] < point and v in p[2]]
+                if not earlier:
+                    continue
+                last = max(p[0] for p in earlier)
+                for _, provider, sets in earlier:
+                    if _ == last and sets[v] == b:
+                        found.add((provider, consumer, v, b, kind, via))
     return found
+
+
+def serving(found: set[tuple]) -> set:
+    """The nodes (steps, events) from which links lead to the goal."""
+    result = {link[0] for link in found if link[1] == "goal"}
+    while True:
+        more = {link[0] for link in found if link[1] in result} - result
+        if not more:
+            return result
+        result |= more
+
+
+def causes(spec: RandomModel, plan: list[str]) -> dict[int, set[tuple[str, bool, int]]]:
+    """The valued facts each step causes: the step's action sets the fact (its
+    winning effects) and the plan causes it (Caused); with their utility."""
+    states = trajectory(spec, plan)
+    caused = spec.caused(plan)
+    result = {}
+    for step, action in enumerate(plan, start=1):
+        result[step] = {(v, b, spec.fact_utility[(v, b)])
+                        for v, b in _sets(spec, states[step - 1], action).items()
+                        if (v, b) in caused and spec.fact_utility.get((v, b), 0) != 0}
+    return result
 
 
 def removable(spec: RandomModel, plan: list[str]) -> set[int]:

@@ -330,6 +330,24 @@ def test_states_after_steps_with_events():
     assert str(answer.contrast.plan) == "finish close"
 
 
+# A derived variable d (d iff v): v can only be false after two steps (c, then
+# b), and an event makes the model's search run on explicit layers.
+LATE = """variable(v;w;g;x). action(a;b;c). init(v). eff(a,g,true). pre(b,w,true).
+eff(b,v,false). eff(c,w,true). derived(d). axiom(d,0). axiom_pre(d,0,v,true).
+event(e). event_at(e,1). event_effect(e,1,x,true). goal(g,true)."""
+
+
+def test_constraints_imposed_in_asp_hold_with_events():
+    # fact_at of a derived variable is imposed in ASP, beside the HModel: a
+    # shortest plan of the explicit layers (which do not know the constraint)
+    # is not a contrast plan; no plan has d false after step 1.
+    model = Model.from_string(LATE)
+    answer = ask(model, "why d at 1", plan=Plan.parse("a"))
+    assert answer.status == "none" and answer.contrast is None
+    answer = ask(model, "why d at 2", plan=Plan.parse("a"))
+    assert answer.status == "found" and str(answer.contrast.plan) == "c b a"
+
+
 def test_dialogue_with_a_question_no_plan_can_meet(trolley, monkeypatch):
     from ethasp.questions import contrast as contrast_module
 

@@ -167,6 +167,22 @@ def test_do_no_harm_an_overridden_delete_that_an_event_completes_is_not_caused()
     assert "caused(v,false)" in caused
 
 
+def test_do_no_harm_a_harm_an_action_undoes_and_an_event_of_its_step_redoes_is_caused():
+    # p makes v (bad) at step 1; u deletes it at step 2 and the event of step 2
+    # makes it again: v held after steps 1 and 2 (events included), so p
+    # caused it (planning/trace_events.lp); a third step that deletes it
+    # again is needed.
+    model = """variable(v;w). action(p;u). eff(p,v,true). eff(p,w,true). eff(u,v,false).
+               event(e). event_at(e,2). event_effect(e,1,v,true). goal(w,true).
+               utility(v,true,-1)."""
+    caused = only_answer(["planning/model.lp", "planning/trace.lp", "planning/trace_events.lp"],
+                         model + "occurs(p,1). occurs(u,2). #show caused/2.")
+    assert "caused(v,true)" in caused
+    assert plans(["do_no_harm"], model, 2) == set()
+    assert plans(["do_no_harm"], model, 3) == {("u", "p", "u"), ("p", "u", "u"),
+                                               ("p", "p", "u")}
+
+
 def test_avoid_any_harm_adds_the_opposite_goals():
     text = hmodel(["avoid_any_harm"], FISH)
     assert "goal(alive(fish),true)." in text

@@ -1,6 +1,7 @@
 """Property tests of the whole question language and of step-by-step
-explanations on random models (conditional effects and derived variables
-included), against the brute-force oracle of tests/question_oracle.py:
+explanations on random models (conditional effects, derived variables and
+exogenous events included), against the brute-force oracle of
+tests/question_oracle.py, which simulates events (tests/oracle.py):
 
 * every form: a contrast plan meets the question and is a shortest one
   (permissible under the principle, or, with the principle dropped, a
@@ -8,7 +9,9 @@ included), against the brute-force oracle of tests/question_oracle.py:
   meeting the question is permissible under it (and some plan meets it);
   "none" only when no plan meets the question, with a conflict that no plan
   meets; a question whose presupposition fails is refused;
-* causal links and removable steps exactly as defined.
+* causal links (from steps and events, to steps, events and the goal),
+  removable steps, the steps that serve the goal and the valued facts each
+  step causes exactly as defined.
 """
 
 from __future__ import annotations
@@ -22,12 +25,17 @@ from ethasp import InputError, Model, Plan
 from ethasp.questions.contrast import ask
 from ethasp.questions.steps import explain_steps
 from oracle import plan_through, random_model
-from question_oracle import links, meets, removable, shortest_meeting, trajectory, value
+from question_oracle import (after_step, causes, links, meets, removable, serving,
+                             shortest_meeting, trajectory, value)
 
 PRINCIPLES = ["deontology", "utilitarianism", "do-no-harm"]
 FORMS = ["why", "why-not", "rather-than", "before", "after", "at", "not-at", "within",
          "not-within", "ends", "not-ends", "fact-at", "not-fact-at", "length"]
 MAX_HORIZON = 12
+# The features random models draw: none, each alone, and all of them together.
+KINDS = {"plain": {}, "conditional": {"conditional": True}, "derived": {"derived": True},
+         "events": {"events": True},
+         "every feature": {"conditional": True, "derived": True, "events": True}}
 
 
 def _b(value: bool) -> str:
@@ -59,7 +67,7 @@ def question(form: str, spec, plan: list[str], rng: random.Random):
         elif form in ("why-not", "not-at", "not-within"):
             a = rng.choice([x for x in spec.actions if x not in plan] or spec.actions)
     if fitting and form in ("ends", "not-ends", "fact-at", "not-fact-at"):
-        state = states[min(t, len(plan))] if form.endswith("fact-at") else states[-1]
+        state = after_step(states, plan, t) if form.endswith("fact-at") else states[-1]
         wanted = not form.startswith("not")
         fitting_facts = [x for x in facts if value(spec, state, x) == wanted]
         f = rng.choice(fitting_facts or facts)
@@ -105,11 +113,11 @@ def presupposition_fails(spec, plan, form, terms, text) -> bool:
     return all(meets(spec, plan, term) for term in terms)
 
 
-@settings(max_examples=120, deadline=None)
+@settings(max_examples=150, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9), st.sampled_from(PRINCIPLES),
-       st.sampled_from(FORMS), st.sampled_from(["plain", "conditional", "derived"]))
+       st.sampled_from(FORMS), st.sampled_from(sorted(KINDS)))
 def test_every_form_against_brute_force(seed, under, form, kind):
-    spec, seed = solvable(seed, conditional=kind == "conditional", derived=kind == "derived")
+    spec, seed = solvable(seed, **KINDS[kind])
     rng = random.Random(seed)
     plan = plan_through(spec, rng, rng.randint(0, 2)) or plan_through(spec, rng, 0)
     text, terms, written = question(form, spec, plan, rng)
@@ -151,29 +159,46 @@ def test_every_form_against_brute_force(seed, under, form, kind):
         assert answer.status == "bounded"        # no proof found: not dropped
 
 
+def _node(node):
+    """A link's end as the oracle writes it."""
+    if node.kind == "step":
+        return node.step
+    if node.kind == "event":
+        return ("event", node.step, str(node.event))
+    return "goal"
+
+
 @settings(max_examples=150, deadline=None)
-@given(st.integers(min_value=0, max_value=10**9),
-       st.sampled_from(["plain", "conditional", "derived", "both"]))
+@given(st.integers(min_value=0, max_value=10**9), st.sampled_from(sorted(KINDS)))
 def test_links_and_removable_steps_against_brute_force(seed, kind):
-    spec, seed = solvable(seed, conditional=kind in ("conditional", "both"),
-                          derived=kind in ("derived", "both"))
+    spec, seed = solvable(seed, **KINDS[kind])
     rng = random.Random(seed)
     plan = plan_through(spec, rng, rng.randint(0, 4)) or plan_through(spec, rng, 0)
     model = Model.from_string(spec.to_asp())
     explanation = explain_steps(model, Plan.parse(" ".join(plan)))
     found = set()
     for link in explanation.links:
-        assert link.provider.kind == "step"       # no events in these models
         kind_of = ("condition", str(link.effect)) if link.kind == "condition" else link.kind
-        consumer = "goal" if link.consumer.kind == "goal" else link.consumer.step
-        found.add((link.provider.step, consumer, str(link.variable), link.value, kind_of,
-                   None if link.via is None else str(link.via)))
-    assert found == links(spec, plan)
+        found.add((_node(link.provider), _node(link.consumer), str(link.variable), link.value,
+                   kind_of, None if link.via is None else str(link.via)))
+    expected = links(spec, plan)
+    assert found == expected, (found - expected, expected - found)
     assert {step.step for step in explanation.steps if step.removable} == removable(spec, plan)
+    serves = serving(expected)
+    caused = causes(spec, plan)
+    edges = {(link[0], link[1]) for link in expected}
     for step in explanation.steps:
         action = plan[step.step - 1]
         assert step.utility == spec.action_utility.get(action, 0)
         assert step.bad == spec.bad_action(action)
-        # A chain ends at the goal and follows links.
+        assert {(str(v), b, u) for v, b, u in step.causes} == caused[step.step]
+        # A step serves the goal when links lead from it to the goal; its chain
+        # starts at it, follows links and ends at the goal.
+        assert step.serves_goal == (step.step in serves)
         if step.chain:
-            assert step.chain[0].step == step.step and step.chain[-1].kind == "goal"
+            chain = [_node(node) for node in step.chain]
+            assert chain[0] == step.step and chain[-1] == "goal"
+            assert all(pair in edges for pair in zip(chain, chain[1:])), chain
+    # Events are listed with the links from what they set.
+    assert {(e.step, str(e.event)) for e in explanation.events if e.links} == \
+        {link[0][1:] for link in expected if isinstance(link[0], tuple)}

@@ -195,10 +195,12 @@ class Configurations:
         return None
 
 
-def search(task, events: Events, budget: Budget, publish, stop) -> None:
+def search(task, events: Events, budget: Budget, publish, stop, read_plan: bool = True) -> None:
     """Plan search over the layers, reporting as the exact layers do
-    (:class:`ethasp.planning.layers.Status`): bounds, a shortest plan, or that
-    no goal state is reachable."""
+    (:class:`ethasp.planning.layers.Status`): bounds, a shortest plan (only
+    with ``read_plan``: a search whose setting the layers do not know, such
+    as question constraints imposed in ASP, must not take it), or that no
+    goal state is reachable."""
     layers = Configurations(task, events)
     k = 0
     while True:
@@ -208,7 +210,8 @@ def search(task, events: Events, budget: Budget, publish, stop) -> None:
         goal = layers.first_goal(k)
         if goal is not None:
             publish(goal_layer=k, bound=k)
-            publish(plan=tuple(layers.path(goal)))
+            if read_plan:
+                publish(plan=tuple(layers.path(goal)))
             return
         publish(bound=k + 1)
         if not layers.expand(budget):

@@ -364,7 +364,7 @@ class Layers:
 
             task = Task(self.model)
             explicit.search(task, explicit.Events(self.model.events, task.index), self._budget,
-                            publish, self._stop.is_set)
+                            publish, self._stop.is_set, read_plan=self.read_plan)
             return
         _import_diagrams()
         from ethasp.planning.reachability import Reachability
