@@ -92,7 +92,7 @@ plan_step(1,finish).
 
 def situation(rng: random.Random) -> dict:
     """A random HERA situation (see the module docstring)."""
-    variables = ["a", "b", "c", "d"][:rng.randint(2, 4)]
+    variables = ["a", "b", "c", "d"][: rng.randint(2, 4)]
 
     def partial(low: int, high: int) -> dict:
         chosen = rng.sample(variables, rng.randint(low, min(high, len(variables))))
@@ -104,15 +104,19 @@ def situation(rng: random.Random) -> dict:
     goal = (variables[0], rng.random() < 0.5)
     actions = []
     for index in range(rng.randint(1, 3)):
-        effects = [{"condition": partial(0, 2), "effect": partial(1, 2)}
-                   for _ in range(rng.randint(1, 3))]
+        effects = [
+            {"condition": partial(0, 2), "effect": partial(1, 2)} for _ in range(rng.randint(1, 3))
+        ]
         if index == 0:
-            effects[0] = {"condition": {}, "effect": {**effects[0]["effect"],
-                                                      goal[0]: goal[1]}}
-        actions.append({"name": f"act{index}", "intrinsicvalue": rng.choice(
-                            ["good", "bad", "neutral"]),
-                        "preconditions": partial(0, 1) if index else {},
-                        "effects": effects})
+            effects[0] = {"condition": {}, "effect": {**effects[0]["effect"], goal[0]: goal[1]}}
+        actions.append(
+            {
+                "name": f"act{index}",
+                "intrinsicvalue": rng.choice(["good", "bad", "neutral"]),
+                "preconditions": partial(0, 1) if index else {},
+                "effects": effects,
+            }
+        )
     plan = [rng.choice(actions)["name"] for _ in range(rng.randint(1, 3))]
     others = variables[1:]
 
@@ -120,23 +124,42 @@ def situation(rng: random.Random) -> dict:
         chosen = rng.sample(others, rng.randint(low, min(high, len(others))))
         return {v: rng.random() < 0.5 for v in chosen}
 
-    events = [{"name": f"ev{index}", "preconditions": partial(0, 1),
-               "effects": [{"condition": partial(0, 2), "effect": other(1, 2)}
-                           for _ in range(rng.randint(1, 2))],
-               "timepoints": sorted(rng.sample(range(len(plan) + 2), rng.randint(1, 2)))}
-              for index in range(rng.randint(0, 2))]
+    events = [
+        {
+            "name": f"ev{index}",
+            "preconditions": partial(0, 1),
+            "effects": [
+                {"condition": partial(0, 2), "effect": other(1, 2)}
+                for _ in range(rng.randint(1, 2))
+            ],
+            "timepoints": sorted(rng.sample(range(len(plan) + 2), rng.randint(1, 2))),
+        }
+        for index in range(rng.randint(0, 2))
+    ]
     facts = {(v, b) for v in variables for b in (True, False)}
-    utilities = [{"fact": {v: b}, "utility": rng.choice([-3, -2, -1, 1, 2, 3])}
-                 for v, b in rng.sample(sorted(facts), rng.randint(2, min(5, len(facts))))]
-    affects = {f"p{index}": {"pos": [dict([rng.choice(sorted(facts))])],
-                             "neg": [dict([rng.choice(sorted(facts))])]}
-               for index in range(rng.randint(1, 2))}
-    return {"actions": actions, "events": events, "utilities": utilities, "affects": affects,
-            "plan": plan, "goal": dict([goal]),
-            "initialState": {v: rng.random() < 0.5 for v in variables}}
+    utilities = [
+        {"fact": {v: b}, "utility": rng.choice([-3, -2, -1, 1, 2, 3])}
+        for v, b in rng.sample(sorted(facts), rng.randint(2, min(5, len(facts))))
+    ]
+    affects = {
+        f"p{index}": {
+            "pos": [dict([rng.choice(sorted(facts))])],
+            "neg": [dict([rng.choice(sorted(facts))])],
+        }
+        for index in range(rng.randint(1, 2))
+    }
+    return {
+        "actions": actions,
+        "events": events,
+        "utilities": utilities,
+        "affects": affects,
+        "plan": plan,
+        "goal": dict([goal]),
+        "initialState": {v: rng.random() < 0.5 for v in variables},
+    }
 
 
-CPU: list[float] = []     # the processor seconds of each timed command, with its descendants
+CPU: list[float] = []  # the processor seconds of each timed command, with its descendants
 
 
 def adopt_orphans() -> None:
@@ -145,7 +168,7 @@ def adopt_orphans() -> None:
     try:
         import ctypes
 
-        ctypes.CDLL(None).prctl(36, 1, 0, 0, 0)      # PR_SET_CHILD_SUBREAPER
+        ctypes.CDLL(None).prctl(36, 1, 0, 0, 0)  # PR_SET_CHILD_SUBREAPER
     except (OSError, AttributeError):
         pass
 
@@ -190,8 +213,21 @@ def uptime() -> str:
 
 def batch(folder: Path, output: Path, *extra: str, principles: str = "hera") -> float:
     output.unlink(missing_ok=True)
-    seconds, run = timed(ETHASP + ["batch", str(folder), "--principle", principles, "-o",
-                                   str(output), "--quiet", "--time-limit", "0", *extra])
+    seconds, run = timed(
+        [
+            *ETHASP,
+            "batch",
+            str(folder),
+            "--principle",
+            principles,
+            "-o",
+            str(output),
+            "--quiet",
+            "--time-limit",
+            "0",
+            *extra,
+        ]
+    )
     if run.returncode not in (0, 1):
         sys.exit(f"ethasp batch failed: {run.stderr.strip()}")
     return seconds
@@ -215,10 +251,27 @@ def start_cluster(folder: Path) -> tuple[str, list[subprocess.Popen]]:
     """A scheduler and two single-threaded workers on 127.0.0.1, no dashboards."""
     environment = dict(os.environ, DASK_TEMPORARY_DIRECTORY=str(folder))
     address_file = folder / "scheduler.json"
-    processes = [subprocess.Popen(
-        [sys.executable, "-m", "dask", "scheduler", "--host", "127.0.0.1", "--port", "0",
-         "--no-dashboard", "--scheduler-file", str(address_file)], cwd=folder,
-        env=environment, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)]
+    processes = [
+        subprocess.Popen(
+            [
+                sys.executable,
+                "-m",
+                "dask",
+                "scheduler",
+                "--host",
+                "127.0.0.1",
+                "--port",
+                "0",
+                "--no-dashboard",
+                "--scheduler-file",
+                str(address_file),
+            ],
+            cwd=folder,
+            env=environment,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+        )
+    ]
     deadline = time.monotonic() + 120
     while not (address_file.is_file() and address_file.stat().st_size):
         if time.monotonic() > deadline:
@@ -229,10 +282,30 @@ def start_cluster(folder: Path) -> tuple[str, list[subprocess.Popen]]:
     for name in ("one", "two"):
         home = folder / name
         home.mkdir()
-        processes.append(subprocess.Popen(
-            [sys.executable, "-m", "dask", "worker", address, "--name", name, "--nthreads", "1",
-             "--no-dashboard", "--host", "127.0.0.1", "--local-directory", str(home)],
-            cwd=home, env=environment, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
+        processes.append(
+            subprocess.Popen(
+                [
+                    sys.executable,
+                    "-m",
+                    "dask",
+                    "worker",
+                    address,
+                    "--name",
+                    name,
+                    "--nthreads",
+                    "1",
+                    "--no-dashboard",
+                    "--host",
+                    "127.0.0.1",
+                    "--local-directory",
+                    str(home),
+                ],
+                cwd=home,
+                env=environment,
+                stdout=subprocess.DEVNULL,
+                stderr=subprocess.DEVNULL,
+            )
+        )
     from distributed import Client
 
     with Client(address, timeout=60, set_as_default=False) as client:
@@ -253,17 +326,28 @@ def stop(processes: list[subprocess.Popen]) -> None:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cases", type=int, default=1000, help="situations (default 1000)")
-    parser.add_argument("--sample", type=int, default=40,
-                        help="situations judged by single ethasp judge processes (default 40)")
+    parser.add_argument(
+        "--sample",
+        type=int,
+        default=40,
+        help="situations judged by single ethasp judge processes (default 40)",
+    )
     parser.add_argument("--seed", type=int, default=2021, help="random seed (default 2021)")
-    parser.add_argument("--hera-cap", type=float, default=600.0,
-                        help="seconds for HERA's loop before it is extrapolated (default 600)")
+    parser.add_argument(
+        "--hera-cap",
+        type=float,
+        default=600.0,
+        help="seconds for HERA's loop before it is extrapolated (default 600)",
+    )
     parser.add_argument("--no-cluster", action="store_true", help="leave out Dask")
     args = parser.parse_args()
     adopt_orphans()
     print(f"load before: {uptime()}")
-    print(f"cores: {len(os.sched_getaffinity(0))}; {args.cases} situations, seed {args.seed}, "
-          "HERA's ten principles, no reasons, no time limit", flush=True)
+    print(
+        f"cores: {len(os.sched_getaffinity(0))}; {args.cases} situations, seed {args.seed}, "
+        "HERA's ten principles, no reasons, no time limit",
+        flush=True,
+    )
     rng = random.Random(args.seed)
     rows: list[tuple[str, float, str, float | None]] = []
     with tempfile.TemporaryDirectory() as temporary:
@@ -298,50 +382,87 @@ def main() -> None:
         single_case = batch(alone, root / "alone.jsonl", "--workers", "1")
         first = json.loads((root / "alone.jsonl").read_text().splitlines()[0])["seconds"]
         fixed = single_case - first
-        print(f"  pool of 1 beyond its cases' own time: {beyond:.2f} s for {args.cases} cases, "
-              f"{fixed:.2f} s for 1 case", flush=True)
+        print(
+            f"  pool of 1 beyond its cases' own time: {beyond:.2f} s for {args.cases} cases, "
+            f"{fixed:.2f} s for 1 case",
+            flush=True,
+        )
         share_after = parallel_share()
         print(f"  two busy loops side by side vs one: {share_after:.2f}x", flush=True)
-        direct, run = timed([sys.executable, "-c", DIRECT_LOOP, str(folder),
-                             "hera-deontology,goal-deontology,avoid-any-harm,"
-                             "avoid-avoidable-harm,hera-do-no-harm,do-no-instrumental-harm,"
-                             "kantian-humanity,kantian-humanity-2,double-effect,"
-                             "hera-utilitarianism"])
+        direct, run = timed(
+            [
+                sys.executable,
+                "-c",
+                DIRECT_LOOP,
+                str(folder),
+                "hera-deontology,goal-deontology,avoid-any-harm,"
+                "avoid-avoidable-harm,hera-do-no-harm,do-no-instrumental-harm,"
+                "kantian-humanity,kantian-humanity-2,double-effect,"
+                "hera-utilitarianism",
+            ]
+        )
         if run.returncode:
             sys.exit(f"direct loop failed: {run.stderr.strip()[-500:]}")
         rows.append(("direct API loop in one process (solving alone)", direct, "", CPU[-1]))
         print(f"  direct loop: {direct:.1f} s", flush=True)
-        trivial_one = batch(trivial, root / "trivial.jsonl", "--workers", "1",
-                            principles="deontology")
+        trivial_one = batch(
+            trivial, root / "trivial.jsonl", "--workers", "1", principles="deontology"
+        )
         rows.append((f"{args.cases} trivial cases: batch, 1 worker", trivial_one, "", CPU[-1]))
-        trivial_direct, run = timed([sys.executable, "-c", DIRECT_LOOP, str(trivial),
-                                     "deontology"])
-        rows.append((f"{args.cases} trivial cases: direct API loop", trivial_direct, "",
-                     CPU[-1]))
+        trivial_direct, run = timed([sys.executable, "-c", DIRECT_LOOP, str(trivial), "deontology"])
+        rows.append((f"{args.cases} trivial cases: direct API loop", trivial_direct, "", CPU[-1]))
 
-        sample = sorted(folder.glob("*.json"))[:args.sample]
+        sample = sorted(folder.glob("*.json"))[: args.sample]
         start, spent = time.perf_counter(), 0.0
         for path in sample:
-            seconds, run = timed(ETHASP + ["judge", str(path), "--principle", "hera",
-                                           "--reasons-limit", "0", "--json"])
+            seconds, run = timed(
+                [
+                    *ETHASP,
+                    "judge",
+                    str(path),
+                    "--principle",
+                    "hera",
+                    "--reasons-limit",
+                    "0",
+                    "--json",
+                ]
+            )
             spent += CPU[-1]
             if run.returncode:
                 sys.exit(f"ethasp judge failed on {path.name}: {run.stderr.strip()}")
         scale = args.cases / len(sample)
         single = (time.perf_counter() - start) * scale
-        rows.append((f"loop of single 'ethasp judge' processes", single,
-                     f"extrapolated from {len(sample)}", spent * scale))
+        rows.append(
+            (
+                "loop of single 'ethasp judge' processes",
+                single,
+                f"extrapolated from {len(sample)}",
+                spent * scale,
+            )
+        )
         print(f"  single processes: {single:.1f} s (extrapolated)", flush=True)
 
         hera, run = timed([sys.executable, "-c", HERA_LOOP, str(folder), str(args.hera_cap)])
         if run.returncode:
-            rows.append(("HERA's Python loop (ethics.plans)", float("nan"),
-                         (run.stderr.strip().splitlines() or ["failed"])[-1][:60], None))
+            rows.append(
+                (
+                    "HERA's Python loop (ethics.plans)",
+                    float("nan"),
+                    (run.stderr.strip().splitlines() or ["failed"])[-1][:60],
+                    None,
+                )
+            )
         else:
             done = int(run.stdout.split()[-1])
             note = "" if done == args.cases else f"extrapolated from {done}"
-            rows.append(("HERA's Python loop (ethics.plans)", hera * args.cases / done, note,
-                         CPU[-1] * args.cases / done))
+            rows.append(
+                (
+                    "HERA's Python loop (ethics.plans)",
+                    hera * args.cases / done,
+                    note,
+                    CPU[-1] * args.cases / done,
+                )
+            )
         hera = rows[-1][1]
         print(f"  HERA: {rows[-1][1]:.1f} s {rows[-1][2]}", flush=True)
 
@@ -356,34 +477,50 @@ def main() -> None:
             finally:
                 stop(processes)
             reap()
-            rows.append(("ethasp batch, local Dask cluster, 2 workers", dask,
-                         "CPU: the cluster's whole life", cpu() - before))
+            rows.append(
+                (
+                    "ethasp batch, local Dask cluster, 2 workers",
+                    dask,
+                    "CPU: the cluster's whole life",
+                    cpu() - before,
+                )
+            )
             print(f"  Dask: {dask:.1f} s", flush=True)
-            same = (sorted(json.loads(line)["hash"] for line in
-                           (root / "dask.jsonl").read_text().splitlines()) ==
-                    sorted(json.loads(line)["hash"] for line in
-                           (root / "two.jsonl").read_text().splitlines()))
+            same = sorted(
+                json.loads(line)["hash"] for line in (root / "dask.jsonl").read_text().splitlines()
+            ) == sorted(
+                json.loads(line)["hash"] for line in (root / "two.jsonl").read_text().splitlines()
+            )
             print(f"  Dask lines = local lines (by hash): {same}")
     print(f"load after: {uptime()}")
     print()
-    print(f"{'configuration':50} {'seconds':>8} {'ms/case':>8} {'vs pool 2':>9} "
-          f"{'CPU s':>7}")
+    print(f"{'configuration':50} {'seconds':>8} {'ms/case':>8} {'vs pool 2':>9} {'CPU s':>7}")
     for name, seconds, note, used in rows:
         shown = f"{used:7.1f}" if used is not None else "      -"
-        print(f"{name:50} {seconds:8.1f} {1000 * seconds / args.cases:8.1f} "
-              f"{seconds / two:8.2f}x {shown} {note}")
+        print(
+            f"{name:50} {seconds:8.1f} {1000 * seconds / args.cases:8.1f} "
+            f"{seconds / two:8.2f}x {shown} {note}"
+        )
     print("(CPU s: processor seconds of the command and every process it started)")
     print()
-    print(f"speed-up of 2 workers over 1: {one / two:.2f}x (target >= 1.8x); the machine "
-          f"offered {share_before:.2f}x before and {share_after:.2f}x after (two busy loops "
-          "side by side vs one)")
-    print(f"overhead per case beyond solving (pool of 1 - direct loop) / N: wall "
-          f"{1000 * (one - direct) / args.cases:.1f} ms, CPU "
-          f"{1000 * (rows[1][3] - rows[2][3]) / args.cases:.1f} ms (target < 10 ms)")
-    print(f"  counted in the run (time beyond the cases' own, minus that of a 1-case batch) / N:"
-          f" {1000 * (beyond - fixed) / max(1, args.cases - 1):.1f} ms")
-    print(f"  on trivial cases: wall {1000 * (trivial_one - trivial_direct) / args.cases:.1f} ms"
-          f", CPU {1000 * (rows[3][3] - rows[4][3]) / args.cases:.1f} ms")
+    print(
+        f"speed-up of 2 workers over 1: {one / two:.2f}x (target >= 1.8x); the machine "
+        f"offered {share_before:.2f}x before and {share_after:.2f}x after (two busy loops "
+        "side by side vs one)"
+    )
+    print(
+        f"overhead per case beyond solving (pool of 1 - direct loop) / N: wall "
+        f"{1000 * (one - direct) / args.cases:.1f} ms, CPU "
+        f"{1000 * (rows[1][3] - rows[2][3]) / args.cases:.1f} ms (target < 10 ms)"
+    )
+    print(
+        f"  counted in the run (time beyond the cases' own, minus that of a 1-case batch) / N:"
+        f" {1000 * (beyond - fixed) / max(1, args.cases - 1):.1f} ms"
+    )
+    print(
+        f"  on trivial cases: wall {1000 * (trivial_one - trivial_direct) / args.cases:.1f} ms"
+        f", CPU {1000 * (rows[3][3] - rows[4][3]) / args.cases:.1f} ms"
+    )
     if dask is not None:
         print(f"Dask cluster of 2 vs local pool of 2: {dask / two:.2f}x (target <= 1.2x)")
     print(f"single processes vs pool of 2: {single / two:.1f}x slower (extrapolated)")

@@ -34,11 +34,12 @@ from __future__ import annotations
 
 import argparse
 import compileall
+import contextlib
 import json
 import math
 import os
-import resource
 import re
+import resource
 import signal
 import subprocess
 import sys
@@ -70,11 +71,12 @@ class Run:
     length: int | None
     seconds: float
     status: str
-    cpu: float = 0.0       # processor seconds (user and system, the process's children too)
+    cpu: float = 0.0  # processor seconds (user and system, the process's children too)
 
 
 def instances(folder: Path, only: str | None) -> list[Instance]:
     """Every problem of every domain folder (sorted, p2 before p10)."""
+
     def natural(path: Path):
         return [int(part) if part.isdigit() else part for part in re.split(r"(\d+)", path.name)]
 
@@ -94,29 +96,48 @@ def _children_cpu() -> float:
     return usage.ru_utime + usage.ru_stime
 
 
-def timed(command: list[str], cap: float, cwd: Path) -> tuple[subprocess.CompletedProcess | None,
-                                                              float, float]:
+def timed(
+    command: list[str], cap: float, cwd: Path
+) -> tuple[subprocess.CompletedProcess | None, float, float]:
     """Run a command (in a session of its own), at most ``cap`` seconds; its
     result (None on timeout, its processes then killed), the seconds taken and
     the processor seconds of the process and of the children it waited for."""
     cpu = _children_cpu()
     start = time.perf_counter()
-    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                               text=True, cwd=cwd, start_new_session=True)
+    process = subprocess.Popen(
+        command,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        cwd=cwd,
+        start_new_session=True,
+    )
     try:
         stdout, stderr = process.communicate(timeout=cap)
     except subprocess.TimeoutExpired:
-        os.killpg(process.pid, signal.SIGKILL)    # the planner's children too
+        os.killpg(process.pid, signal.SIGKILL)  # the planner's children too
         process.communicate()
         return None, time.perf_counter() - start, _children_cpu() - cpu
     seconds = time.perf_counter() - start
-    return (subprocess.CompletedProcess(command, process.returncode, stdout, stderr), seconds,
-            _children_cpu() - cpu)
+    return (
+        subprocess.CompletedProcess(command, process.returncode, stdout, stderr),
+        seconds,
+        _children_cpu() - cpu,
+    )
 
 
 def run_ethasp(instance: Instance, satisficing: bool, cap: float) -> Run:
-    command = [sys.executable, "-m", "ethasp.interfaces.cli", "plan", str(instance.domain),
-               str(instance.problem), "--json", "--time-limit", "0"]
+    command = [
+        sys.executable,
+        "-m",
+        "ethasp.interfaces.cli",
+        "plan",
+        str(instance.domain),
+        str(instance.problem),
+        "--json",
+        "--time-limit",
+        "0",
+    ]
     if satisficing:
         command.append("--satisficing")
     done, seconds, cpu = timed(command, cap, ROOT)
@@ -145,15 +166,26 @@ def _fast_downward_outcome(code: int) -> str:
 def run_fast_downward(driver: Path, instance: Instance, search: str, cap: float) -> Run:
     with tempfile.TemporaryDirectory() as work:
         plan_file = Path(work) / "plan"
-        command = [sys.executable, str(driver), "--plan-file", str(plan_file),
-                   str(instance.domain), str(instance.problem), "--search", search]
+        command = [
+            sys.executable,
+            str(driver),
+            "--plan-file",
+            str(plan_file),
+            str(instance.domain),
+            str(instance.problem),
+            "--search",
+            search,
+        ]
         done, seconds, cpu = timed(command, cap, Path(work))
         if done is None:
             return Run(None, seconds, "timeout", cpu)
         if not plan_file.is_file():
             return Run(None, seconds, _fast_downward_outcome(done.returncode), cpu)
-        steps = [line for line in plan_file.read_text().splitlines()
-                 if line.strip() and not line.startswith(";")]
+        steps = [
+            line
+            for line in plan_file.read_text().splitlines()
+            if line.strip() and not line.startswith(";")
+        ]
         return Run(len(steps), seconds, "found", cpu)
 
 
@@ -196,18 +228,27 @@ def meets(mode: str, ours: Run | None, theirs: Run | None) -> bool | None:
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("folder", type=Path,
-                        help="a folder of domain folders, each with domain.pddl and problems")
-    parser.add_argument("--time-limit", type=float, default=60.0,
-                        help="seconds per process (default 60)")
-    parser.add_argument("--repeat", type=int, default=1,
-                        help="runs per process, the fastest kept (default 1)")
+    parser.add_argument(
+        "folder", type=Path, help="a folder of domain folders, each with domain.pddl and problems"
+    )
+    parser.add_argument(
+        "--time-limit", type=float, default=60.0, help="seconds per process (default 60)"
+    )
+    parser.add_argument(
+        "--repeat", type=int, default=1, help="runs per process, the fastest kept (default 1)"
+    )
     parser.add_argument("--only", help="instances whose DOMAIN/PROBLEM contains this text")
-    parser.add_argument("--modes", default=",".join(MODES),
-                        help=f"comma-separated, of {','.join(MODES)} (default all)")
-    parser.add_argument("--cpu", action="store_true",
-                        help="print and compare processor seconds (user and system, children "
-                             "included) instead of seconds on the clock")
+    parser.add_argument(
+        "--modes",
+        default=",".join(MODES),
+        help=f"comma-separated, of {','.join(MODES)} (default all)",
+    )
+    parser.add_argument(
+        "--cpu",
+        action="store_true",
+        help="print and compare processor seconds (user and system, children "
+        "included) instead of seconds on the clock",
+    )
     parser.add_argument("--json", type=Path, help="also write every run to this JSON file")
     args = parser.parse_args()
     global CPU
@@ -231,14 +272,20 @@ def main() -> int:
     compileall.compile_dir(ROOT / "ethasp", quiet=1)
     try:
         load = os.getloadavg()[0]
-        print(f"load average at start: {load:.2f}; "
-              f"{'processor seconds' if CPU else 'seconds'} ({time.strftime('%Y-%m-%d %H:%M')})")
+        print(
+            f"load average at start: {load:.2f}; "
+            f"{'processor seconds' if CPU else 'seconds'} ({time.strftime('%Y-%m-%d %H:%M')})"
+        )
     except OSError:
         pass
-    print(f"{'instance':24} {'ethasp':>11} {'FD astar':>11} {'ratio':>5}   "
-          f"{'ethasp sat':>11} {'FD greedy':>11} {'ratio':>5}")
-    print(f"{'':24} {'len':>4} {'s':>6} {'len':>4} {'s':>6} {'':>5}   "
-          f"{'len':>4} {'s':>6} {'len':>4} {'s':>6}")
+    print(
+        f"{'instance':24} {'ethasp':>11} {'FD astar':>11} {'ratio':>5}   "
+        f"{'ethasp sat':>11} {'FD greedy':>11} {'ratio':>5}"
+    )
+    print(
+        f"{'':24} {'len':>4} {'s':>6} {'len':>4} {'s':>6} {'':>5}   "
+        f"{'len':>4} {'s':>6} {'len':>4} {'s':>6}"
+    )
     results = {mode: [] for mode in ("opt", "sat")}
     for instance in chosen:
         runs: dict[str, Run | None] = {}
@@ -249,8 +296,9 @@ def main() -> int:
             attempts = []
             for _ in range(max(1, args.repeat)):
                 if mode.startswith("fd-"):
-                    attempts.append(run_fast_downward(driver, instance, FD_SEARCH[mode],
-                                                      args.time_limit))
+                    attempts.append(
+                        run_fast_downward(driver, instance, FD_SEARCH[mode], args.time_limit)
+                    )
                 else:
                     attempts.append(run_ethasp(instance, mode == "sat", args.time_limit))
             runs[mode] = best_of(attempts)
@@ -259,35 +307,53 @@ def main() -> int:
             found = ratio(runs[mode], runs[theirs])
             status = runs[mode].status if runs[mode] is not None else ""
             mark = {True: "", False: "*", None: ""}[meets(mode, runs[mode], runs[theirs])]
-            line += (f" {cell(runs[mode])} {cell(runs[theirs])} "
-                     f"{(f'{found:.1f}' if found is not None else '-'):>5}{mark:1}"
-                     f"{'' if status in ('found', '') else ' ' + status:>2} ")
+            line += (
+                f" {cell(runs[mode])} {cell(runs[theirs])} "
+                f"{(f'{found:.1f}' if found is not None else '-'):>5}{mark:1}"
+                f"{'' if status in ('found', '') else ' ' + status:>2} "
+            )
             results[mode].append((instance, runs[mode], runs[theirs]))
         print(line.rstrip(), flush=True)
-    print("* a target missed (Fast Downward within 10 s; ethasp not within "
-          "2x for optimal plans of the same length, 3x for satisficing)")
+    print(
+        "* a target missed (Fast Downward within 10 s; ethasp not within "
+        "2x for optimal plans of the same length, 3x for satisficing)"
+    )
     for mode in ("opt", "sat"):
         verdicts = [meets(mode, ours, theirs) for _, ours, theirs in results[mode]]
         applicable = [verdict for verdict in verdicts if verdict is not None]
-        ratios = sorted(r for r in (ratio(ours, theirs) for _, ours, theirs in results[mode])
-                        if r is not None)
+        ratios = sorted(
+            r for r in (ratio(ours, theirs) for _, ours, theirs in results[mode]) if r is not None
+        )
         if not applicable:
             continue
         median = f", median ratio {ratios[len(ratios) // 2]:.1f}" if ratios else ""
-        geometric = (f", geometric mean {math.exp(sum(map(math.log, ratios)) / len(ratios)):.2f}"
-                     if ratios else "")
-        print(f"{'optimal' if mode == 'opt' else 'satisficing'}: target met on "
-              f"{sum(applicable)} of {len(applicable)} instances{median}{geometric}")
-    try:
+        geometric = (
+            f", geometric mean {math.exp(sum(map(math.log, ratios)) / len(ratios)):.2f}"
+            if ratios
+            else ""
+        )
+        print(
+            f"{'optimal' if mode == 'opt' else 'satisficing'}: target met on "
+            f"{sum(applicable)} of {len(applicable)} instances{median}{geometric}"
+        )
+    with contextlib.suppress(OSError):
         print(f"load average at end: {os.getloadavg()[0]:.2f}")
-    except OSError:
-        pass
     if args.json:
-        args.json.write_text(json.dumps([
-            {"instance": f"{instance.domain_name}/{instance.name}", "mode": mode,
-             "ethasp": asdict(ours) if ours is not None else None,
-             "fast_downward": asdict(theirs) if theirs is not None else None}
-            for mode in ("opt", "sat") for instance, ours, theirs in results[mode]], indent=1))
+        args.json.write_text(
+            json.dumps(
+                [
+                    {
+                        "instance": f"{instance.domain_name}/{instance.name}",
+                        "mode": mode,
+                        "ethasp": asdict(ours) if ours is not None else None,
+                        "fast_downward": asdict(theirs) if theirs is not None else None,
+                    }
+                    for mode in ("opt", "sat")
+                    for instance, ours, theirs in results[mode]
+                ],
+                indent=1,
+            )
+        )
     return 0
 
 

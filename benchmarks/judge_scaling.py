@@ -9,8 +9,8 @@ on a variable last touched N steps earlier, then finishes.
 Run:  python benchmarks/judge_scaling.py [--variables 1000] [--steps 1000 2000 5000 10000]
 Prints, per plan length, the wall-clock and CPU time of the whole `ethasp
 judge ... --principle deontology --principle do-no-harm` process (best of
---repeat runs; CPU time is steadier on a busy machine) and the growth ratios; the target is under 1 s for 10,000 steps on 1,000
-variables.
+--repeat runs; CPU time is steadier on a busy machine) and the growth
+ratios; the target is under 1 s for 10,000 steps on 1,000 variables.
 """
 
 from __future__ import annotations
@@ -28,14 +28,15 @@ ROOT = Path(__file__).resolve().parent.parent
 
 def model_text(variables: int) -> str:
     """The switches model as facts."""
-    lines = ["variable(done).", "action(finish).", "eff(finish,done,true).",
-             "goal(done,true)."]
+    lines = ["variable(done).", "action(finish).", "eff(finish,done,true).", "goal(done,true)."]
     for i in range(variables):
-        lines += [f"variable(on({i})).",
-                  f"action(switch_on({i})). pre(switch_on({i}),on({i}),false). "
-                  f"eff(switch_on({i}),on({i}),true).",
-                  f"action(switch_off({i})). pre(switch_off({i}),on({i}),true). "
-                  f"eff(switch_off({i}),on({i}),false)."]
+        lines += [
+            f"variable(on({i})).",
+            f"action(switch_on({i})). pre(switch_on({i}),on({i}),false). "
+            f"eff(switch_on({i}),on({i}),true).",
+            f"action(switch_off({i})). pre(switch_off({i}),on({i}),true). "
+            f"eff(switch_off({i}),on({i}),false).",
+        ]
         if i % 7 == 0:
             lines.append(f"utility(switch_off({i}),-1).")
         if i % 5 == 0:
@@ -59,10 +60,26 @@ def run_once(model: Path, plan: Path, extra: list[str]) -> tuple[float, float]:
     """Wall-clock and CPU seconds of one `ethasp judge` process."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
-    run = subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", "judge", str(model),
-                          "--plan-file", str(plan), "--principle", "deontology",
-                          "--principle", "do-no-harm", "--json", *extra],
-                         capture_output=True, text=True, cwd=ROOT)
+    run = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "ethasp.interfaces.cli",
+            "judge",
+            str(model),
+            "--plan-file",
+            str(plan),
+            "--principle",
+            "deontology",
+            "--principle",
+            "do-no-harm",
+            "--json",
+            *extra,
+        ],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
     elapsed = time.perf_counter() - start
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if run.returncode != 0:
@@ -76,23 +93,31 @@ def main() -> None:
     parser.add_argument("--variables", type=int, default=1000)
     parser.add_argument("--steps", type=int, nargs="+", default=[1000, 2000, 5000, 10000])
     parser.add_argument("--repeat", type=int, default=3)
-    parser.add_argument("--with-reasons", action="store_true",
-                        help="also compute reasons (by default --reasons-limit 0: verdicts only)")
+    parser.add_argument(
+        "--with-reasons",
+        action="store_true",
+        help="also compute reasons (by default --reasons-limit 0: verdicts only)",
+    )
     args = parser.parse_args()
     extra = [] if args.with_reasons else ["--reasons-limit", "0"]
     with tempfile.TemporaryDirectory() as folder:
         model = Path(folder) / "switches.lp"
         model.write_text(model_text(args.variables))
         baseline = Path(folder) / "empty.lp"
-        baseline.write_text("variable(done). action(finish). eff(finish,done,true). "
-                            "goal(done,true).\n")
+        baseline.write_text(
+            "variable(done). action(finish). eff(finish,done,true). goal(done,true).\n"
+        )
         plan1 = Path(folder) / "plan1.txt"
         plan1.write_text("finish")
         startup = min(run_once(baseline, plan1, extra) for _ in range(args.repeat))
-        print(f"start-up (one-variable model, one-step plan): {startup[0]:.3f} s "
-              f"wall, {startup[1]:.3f} s CPU")
-        print(f"model: {args.variables} variables; principles: deontology, do-no-harm; "
-              f"reasons: {'yes' if args.with_reasons else 'no'}")
+        print(
+            f"start-up (one-variable model, one-step plan): {startup[0]:.3f} s "
+            f"wall, {startup[1]:.3f} s CPU"
+        )
+        print(
+            f"model: {args.variables} variables; principles: deontology, do-no-harm; "
+            f"reasons: {'yes' if args.with_reasons else 'no'}"
+        )
         print(f"{'steps':>8} {'wall s':>8} {'CPU s':>8} {'CPU ratio':>10} {'steps ratio':>12}")
         previous = None
         for steps in args.steps:

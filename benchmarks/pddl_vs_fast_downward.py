@@ -18,6 +18,7 @@ Usage: python benchmarks/pddl_vs_fast_downward.py [--time-limit SECONDS] [--quic
 from __future__ import annotations
 
 import argparse
+import itertools
 import json
 import os
 import random
@@ -50,14 +51,17 @@ class Run:
 
 # -- generated problems -------------------------------------------------------------
 
+
 def gripper_problem(balls: int) -> str:
     names = " ".join(f"ball-{i}" for i in range(1, balls + 1))
     init = " ".join(f"(ball-at ball-{i} a)" for i in range(1, balls + 1))
     goal = " ".join(f"(ball-at ball-{i} b)" for i in range(1, balls + 1))
-    return (f"(define (problem gripper-{balls}) (:domain gripper)\n"
-            f"  (:objects a b - room left right - gripper {names} - ball)\n"
-            f"  (:init (robot-at a) (free left) (free right) (occupied b) {init})\n"
-            f"  (:goal (and {goal})))\n")
+    return (
+        f"(define (problem gripper-{balls}) (:domain gripper)\n"
+        f"  (:objects a b - room left right - gripper {names} - ball)\n"
+        f"  (:init (robot-at a) (free left) (free right) (occupied b) {init})\n"
+        f"  (:goal (and {goal})))\n"
+    )
 
 
 def _towers(blocks: list[str], rng: random.Random) -> list[list[str]]:
@@ -78,19 +82,26 @@ def blocksworld_problem(size: int, seed: int) -> str:
     init = []
     for tower in _towers(blocks, rng):
         init.append(f"(on-table {tower[0]})")
-        init += [f"(on {upper} {lower})" for lower, upper in zip(tower, tower[1:])]
+        init += [f"(on {upper} {lower})" for lower, upper in itertools.pairwise(tower)]
         init.append(f"(clear {tower[-1]})")
-    goal = [f"(on {upper} {lower})" for tower in _towers(blocks, rng)
-            for lower, upper in zip(tower, tower[1:])]
-    return (f"(define (problem blocks-{size}-{seed}) (:domain blocksworld)\n"
-            f"  (:objects {' '.join(blocks)} - block)\n"
-            f"  (:init {' '.join(init)} (fragile b1))\n"
-            f"  (:goal (and {' '.join(goal)})))\n")
+    goal = [
+        f"(on {upper} {lower})"
+        for tower in _towers(blocks, rng)
+        for lower, upper in itertools.pairwise(tower)
+    ]
+    return (
+        f"(define (problem blocks-{size}-{seed}) (:domain blocksworld)\n"
+        f"  (:objects {' '.join(blocks)} - block)\n"
+        f"  (:init {' '.join(init)} (fragile b1))\n"
+        f"  (:goal (and {' '.join(goal)})))\n"
+    )
 
 
 def instances(folder: Path, quick: bool) -> list[Instance]:
-    result = [Instance(name, PDDL / f"{name}-domain.pddl", PDDL / f"{name}-problem.pddl")
-              for name in ("trolley", "care", "blocksworld", "gripper")]
+    result = [
+        Instance(name, PDDL / f"{name}-domain.pddl", PDDL / f"{name}-problem.pddl")
+        for name in ("trolley", "care", "blocksworld", "gripper")
+    ]
     generated = {f"gripper-{n}": gripper_problem(n) for n in ((2, 3) if quick else (2, 3, 5, 6))}
     blocks = [(6, 1), (7, 2)] if quick else [(6, 1), (7, 2), (8, 6), (10, 5), (9, 4)]
     generated |= {f"blocks-{n}-{seed}": blocksworld_problem(n, seed) for n, seed in blocks}
@@ -104,10 +115,20 @@ def instances(folder: Path, quick: bool) -> list[Instance]:
 
 # -- the planners -------------------------------------------------------------------
 
+
 def run_ethasp(instance: Instance, time_limit: float) -> Run:
     env = {**os.environ, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
-    command = [sys.executable, "-m", "ethasp.interfaces.cli", "plan", str(instance.domain),
-               str(instance.problem), "--json", "--time-limit", str(time_limit)]
+    command = [
+        sys.executable,
+        "-m",
+        "ethasp.interfaces.cli",
+        "plan",
+        str(instance.domain),
+        str(instance.problem),
+        "--json",
+        "--time-limit",
+        str(time_limit),
+    ]
     start = time.perf_counter()
     done = subprocess.run(command, capture_output=True, text=True, env=env, cwd=ROOT)
     seconds = time.perf_counter() - start
@@ -122,8 +143,16 @@ def run_ethasp(instance: Instance, time_limit: float) -> Run:
 def run_fast_downward(driver: Path, instance: Instance, time_limit: float) -> Run:
     with tempfile.TemporaryDirectory() as work:
         plan_file = Path(work) / "plan"
-        command = [sys.executable, str(driver), "--plan-file", str(plan_file),
-                   str(instance.domain), str(instance.problem), "--search", "astar(lmcut())"]
+        command = [
+            sys.executable,
+            str(driver),
+            "--plan-file",
+            str(plan_file),
+            str(instance.domain),
+            str(instance.problem),
+            "--search",
+            "astar(lmcut())",
+        ]
         start = time.perf_counter()
         try:
             subprocess.run(command, capture_output=True, text=True, cwd=work, timeout=time_limit)
@@ -132,12 +161,16 @@ def run_fast_downward(driver: Path, instance: Instance, time_limit: float) -> Ru
         seconds = time.perf_counter() - start
         if not plan_file.is_file():
             return Run(None, seconds, "no plan")
-        steps = [line for line in plan_file.read_text().splitlines()
-                 if line.strip() and not line.startswith(";")]
+        steps = [
+            line
+            for line in plan_file.read_text().splitlines()
+            if line.strip() and not line.startswith(";")
+        ]
         return Run(len(steps), seconds)
 
 
 # -- the table ----------------------------------------------------------------------
+
 
 def show(run: Run | None) -> tuple[str, str]:
     if run is None:
@@ -147,15 +180,22 @@ def show(run: Run | None) -> tuple[str, str]:
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--time-limit", type=float, default=60.0,
-                        help="seconds per planner and instance (default 60)")
+    parser.add_argument(
+        "--time-limit",
+        type=float,
+        default=60.0,
+        help="seconds per planner and instance (default 60)",
+    )
     parser.add_argument("--quick", action="store_true", help="small instances only")
     args = parser.parse_args()
     driver = fast_downward_driver()
     if driver is None:
-        print("Fast Downward baseline unavailable (pip install up-fast-downward); "
-              "ethasp figures only")
-    header = f"{'instance':16} {'ethasp len':>10} {'ethasp s':>9} {'FD len':>7} {'FD s':>7} {'ratio':>6}"
+        print(
+            "Fast Downward baseline unavailable (pip install up-fast-downward); ethasp figures only"
+        )
+    header = (
+        f"{'instance':16} {'ethasp len':>10} {'ethasp s':>9} {'FD len':>7} {'FD s':>7} {'ratio':>6}"
+    )
     print(header)
     print("-" * len(header))
     ratios = []
@@ -168,12 +208,17 @@ def main() -> int:
                 ratios.append(ours.seconds / theirs.seconds)
                 ratio = f"{ratios[-1]:.1f}"
             (our_length, our_seconds), (their_length, their_seconds) = show(ours), show(theirs)
-            print(f"{instance.name:16} {our_length:>10} {our_seconds:>9} {their_length:>7} "
-                  f"{their_seconds:>7} {ratio:>6}", flush=True)
+            print(
+                f"{instance.name:16} {our_length:>10} {our_seconds:>9} {their_length:>7} "
+                f"{their_seconds:>7} {ratio:>6}",
+                flush=True,
+            )
     if ratios:
         ratios.sort()
-        print(f"median ratio ethasp/FD: {ratios[len(ratios) // 2]:.1f} "
-              f"(instances solved by both: {len(ratios)})")
+        print(
+            f"median ratio ethasp/FD: {ratios[len(ratios) // 2]:.1f} "
+            f"(instances solved by both: {len(ratios)})"
+        )
     return 0
 
 

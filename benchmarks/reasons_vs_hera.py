@@ -51,8 +51,20 @@ def run_ethasp(n: int, principle: str, folder: Path) -> tuple[float, dict]:
     model, plan = folder / f"model{n}.lp", folder / f"plan{n}.txt"
     model.write_text(model_text(n))
     plan.write_text(plan_text(n))
-    command = [sys.executable, "-m", "ethasp.interfaces.cli", "judge", str(model), "--plan-file", str(plan),
-               "--principle", principle, "--json", "--reasons-limit", "10"]
+    command = [
+        sys.executable,
+        "-m",
+        "ethasp.interfaces.cli",
+        "judge",
+        str(model),
+        "--plan-file",
+        str(plan),
+        "--principle",
+        principle,
+        "--json",
+        "--reasons-limit",
+        "10",
+    ]
     start = time.perf_counter()
     run = subprocess.run(command, capture_output=True, text=True, cwd=ROOT)
     seconds = time.perf_counter() - start
@@ -88,16 +100,21 @@ print(time.perf_counter() - start, len(implicants))
 
 
 def baseline_available() -> bool:
-    check = subprocess.run([sys.executable, "-c", "import ethics.explanations"],
-                           capture_output=True)
+    check = subprocess.run(
+        [sys.executable, "-c", "import ethics.explanations"], capture_output=True
+    )
     return check.returncode == 0
 
 
 def run_baseline(n: int, principle: str, cap: float) -> float | str:
     """Seconds of compute_primes, or why there are none (over the cap, failed)."""
     try:
-        run = subprocess.run([sys.executable, "-c", BASELINE, str(n), principle],
-                             capture_output=True, text=True, timeout=cap)
+        run = subprocess.run(
+            [sys.executable, "-c", BASELINE, str(n), principle],
+            capture_output=True,
+            text=True,
+            timeout=cap,
+        )
     except subprocess.TimeoutExpired:
         return f"> {cap:g}"
     if run.returncode != 0:
@@ -109,26 +126,36 @@ def run_baseline(n: int, principle: str, cap: float) -> float | str:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--sizes", type=int, nargs="+", default=[10, 100, 1000])
-    parser.add_argument("--baseline-sizes", type=int, nargs="+", default=[2, 4, 6, 8, 10, 12, 100, 1000])
-    parser.add_argument("--cap", type=float, default=120.0,
-                        help="time cap of one baseline run in seconds (default 120)")
+    parser.add_argument(
+        "--baseline-sizes", type=int, nargs="+", default=[2, 4, 6, 8, 10, 12, 100, 1000]
+    )
+    parser.add_argument(
+        "--cap",
+        type=float,
+        default=120.0,
+        help="time cap of one baseline run in seconds (default 120)",
+    )
     args = parser.parse_args()
 
     available = baseline_available()
     if not available:
         print("baseline unavailable (pip install ethics==0.22.3 to compare)")
     sizes = sorted(set(args.sizes) | (set(args.baseline_sizes) if available else set()))
-    print(f"{'facts':>6} {'principle':<11} {'ethasp judge (s)':>17} {'reasons':>9} "
-          f"{'baseline (s)':>13}")
+    print(
+        f"{'facts':>6} {'principle':<11} {'ethasp judge (s)':>17} {'reasons':>9} "
+        f"{'baseline (s)':>13}"
+    )
     largest: dict[str, tuple[int, float, float]] = {}
     with tempfile.TemporaryDirectory() as folder:
         for principle in PRINCIPLES:
             over_cap = False
             for n in sizes:
                 seconds, judgement = run_ethasp(n, principle, Path(folder))
-                counts = (f"{len(judgement['sufficient_reasons'])}/"
-                          f"{len(judgement['necessary_reasons'])}"
-                          + ("+" if judgement["reasons_truncated"] else ""))
+                counts = (
+                    f"{len(judgement['sufficient_reasons'])}/"
+                    f"{len(judgement['necessary_reasons'])}"
+                    + ("+" if judgement["reasons_truncated"] else "")
+                )
                 base = "-"
                 if available and n in args.baseline_sizes:
                     if over_cap:
@@ -141,13 +168,16 @@ def main() -> None:
                         else:
                             base = f"{spent:.3f}"
                             largest[principle] = (n, spent, seconds)
-                print(f"{n:>6} {principle:<11} {seconds:>17.3f} {counts:>9} {base:>13}",
-                      flush=True)
-    print("reasons: sufficient/necessary found (at most 10 each; + = limit reached); "
-          "ethasp: whole process; baseline: compute_primes alone")
+                print(f"{n:>6} {principle:<11} {seconds:>17.3f} {counts:>9} {base:>13}", flush=True)
+    print(
+        "reasons: sufficient/necessary found (at most 10 each; + = limit reached); "
+        "ethasp: whole process; baseline: compute_primes alone"
+    )
     for principle, (n, spent, seconds) in largest.items():
-        print(f"{principle}: at {n} facts, the largest size the baseline finishes, "
-              f"baseline / ethasp judge = {spent / seconds:.1f}")
+        print(
+            f"{principle}: at {n} facts, the largest size the baseline finishes, "
+            f"baseline / ethasp judge = {spent / seconds:.1f}"
+        )
 
 
 if __name__ == "__main__":

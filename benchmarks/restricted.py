@@ -62,7 +62,7 @@ import sys
 import tempfile
 import threading
 import time
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -71,9 +71,16 @@ if not DEFAULT_FOLDER.is_dir():
     DEFAULT_FOLDER = Path("/work/shared/ipc")
 ANNOTATIONS = Path(__file__).resolve().parent / "annotations"
 
-PRINCIPLES = ("deontology", "utilitarianism", "do-no-harm", "hera-deontology",
-              "goal-deontology", "avoid-any-harm", "avoid-avoidable-harm",
-              "hera-utilitarianism")
+PRINCIPLES = (
+    "deontology",
+    "utilitarianism",
+    "do-no-harm",
+    "hera-deontology",
+    "goal-deontology",
+    "avoid-any-harm",
+    "avoid-avoidable-harm",
+    "hera-utilitarianism",
+)
 
 # Question forms: a template over the instance's choices (A the plain plan's
 # first action, B an action outside it, C its last action, T a step, F a fact
@@ -97,6 +104,7 @@ TARGET_MEMORY_MB = 1024.0
 
 
 # -- instances ------------------------------------------------------------------
+
 
 @dataclass
 class Instance:
@@ -130,8 +138,9 @@ def _problem_numbers(text: str) -> set[int]:
     return chosen
 
 
-def instances(folder: Path, annotations: Path, problems: set[int],
-              only: str | None) -> tuple[list[Instance], list[str]]:
+def instances(
+    folder: Path, annotations: Path, problems: set[int], only: str | None
+) -> tuple[list[Instance], list[str]]:
     """The chosen problems of every domain folder that has an annotation file
     (the problems in natural order: p2 before p10), and the domains skipped."""
     result, skipped = [], []
@@ -140,8 +149,10 @@ def instances(folder: Path, annotations: Path, problems: set[int],
         if not annotation.is_file():
             skipped.append(domain.parent.name)
             continue
-        files = sorted((path for path in domain.parent.glob("*.pddl")
-                        if path.name != "domain.pddl"), key=_natural)
+        files = sorted(
+            (path for path in domain.parent.glob("*.pddl") if path.name != "domain.pddl"),
+            key=_natural,
+        )
         for position, problem in enumerate(files, start=1):
             if position not in problems:
                 continue
@@ -152,6 +163,7 @@ def instances(folder: Path, annotations: Path, problems: set[int],
 
 
 # -- whole processes ---------------------------------------------------------------
+
 
 @dataclass
 class Run:
@@ -170,8 +182,9 @@ class Run:
     ratio: float | None = None
 
 
-def _run_process(command: list[str], cap: float) -> tuple[int | None, str, str, float, float,
-                                                          float]:
+def _run_process(
+    command: list[str], cap: float
+) -> tuple[int | None, str, str, float, float, float]:
     """Run a command in a session of its own, killed (with its children) after
     ``cap`` seconds; its exit code (None when killed), standard output and
     error, seconds, peak memory in MB and processor seconds (user and system,
@@ -179,8 +192,9 @@ def _run_process(command: list[str], cap: float) -> tuple[int | None, str, str, 
     seconds, but the search's engines may use more than one core)."""
     with tempfile.TemporaryFile("w+") as out, tempfile.TemporaryFile("w+") as err:
         start = time.perf_counter()
-        process = subprocess.Popen(command, stdout=out, stderr=err, text=True, cwd=ROOT,
-                                   start_new_session=True)
+        process = subprocess.Popen(
+            command, stdout=out, stderr=err, text=True, cwd=ROOT, start_new_session=True
+        )
         result: dict = {}
 
         def reap():
@@ -195,15 +209,13 @@ def _run_process(command: list[str], cap: float) -> tuple[int | None, str, str, 
         waiter.join(cap)
         killed = waiter.is_alive()
         if killed:
-            try:
+            with contextlib.suppress(ProcessLookupError):
                 os.killpg(process.pid, signal.SIGKILL)
-            except ProcessLookupError:
-                pass
             waiter.join()
-        process.returncode = -1          # reaped here, not by Popen
-        seconds = (cap if killed else result["end"] - start)
+        process.returncode = -1  # reaped here, not by Popen
+        seconds = cap if killed else result["end"] - start
         usage = result["usage"]
-        memory = usage.ru_maxrss / 1024.0     # kB on Linux
+        memory = usage.ru_maxrss / 1024.0  # kB on Linux
         code = None if killed else os.waitstatus_to_exitcode(result["status"])
         out.seek(0)
         err.seek(0)
@@ -271,17 +283,27 @@ def run(search: str, command: list[str], limit: float, grace: float, repeat: int
                 # ask without --plan, when the plan search under the principle
                 # has no plan: an answer, proven or bounded as its words say.
                 proven = not _UNPROVEN_DROP.search(asked.group(1))
-                runs.append(Run(search, command, "none" if proven else "bounded", seconds,
-                                memory, cpu, proven, note=asked.group(1)[:200]))
+                runs.append(
+                    Run(
+                        search,
+                        command,
+                        "none" if proven else "bounded",
+                        seconds,
+                        memory,
+                        cpu,
+                        proven,
+                        note=asked.group(1)[:200],
+                    )
+                )
                 continue
-            runs.append(Run(search, command, f"error {code}", seconds, memory, cpu,
-                            note=last[:200]))
+            runs.append(
+                Run(search, command, f"error {code}", seconds, memory, cpu, note=last[:200])
+            )
             continue
         try:
             status, proven, plan, note = read_outcome(search, stdout)
         except (json.JSONDecodeError, AttributeError) as error:
-            runs.append(Run(search, command, "unreadable", seconds, memory, cpu,
-                            note=str(error)))
+            runs.append(Run(search, command, "unreadable", seconds, memory, cpu, note=str(error)))
             continue
         runs.append(Run(search, command, status, seconds, memory, cpu, proven, plan, note))
     best = min(runs, key=lambda r: (not r.proven, r.seconds))
@@ -290,6 +312,7 @@ def run(search: str, command: list[str], limit: float, grace: float, repeat: int
 
 
 # -- what the questions name ------------------------------------------------------
+
 
 @dataclass
 class Choices:
@@ -304,23 +327,25 @@ class Choices:
 
 
 def _applicable(preconditions: dict, state: set, action) -> bool:
-    return all((value == "true") == (variable in state)
-               for variable, value in preconditions.get(action, ()))
+    return all(
+        (value == "true") == (variable in state)
+        for variable, value in preconditions.get(action, ())
+    )
 
 
 def choose(instance: Instance, plan: list[str]) -> Choices:
     """A (first action), C (last action, another than A), B (an action outside the
     plan that changes the first state the plan passes where such an action is
-    applicable; chosen by a generator seeded with the instance's name), T = 1, N one less than the plan's
-    length, F a fact true after the plan that the goal does not ask for and
-    the initial state does not have (else a goal fact).  The ground model is
-    read in this process (not timed)."""
+    applicable; chosen by a generator seeded with the instance's name), T = 1,
+    N one less than the plan's length, F a fact true after the plan that the
+    goal does not ask for and the initial state does not have (else a goal
+    fact).  The ground model is read in this process (not timed)."""
     from ethasp.planning.model import Model
 
     choices = Choices()
     if not plan:
         return choices
-    with contextlib.redirect_stderr(io.StringIO()):      # the translation's warnings
+    with contextlib.redirect_stderr(io.StringIO()):  # the translation's warnings
         planner = Model.load(instance.model()).planner
     actions = sorted(planner.get("action", 1), key=str)
     preconditions: dict = {}
@@ -328,8 +353,9 @@ def choose(instance: Instance, plan: list[str]) -> Choices:
         action, variable, value = atom.arguments
         preconditions.setdefault(action, []).append((variable, str(value)))
     initial = {atom.arguments[0] for atom in planner.get("init", 1)}
-    goal = {atom.arguments[0] for atom in planner.get("goal", 2)
-            if str(atom.arguments[1]) == "true"}
+    goal = {
+        atom.arguments[0] for atom in planner.get("goal", 2) if str(atom.arguments[1]) == "true"
+    }
     by_text = {str(action.arguments[0]): action.arguments[0] for action in actions}
     effects: dict = {}
     for atom in planner.get("eff", 3):
@@ -341,17 +367,20 @@ def choose(instance: Instance, plan: list[str]) -> Choices:
     states, state = [set(initial)], set(initial)
     for step in plan:
         adds = {variable for variable, value in effects.get(step, ()) if value}
-        state = (state - {variable for variable, value in effects.get(step, ())
-                          if not value}) | adds
+        state = (
+            state - {variable for variable, value in effects.get(step, ()) if not value}
+        ) | adds
         states.append(state)
     # B: an action that changes the first state of the plan where such an
     # action outside the plan is applicable (else any action outside it).
     pool = []
     for before in states:
-        pool = [text for text in outside
-                if _applicable(preconditions, before, by_text[text])
-                and any(value != (variable in before)
-                        for variable, value in effects.get(text, ()))]
+        pool = [
+            text
+            for text in outside
+            if _applicable(preconditions, before, by_text[text])
+            and any(value != (variable in before) for variable, value in effects.get(text, ()))
+        ]
         if pool:
             break
     generator = random.Random(instance.label)
@@ -363,7 +392,7 @@ def choose(instance: Instance, plan: list[str]) -> Choices:
     choices.T = 1
     choices.N = len(plan) - 1
     variables = {atom.arguments[0] for atom in planner.get("variable", 1)}
-    made = sorted((str(v) for v in state & variables if v not in goal and v not in initial))
+    made = sorted(str(v) for v in state & variables if v not in goal and v not in initial)
     choices.F = generator.choice(made) if made else (sorted(map(str, goal))[0] if goal else None)
     return choices
 
@@ -379,20 +408,23 @@ def question(form: str, choices: Choices) -> str | None:
 
 def available_forms() -> list[str]:
     """The question forms this version of ethasp answers (its ``ask --help``)."""
-    done = subprocess.run(ethasp_command("ask", "--help"), capture_output=True, text=True,
-                          cwd=ROOT)
+    done = subprocess.run(ethasp_command("ask", "--help"), capture_output=True, text=True, cwd=ROOT)
     text = " ".join(done.stdout.split())
-    return [form for form, (_, marker) in FORMS.items()
-            if marker is None or re.search(marker, text)]
+    return [
+        form for form, (_, marker) in FORMS.items() if marker is None or re.search(marker, text)
+    ]
 
 
 # -- figures ------------------------------------------------------------------------
 
+
 def cell(run_: Run) -> str:
     mark = "" if run_.proven else "*"
     ratio = f"{run_.ratio:.2f}" if run_.ratio is not None else "-"
-    return (f"{run_.status + mark:12} {run_.seconds:7.2f} {ratio:>6} "
-            f"{run_.memory_mb:7.0f} {run_.cpu:7.2f}")
+    return (
+        f"{run_.status + mark:12} {run_.seconds:7.2f} {ratio:>6} "
+        f"{run_.memory_mb:7.0f} {run_.cpu:7.2f}"
+    )
 
 
 def gmean(values: list[float]) -> float:
@@ -402,44 +434,57 @@ def gmean(values: list[float]) -> float:
 def summary(rows: list[dict], limit: float) -> list[str]:
     lines = []
     proved = [row for row in rows if row["plain"].proven]
-    restricted = [(row, r) for row in proved for r in row["searches"]
-                  if r.search != "ask"]
+    restricted = [(row, r) for row in proved for r in row["searches"] if r.search != "ask"]
     answered = sum(1 for _, r in restricted if r.proven)
-    lines.append(f"plain search proved on {len(proved)} of {len(rows)} instances "
-                 f"(time limit {limit:g} s)")
-    lines.append(f"restricted searches answered with a proof where plain proved: "
-                 f"{answered} of {len(restricted)}   (target: all)")
+    lines.append(
+        f"plain search proved on {len(proved)} of {len(rows)} instances (time limit {limit:g} s)"
+    )
+    lines.append(
+        f"restricted searches answered with a proof where plain proved: "
+        f"{answered} of {len(restricted)}   (target: all)"
+    )
     ratios = [r.seconds / row["plain"].seconds for row, r in restricted]
     if ratios:
-        worst_row, worst = max(restricted, key=lambda pair: pair[1].seconds /
-                               pair[0]["plain"].seconds)
-        lines.append(f"restricted/plain time: geometric mean {gmean(ratios):.2f}x "
-                     f"(target <= {TARGET_GMEAN}x), max {max(ratios):.1f}x "
-                     f"({worst_row['instance']} {worst.search}; target <= {TARGET_MAX}x each); "
-                     f"over {TARGET_MAX}x: {sum(r > TARGET_MAX for r in ratios)} of {len(ratios)}"
-                     " (unanswered searches count with the seconds they took)")
+        worst_row, worst = max(
+            restricted, key=lambda pair: pair[1].seconds / pair[0]["plain"].seconds
+        )
+        lines.append(
+            f"restricted/plain time: geometric mean {gmean(ratios):.2f}x "
+            f"(target <= {TARGET_GMEAN}x), max {max(ratios):.1f}x "
+            f"({worst_row['instance']} {worst.search}; target <= {TARGET_MAX}x each); "
+            f"over {TARGET_MAX}x: {sum(r > TARGET_MAX for r in ratios)} of {len(ratios)}"
+            " (unanswered searches count with the seconds they took)"
+        )
         proven_ratios = [r.seconds / row["plain"].seconds for row, r in restricted if r.proven]
         if proven_ratios:
-            lines.append(f"  of those answered with a proof: geometric mean "
-                         f"{gmean(proven_ratios):.2f}x, max {max(proven_ratios):.1f}x")
+            lines.append(
+                f"  of those answered with a proof: geometric mean "
+                f"{gmean(proven_ratios):.2f}x, max {max(proven_ratios):.1f}x"
+            )
         kinds: dict[str, list] = {}
         for row, r in restricted:
             kinds.setdefault(r.search, []).append((row, r))
         lines.append(f"  {'search':24} {'proven':>7} {'gmean':>6} {'max':>6}")
         for kind, pairs in kinds.items():
             values = [r.seconds / row["plain"].seconds for row, r in pairs]
-            lines.append(f"  {kind:24} {sum(r.proven for _, r in pairs):3} of {len(pairs):<2} "
-                         f"{gmean(values):6.2f} {max(values):6.1f}")
+            lines.append(
+                f"  {kind:24} {sum(r.proven for _, r in pairs):3} of {len(pairs):<2} "
+                f"{gmean(values):6.2f} {max(values):6.1f}"
+            )
     everything = [r for row in rows for r in [row["plain"], *row["searches"]]]
     if everything:
         top = max(everything, key=lambda r: r.memory_mb)
         top_row = next(row for row in rows if top is row["plain"] or top in row["searches"])
-        lines.append(f"peak memory: {top.memory_mb:.0f} MB ({top_row['instance']} {top.search}; "
-                     f"target < {TARGET_MEMORY_MB:.0f} MB)")
+        lines.append(
+            f"peak memory: {top.memory_mb:.0f} MB ({top_row['instance']} {top.search}; "
+            f"target < {TARGET_MEMORY_MB:.0f} MB)"
+        )
     asks = [(row, r) for row in rows for r in row["searches"] if r.search == "ask"]
     if asks:
-        lines.append(f"ask without --plan: answered with a proof on "
-                     f"{sum(r.proven for _, r in asks)} of {len(asks)} instances")
+        lines.append(
+            f"ask without --plan: answered with a proof on "
+            f"{sum(r.proven for _, r in asks)} of {len(asks)} instances"
+        )
     reference = []
     for row, r in asks:
         contrast = next((s for s in row["searches"] if s.search == "ask why"), None)
@@ -447,47 +492,85 @@ def summary(rows: list[dict], limit: float) -> list[str]:
             continue
         reference.append(r.seconds / (row["plain"].seconds + contrast.seconds))
     if reference:
-        lines.append(f"ask without --plan / (plain + 'why A' with --plan): geometric mean "
-                     f"{gmean(reference):.2f}x, max {max(reference):.1f}x over {len(reference)} "
-                     "instances (target: about 1x)")
+        lines.append(
+            f"ask without --plan / (plain + 'why A' with --plan): geometric mean "
+            f"{gmean(reference):.2f}x, max {max(reference):.1f}x over {len(reference)} "
+            "instances (target: about 1x)"
+        )
     return lines
 
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("folder", type=Path, nargs="?", default=DEFAULT_FOLDER,
-                        help=f"a folder of domain folders (default {DEFAULT_FOLDER})")
-    parser.add_argument("--annotations", type=Path, default=ANNOTATIONS,
-                        help="the folder of annotation files DOMAIN.lp (default "
-                             "benchmarks/annotations)")
-    parser.add_argument("--problems", default="1-4",
-                        help="positions of the problems of each domain, natural order "
-                             "(default 1-4; e.g. 1-8 or 1,3)")
-    parser.add_argument("--time-limit", type=float, default=60.0,
-                        help="ethasp's --time-limit per process (default 60)")
-    parser.add_argument("--grace", type=float, default=15.0,
-                        help="seconds past the time limit before a process is killed "
-                             "(default 15)")
-    parser.add_argument("--principles", default=",".join(PRINCIPLES),
-                        help="comma-separated principles (default all eight; '' for none)")
-    parser.add_argument("--questions", default=None,
-                        help=f"comma-separated question forms of {','.join(FORMS)} "
-                             "(default: every form that 'ethasp ask --help' lists)")
-    parser.add_argument("--no-ask", action="store_true",
-                        help="no 'ask' without --plan")
-    parser.add_argument("--repeat", type=int, default=1,
-                        help="runs per process, the fastest kept (default 1)")
+    parser.add_argument(
+        "folder",
+        type=Path,
+        nargs="?",
+        default=DEFAULT_FOLDER,
+        help=f"a folder of domain folders (default {DEFAULT_FOLDER})",
+    )
+    parser.add_argument(
+        "--annotations",
+        type=Path,
+        default=ANNOTATIONS,
+        help="the folder of annotation files DOMAIN.lp (default benchmarks/annotations)",
+    )
+    parser.add_argument(
+        "--problems",
+        default="1-4",
+        help="positions of the problems of each domain, natural order "
+        "(default 1-4; e.g. 1-8 or 1,3)",
+    )
+    parser.add_argument(
+        "--time-limit",
+        type=float,
+        default=60.0,
+        help="ethasp's --time-limit per process (default 60)",
+    )
+    parser.add_argument(
+        "--grace",
+        type=float,
+        default=15.0,
+        help="seconds past the time limit before a process is killed (default 15)",
+    )
+    parser.add_argument(
+        "--principles",
+        default=",".join(PRINCIPLES),
+        help="comma-separated principles (default all eight; '' for none)",
+    )
+    parser.add_argument(
+        "--questions",
+        default=None,
+        help=f"comma-separated question forms of {','.join(FORMS)} "
+        "(default: every form that 'ethasp ask --help' lists)",
+    )
+    parser.add_argument("--no-ask", action="store_true", help="no 'ask' without --plan")
+    parser.add_argument(
+        "--repeat", type=int, default=1, help="runs per process, the fastest kept (default 1)"
+    )
     parser.add_argument("--only", help="instances whose DOMAIN/PROBLEM contains this text")
     parser.add_argument("--json", type=Path, help="also write every row to this JSON file")
-    parser.add_argument("--summary", type=Path, metavar="JSON",
-                        help="print the summary of an earlier run's --json file and stop")
+    parser.add_argument(
+        "--summary",
+        type=Path,
+        metavar="JSON",
+        help="print the summary of an earlier run's --json file and stop",
+    )
     args = parser.parse_args()
     if args.summary is not None:
         data = json.loads(args.summary.read_text())
-        rows = [{"instance": row["instance"], "plain": _reread(row["plain"]),
-                 "searches": [_reread(r) for r in row["searches"]]} for row in data["rows"]]
-        print(f"{data['started']}; time limit {data['time_limit']:g} s; "
-              f"question forms: {', '.join(data['forms'])}")
+        rows = [
+            {
+                "instance": row["instance"],
+                "plain": _reread(row["plain"]),
+                "searches": [_reread(r) for r in row["searches"]],
+            }
+            for row in data["rows"]
+        ]
+        print(
+            f"{data['started']}; time limit {data['time_limit']:g} s; "
+            f"question forms: {', '.join(data['forms'])}"
+        )
         for line in summary(rows, data["time_limit"]):
             print(line)
         return 0
@@ -496,13 +579,17 @@ def main() -> int:
     unknown = set(principles) - set(PRINCIPLES)
     if unknown:
         parser.error(f"unknown principles: {', '.join(sorted(unknown))}")
-    forms = (available_forms() if args.questions is None
-             else [form for form in args.questions.split(",") if form])
+    forms = (
+        available_forms()
+        if args.questions is None
+        else [form for form in args.questions.split(",") if form]
+    )
     unknown = set(forms) - set(FORMS)
     if unknown:
         parser.error(f"unknown question forms: {', '.join(sorted(unknown))}")
-    chosen, skipped = instances(args.folder, args.annotations, _problem_numbers(args.problems),
-                                args.only)
+    chosen, skipped = instances(
+        args.folder, args.annotations, _problem_numbers(args.problems), args.only
+    )
     if skipped:
         print(f"skipped (no annotation file in {args.annotations}): {', '.join(skipped)}")
     if not chosen:
@@ -511,23 +598,33 @@ def main() -> int:
     compileall.compile_dir(ROOT / "ethasp", quiet=1)
     started = time.strftime("%Y-%m-%d %H:%M")
     load = os.getloadavg()
-    print(f"{started}; load average at start: {load[0]:.2f} {load[1]:.2f} {load[2]:.2f}; "
-          f"{os.cpu_count()} cores; time limit {args.time_limit:g} s (+{args.grace:g} s grace)")
+    print(
+        f"{started}; load average at start: {load[0]:.2f} {load[1]:.2f} {load[2]:.2f}; "
+        f"{os.cpu_count()} cores; time limit {args.time_limit:g} s (+{args.grace:g} s grace)"
+    )
     print(f"question forms: {', '.join(forms)}")
-    print("* no proof: bounded, killed, error, a plan not proven shortest or a principle dropped "
-          "without proof")
-    print(f"{'instance / search':44} {'status':12} {'s':>7} {'ratio':>6} {'MB':>7} "
-          f"{'cpu s':>7}")
+    print(
+        "* no proof: bounded, killed, error, a plan not proven shortest or a principle dropped "
+        "without proof"
+    )
+    print(f"{'instance / search':44} {'status':12} {'s':>7} {'ratio':>6} {'MB':>7} {'cpu s':>7}")
     limit = ["--time-limit", f"{args.time_limit:g}", "--json"]
     rows = []
     for instance in chosen:
         model = instance.model()
-        plain = run("plain", ethasp_command("plan", *model, *limit), args.time_limit,
-                    args.grace, args.repeat)
+        plain = run(
+            "plain",
+            ethasp_command("plan", *model, *limit),
+            args.time_limit,
+            args.grace,
+            args.repeat,
+        )
         print(f"{instance.label:44} {cell(plain)}", flush=True)
         searches: list[Run] = []
 
-        def record(result: Run, text: str = "") -> None:
+        def record(
+            result: Run, text: str = "", plain: Run = plain, searches: list[Run] = searches
+        ) -> None:
             if plain.seconds > 0:
                 result.ratio = result.seconds / plain.seconds
             searches.append(result)
@@ -536,9 +633,15 @@ def main() -> int:
             print(f"  {result.search[:42]:42} {cell(result)}{note}{detail}", flush=True)
 
         for principle in principles:
-            record(run(principle, ethasp_command("plan", *model, "--principle", principle,
-                                                 *limit),
-                       args.time_limit, args.grace, args.repeat))
+            record(
+                run(
+                    principle,
+                    ethasp_command("plan", *model, "--principle", principle, *limit),
+                    args.time_limit,
+                    args.grace,
+                    args.repeat,
+                )
+            )
         plan = plain.plan if plain.status == "found" else None
         if plan is None and (forms or not args.no_ask):
             print("  (no plain plan: no questions)")
@@ -549,16 +652,32 @@ def main() -> int:
             text = question(form, choices)
             if text is None:
                 continue
-            record(run(f"ask {form}", ethasp_command("ask", *model, "--plan", " ".join(plan),
-                                                     "--question", text, *limit),
-                       args.time_limit, args.grace, args.repeat), text)
+            record(
+                run(
+                    f"ask {form}",
+                    ethasp_command(
+                        "ask", *model, "--plan", " ".join(plan), "--question", text, *limit
+                    ),
+                    args.time_limit,
+                    args.grace,
+                    args.repeat,
+                ),
+                text,
+            )
         if not args.no_ask:
             deontic = next((r for r in searches if r.search == "deontology"), None)
-            first = (deontic.plan[0] if deontic is not None and deontic.plan
-                     else choices.A)
+            first = deontic.plan[0] if deontic is not None and deontic.plan else choices.A
             text = f"why {first}"
-            record(run("ask", ethasp_command("ask", *model, "--question", text, *limit),
-                       args.time_limit, args.grace, args.repeat), text + " (no --plan)")
+            record(
+                run(
+                    "ask",
+                    ethasp_command("ask", *model, "--question", text, *limit),
+                    args.time_limit,
+                    args.grace,
+                    args.repeat,
+                ),
+                text + " (no --plan)",
+            )
         rows.append({"instance": instance.label, "plain": plain, "searches": searches})
     print()
     for line in summary(rows, args.time_limit):
@@ -566,11 +685,24 @@ def main() -> int:
     load = os.getloadavg()
     print(f"load average at end: {load[0]:.2f} {load[1]:.2f} {load[2]:.2f}")
     if args.json:
-        args.json.write_text(json.dumps({
-            "started": started, "time_limit": args.time_limit, "forms": forms,
-            "rows": [{"instance": row["instance"], "plain": asdict(row["plain"]),
-                      "searches": [asdict(r) for r in row["searches"]]} for row in rows],
-        }, indent=1))
+        args.json.write_text(
+            json.dumps(
+                {
+                    "started": started,
+                    "time_limit": args.time_limit,
+                    "forms": forms,
+                    "rows": [
+                        {
+                            "instance": row["instance"],
+                            "plain": asdict(row["plain"]),
+                            "searches": [asdict(r) for r in row["searches"]],
+                        }
+                        for row in rows
+                    ],
+                },
+                indent=1,
+            )
+        )
     return 0
 
 

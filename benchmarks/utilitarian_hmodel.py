@@ -49,19 +49,20 @@ import subprocess
 import sys
 import tempfile
 import time
+from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Iterator
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from ethasp import Model, find_plan  # noqa: E402
 
-CAP = 300.0   # seconds, for one whole ethasp process
+CAP = 300.0  # seconds, for one whole ethasp process
 
 
 # -- the model family -----------------------------------------------------------
+
 
 def rescue_family(weighted: int, goal: bool = True) -> str:
     """The rescue model with ``weighted`` morally weighted variables (ASP text)."""
@@ -127,6 +128,7 @@ def weights(weighted: int) -> dict[str, tuple[int, int]]:
 
 # -- Algorithm 1 ------------------------------------------------------------------
 
+
 def candidates(utilities: dict[str, tuple[int, int]]) -> Iterator[tuple[int, dict[str, bool]]]:
     """Every assignment to the weighted variables, by decreasing utility, lazily.
 
@@ -153,15 +155,14 @@ def candidates(utilities: dict[str, tuple[int, int]]) -> Iterator[tuple[int, dic
         yield top - lost, assignment(flipped)
         last = flipped[-1]
         if last + 1 < len(names):
-            heapq.heappush(heap, (lost + loss[last + 1], flipped + (last + 1,)))
-            heapq.heappush(heap, (lost - loss[last] + loss[last + 1],
-                                  flipped[:-1] + (last + 1,)))
+            heapq.heappush(heap, (lost + loss[last + 1], (*flipped, last + 1)))
+            heapq.heappush(heap, (lost - loss[last] + loss[last + 1], (*flipped[:-1], last + 1)))
 
 
 @dataclass
 class Algorithm1Result:
-    outcome: str            # "permissible", "impermissible", "cut" (time cap)
-    utility: int | None     # the utility of the level it stopped at
+    outcome: str  # "permissible", "impermissible", "cut" (time cap)
+    utility: int | None  # the utility of the level it stopped at
     plan_length: int | None
     calls: int
     candidates: int
@@ -187,31 +188,48 @@ def algorithm1(weighted: int, cap: float) -> Algorithm1Result:
     reachable_without_goal = False
     for utility, candidate in candidates(weights(weighted)):
         if level is not None and utility != level and reachable_without_goal:
-            break                      # the best level has no goal state
+            break  # the best level has no goal state
         level = utility
         if time.perf_counter() - start > cap:
-            return Algorithm1Result("cut", utility, None, calls, count,
-                                    time.perf_counter() - start)
+            return Algorithm1Result("cut", utility, None, calls, count, time.perf_counter() - start)
         count += 1
         if plan(candidate, with_goal=False).status != "found":
             continue
         with_goal = plan(candidate, with_goal=True)
         if with_goal.status == "found":
-            return Algorithm1Result("permissible", utility, len(with_goal.plan), calls, count,
-                                    time.perf_counter() - start)
+            return Algorithm1Result(
+                "permissible",
+                utility,
+                len(with_goal.plan),
+                calls,
+                count,
+                time.perf_counter() - start,
+            )
         reachable_without_goal = True
-    return Algorithm1Result("impermissible", level, None, calls, count,
-                            time.perf_counter() - start)
+    return Algorithm1Result("impermissible", level, None, calls, count, time.perf_counter() - start)
 
 
 # -- whole processes ------------------------------------------------------------------
 
+
 def ethasp(*arguments: str) -> tuple[float, dict]:
     """Seconds and JSON answer of one whole ethasp process."""
     start = time.perf_counter()
-    run = subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", *arguments, "--json",
-                          "--quiet", "--time-limit", str(CAP)],
-                         capture_output=True, text=True, cwd=ROOT)
+    run = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "ethasp.interfaces.cli",
+            *arguments,
+            "--json",
+            "--quiet",
+            "--time-limit",
+            str(CAP),
+        ],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
     seconds = time.perf_counter() - start
     if run.returncode != 0:
         raise SystemExit(f"ethasp {' '.join(arguments)} failed: {run.stderr.strip()}")
@@ -225,16 +243,21 @@ def best_of(repeat: int, *arguments: str) -> tuple[float, dict]:
 
 # -- random judgements -----------------------------------------------------------------
 
+
 def random_task(seed: int) -> tuple[str, str]:
     """A random model of 8 variables and 10 actions and a plan for it (ASP text,
     plan text); None plans are skipped by the caller."""
     rng = random.Random(seed)
     variables = [f"v{i}" for i in range(8)]
     actions = [f"a{i}" for i in range(10)]
-    pre = {a: {v: rng.random() < 0.5 for v in rng.sample(variables, rng.randint(0, 2))}
-           for a in actions}
-    eff = {a: {v: rng.random() < 0.5 for v in rng.sample(variables, rng.randint(1, 3))}
-           for a in actions}
+    pre = {
+        a: {v: rng.random() < 0.5 for v in rng.sample(variables, rng.randint(0, 2))}
+        for a in actions
+    }
+    eff = {
+        a: {v: rng.random() < 0.5 for v in rng.sample(variables, rng.randint(1, 3))}
+        for a in actions
+    }
     init = {v for v in variables if rng.random() < 0.4}
     goal = {v: rng.random() < 0.5 for v in rng.sample(variables, 2)}
     lines = [f"variable({v})." for v in variables] + [f"action({a})." for a in actions]
@@ -243,9 +266,14 @@ def random_task(seed: int) -> tuple[str, str]:
         lines += [f"eff({a},{v},{str(b).lower()})." for v, b in eff[a].items()]
     lines += [f"init({v})." for v in sorted(init)]
     lines += [f"goal({v},{str(b).lower()})." for v, b in goal.items()]
-    lines += [f"utility({v},{str(b).lower()},{rng.randint(-3, 3)})." for v in variables
-              for b in (True, False) if rng.random() < 0.5]
+    lines += [
+        f"utility({v},{str(b).lower()},{rng.randint(-3, 3)})."
+        for v in variables
+        for b in (True, False)
+        if rng.random() < 0.5
+    ]
     text = "\n".join(lines) + "\n"
+
     # A plan: a random walk, then a shortest path to the goal (breadth-first).
     def apply(state, a):
         if any((v in state) != b for v, b in pre[a].items()):
@@ -283,48 +311,75 @@ def random_task(seed: int) -> tuple[str, str]:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--sizes", type=int, nargs="+", default=[16, 24, 30, 40],
-                        help="numbers of morally weighted variables (default 16 24 30 40)")
-    parser.add_argument("--cap", type=float, default=120.0,
-                        help="time cap of Algorithm 1 per size, seconds (default 120)")
-    parser.add_argument("--repeat", type=int, default=3,
-                        help="whole processes per figure; the best is shown (default 3)")
-    parser.add_argument("--judgements", type=int, default=20,
-                        help="random 8-variable models judged (default 20)")
+    parser.add_argument(
+        "--sizes",
+        type=int,
+        nargs="+",
+        default=[16, 24, 30, 40],
+        help="numbers of morally weighted variables (default 16 24 30 40)",
+    )
+    parser.add_argument(
+        "--cap",
+        type=float,
+        default=120.0,
+        help="time cap of Algorithm 1 per size, seconds (default 120)",
+    )
+    parser.add_argument(
+        "--repeat",
+        type=int,
+        default=3,
+        help="whole processes per figure; the best is shown (default 3)",
+    )
+    parser.add_argument(
+        "--judgements", type=int, default=20, help="random 8-variable models judged (default 20)"
+    )
     args = parser.parse_args()
 
-    print("Rescue family: whole processes, seconds (best of "
-          f"{args.repeat}); Algorithm 1 in-process, capped at {args.cap:g} s")
-    print(f"{'W':>3} {'plain s':>8} {'HModel s':>9} {'HM/plain':>9} {'target':>7} "
-          f"{'Alg.1 s':>9} {'Alg.1/HM':>9} {'len p/HM/A1':>12} {'best':>5}  statuses")
+    print(
+        "Rescue family: whole processes, seconds (best of "
+        f"{args.repeat}); Algorithm 1 in-process, capped at {args.cap:g} s"
+    )
+    print(
+        f"{'W':>3} {'plain s':>8} {'HModel s':>9} {'HM/plain':>9} {'target':>7} "
+        f"{'Alg.1 s':>9} {'Alg.1/HM':>9} {'len p/HM/A1':>12} {'best':>5}  statuses"
+    )
     met = True
     with tempfile.TemporaryDirectory() as folder:
         for weighted in args.sizes:
             path = Path(folder) / f"rescue{weighted}.lp"
             path.write_text(rescue_family(weighted))
             plain_s, plain = best_of(args.repeat, "plan", str(path))
-            hmodel_s, hmodel = best_of(args.repeat, "plan", str(path),
-                                       "--principle", "utilitarianism")
+            hmodel_s, hmodel = best_of(
+                args.repeat, "plan", str(path), "--principle", "utilitarianism"
+            )
             alg = algorithm1(weighted, args.cap)
             ratio = hmodel_s / plain_s
-            proven = (hmodel["status"] in ("found", "none")
-                      and hmodel.get("best_utility_status") == "proven")
+            proven = (
+                hmodel["status"] in ("found", "none")
+                and hmodel.get("best_utility_status") == "proven"
+            )
             ok = ratio <= 3 and proven
             met &= ok
             bound = ">=" if alg.outcome == "cut" else "  "
-            lengths = (f"{len(plain['plan'])}/"
-                       f"{len(hmodel['plan']) if hmodel['plan'] is not None else '-'}/"
-                       f"{alg.plan_length if alg.plan_length is not None else '-'}")
-            print(f"{weighted:>3} {plain_s:>8.2f} {hmodel_s:>9.2f} {ratio:>8.1f}x "
-                  f"{'met' if ok else 'MISSED':>7} {bound}{alg.seconds:>7.1f} "
-                  f"{bound}{alg.seconds / hmodel_s:>6.0f}x {lengths:>12} "
-                  f"{hmodel.get('best_utility', '-'):>5}  plain {plain['status']}, HModel "
-                  f"{hmodel['status']} (best utility {hmodel.get('best_utility_status')}), "
-                  f"Alg.1 {alg.outcome} after {alg.calls} planner calls")
+            lengths = (
+                f"{len(plain['plan'])}/"
+                f"{len(hmodel['plan']) if hmodel['plan'] is not None else '-'}/"
+                f"{alg.plan_length if alg.plan_length is not None else '-'}"
+            )
+            print(
+                f"{weighted:>3} {plain_s:>8.2f} {hmodel_s:>9.2f} {ratio:>8.1f}x "
+                f"{'met' if ok else 'MISSED':>7} {bound}{alg.seconds:>7.1f} "
+                f"{bound}{alg.seconds / hmodel_s:>6.0f}x {lengths:>12} "
+                f"{hmodel.get('best_utility', '-'):>5}  plain {plain['status']}, HModel "
+                f"{hmodel['status']} (best utility {hmodel.get('best_utility_status')}), "
+                f"Alg.1 {alg.outcome} after {alg.calls} planner calls"
+            )
             sys.stdout.flush()
 
-        print(f"\nUtilitarian judgements of random models (8 variables, 10 actions), "
-              f"whole processes, target < 1 s each")
+        print(
+            "\nUtilitarian judgements of random models (8 variables, 10 actions), "
+            "whole processes, target < 1 s each"
+        )
         seconds, statuses, seed = [], {}, 0
         while len(seconds) < args.judgements:
             text, plan = random_task(seed)
@@ -333,17 +388,29 @@ def main() -> None:
                 continue
             path = Path(folder) / f"random{seed}.lp"
             path.write_text(text)
-            elapsed, answer = ethasp("judge", str(path), "--plan", plan,
-                                     "--principle", "utilitarianism", "--reasons-limit", "0")
+            elapsed, answer = ethasp(
+                "judge",
+                str(path),
+                "--plan",
+                plan,
+                "--principle",
+                "utilitarianism",
+                "--reasons-limit",
+                "0",
+            )
             judgement = answer["judgements"][0]
             seconds.append(elapsed)
-            key = f"{'permissible' if judgement['permissible'] else 'impermissible'} " \
-                  f"{judgement['status']}"
+            key = (
+                f"{'permissible' if judgement['permissible'] else 'impermissible'} "
+                f"{judgement['status']}"
+            )
             statuses[key] = statuses.get(key, 0) + 1
         worst = max(seconds)
-        print(f"  {len(seconds)} judgements: median {statistics.median(seconds):.2f} s, "
-              f"worst {worst:.2f} s ({'met' if worst < 1 else 'MISSED'}); "
-              + ", ".join(f"{n} {k}" for k, n in sorted(statuses.items())))
+        print(
+            f"  {len(seconds)} judgements: median {statistics.median(seconds):.2f} s, "
+            f"worst {worst:.2f} s ({'met' if worst < 1 else 'MISSED'}); "
+            + ", ".join(f"{n} {k}" for k, n in sorted(statuses.items()))
+        )
         met &= worst < 1 and all("proven" in k for k in statuses)
     print(f"\nTargets {'met' if met else 'not all met'}.")
 

@@ -8,8 +8,8 @@ that can be any ground term (action and variable names) are kept as
 
 from clorm import ConstantStr, Predicate, Raw, StringField
 
-
 # -- the planning model -------------------------------------------------------
+
 
 class Variable(Predicate, name="variable"):
     name: Raw
@@ -17,8 +17,6 @@ class Variable(Predicate, name="variable"):
 
 class Action(Predicate, name="action"):
     name: Raw
-
-
 
 
 class Init(Predicate, name="init"):
@@ -32,12 +30,13 @@ class Goal(Predicate, name="goal"):
 
 # -- well-formedness (check.lp) -----------------------------------------------
 
+
 class Error(Predicate, name="error"):
     problem: Raw
 
 
-
 # -- plans and traces (transition.lp, trace.lp) -------------------------------
+
 
 class Occurs(Predicate, name="occurs"):
     action: Raw
@@ -75,6 +74,7 @@ class IsPlan(Predicate, name="plan"):
 
 # -- terms of a plan that are no action of a PDDL task (static.lp) --------------------
 
+
 class NoSchemaInstance(Predicate, name="no_schema_instance"):
     action: Raw
 
@@ -85,8 +85,8 @@ class StaticFailure(Predicate, name="pddl_static_failure"):
     value: ConstantStr
 
 
-
 # -- judgements and the language L (language.lp, judge.lp, judgement/best.lp) ----
+
 
 class Verdict(Predicate, name="verdict"):
     name: Raw
@@ -127,8 +127,8 @@ class AtHorizon(Predicate, name="at_horizon"):
     time: int
 
 
-
 # -- reasons and their words (encodings/reasons/) --------------------------------
+
 
 class ReasonAtom(Predicate, name="reason"):
     atom: Raw
@@ -151,8 +151,6 @@ class Conjunct(Predicate, name="conjunct"):
     name: Raw
     variable: Raw
     value: ConstantStr
-
-
 
 
 class AgentLabel(Predicate, name="agent_label"):
@@ -178,6 +176,7 @@ class PatientLabel(Predicate, name="patient_label"):
 
 
 # -- contrastive questions (questions.lp) -----------------------------------------
+
 
 class Contrast(Predicate, name="contrast"):
     question: Raw
@@ -206,6 +205,7 @@ class Met(Predicate, name="met"):
 
 
 # -- pictures of plans (model.lp's weights, steps.lp) ------------------------------
+
 
 class Weight(Predicate, name="weight"):
     element: Raw
@@ -252,6 +252,7 @@ class Happened(Predicate, name="happened"):
 
 
 # -- causal links of a plan (questions/links.lp, removable.lp) ------------------------
+
 
 class Link(Predicate, name="link"):
     provider: Raw

@@ -53,8 +53,9 @@ class RandomModel:
     action_utility: dict[str, int] = field(default_factory=dict)
     fact_utility: dict[tuple[str, bool], int] = field(default_factory=dict)
     # conditional effects: per action, (name, conditions, effects)
-    ceff: dict[str, list[tuple[str, dict[str, bool], dict[str, bool]]]] = \
-        field(default_factory=dict)
+    ceff: dict[str, list[tuple[str, dict[str, bool], dict[str, bool]]]] = field(
+        default_factory=dict
+    )
     # derived variables, in order: each with its axioms (conditions)
     derived: dict[str, list[dict[str, bool]]] = field(default_factory=dict)
     # exogenous events
@@ -71,8 +72,9 @@ class RandomModel:
         """The state with the derived variables that hold in it."""
         result = set(state)
         for name, axioms in self.derived.items():
-            if any(all((var in result) == value for var, value in axiom.items())
-                   for axiom in axioms):
+            if any(
+                all((var in result) == value for var, value in axiom.items()) for axiom in axioms
+            ):
                 result.add(name)
         return frozenset(result)
 
@@ -115,8 +117,10 @@ class RandomModel:
                             winners[var] = (key, value)
         if not winners:
             return state
-        return frozenset({v for v in state if v not in winners}
-                         | {v for v, (_, value) in winners.items() if value})
+        return frozenset(
+            {v for v in state if v not in winners}
+            | {v for v, (_, value) in winners.items() if value}
+        )
 
     def step(self, state: frozenset, t: int, action: str | None) -> frozenset:
         """The state after step ``t``: its action (None: an idle step after the
@@ -224,8 +228,7 @@ class RandomModel:
         for t, action in enumerate(plan, start=1):
             after = self.apply(states[t - 1], action)
             for var, value in self.firing(states[t - 1], action):
-                if (var in after) == value and all((var in later) == value
-                                                   for later in states[t:]):
+                if (var in after) == value and all((var in later) == value for later in states[t:]):
                     result.add((var, value))
         return result
 
@@ -260,8 +263,9 @@ class RandomModel:
 
     def bad_goal(self) -> bool:
         """Is a fact of the goal bad?"""
-        return any(var in self.variables and self.bad_fact(var, value)
-                   for var, value in self.goal.items())
+        return any(
+            var in self.variables and self.bad_fact(var, value) for var, value in self.goal.items()
+        )
 
     def within(self, principles, horizon: int) -> str:
         """What a brute-force search of ``horizon`` steps settles about the
@@ -334,8 +338,11 @@ class RandomModel:
                     continue
                 succ_config = self.successor(config, action)
                 after = self.apply(config[0], action)
-                fired = {(var, value) for var, value in self.firing(config[0], action)
-                         if self.bad_fact(var, value) and (var in after) == value}
+                fired = {
+                    (var, value)
+                    for var, value in self.firing(config[0], action)
+                    if self.bad_fact(var, value) and (var in after) == value
+                }
                 succ = (succ_config, carry(succ_config[0], produced | fired))
                 if succ not in dist:
                     dist[succ] = dist[node] + 1
@@ -358,15 +365,18 @@ class RandomModel:
             lines.append(f"derived({d}).")
             for k, conditions in enumerate(axioms):
                 lines.append(f"axiom({d},{k}).")
-                lines += [f"axiom_pre({d},{k},{v},{str(b).lower()})." for v, b in conditions.items()]
+                lines += [
+                    f"axiom_pre({d},{k},{v},{str(b).lower()})." for v, b in conditions.items()
+                ]
         for event in self.events:
             e = event.name
             lines += [f"event({e}).", f"event_at({e},{event.step})."]
             lines += [f"event_pre({e},{v},{str(b).lower()})." for v, b in event.pre.items()]
             for k, conditions, sets in event.effects:
                 lines += [f"event_effect({e},{k},{v},{str(b).lower()})." for v, b in sets.items()]
-                lines += [f"event_condition({e},{k},{v},{str(b).lower()})."
-                          for v, b in conditions.items()]
+                lines += [
+                    f"event_condition({e},{k},{v},{str(b).lower()})." for v, b in conditions.items()
+                ]
         lines += [f"init({v})." for v in sorted(self.init)]
         lines += [f"goal({v},{str(b).lower()})." for v, b in self.goal.items()]
         lines += [f"utility({a},{u})." for a, u in self.action_utility.items()]
@@ -374,9 +384,15 @@ class RandomModel:
         return "\n".join(lines) + "\n"
 
 
-def random_model(seed: int, max_variables: int = 4, max_actions: int = 4,
-                 conditional: bool = False, derived: bool = False,
-                 far_goal: bool = False, events: bool = False) -> RandomModel:
+def random_model(
+    seed: int,
+    max_variables: int = 4,
+    max_actions: int = 4,
+    conditional: bool = False,
+    derived: bool = False,
+    far_goal: bool = False,
+    events: bool = False,
+) -> RandomModel:
     """A small random model; with ``conditional``, actions also get conditional
     effects, with ``derived``, derived variables that preconditions,
     conditions and the goal may read, and with ``events``, one or two
@@ -398,8 +414,9 @@ def random_model(seed: int, max_variables: int = 4, max_actions: int = 4,
     if not goal:
         goal = {rng.choice(variables): rng.random() < 0.5}
     action_utility = {a: rng.randint(-2, 2) for a in actions if rng.random() < 0.6}
-    fact_utility = {(v, b): rng.randint(-3, 3) for v in variables for b in (True, False)
-                    if rng.random() < 0.5}
+    fact_utility = {
+        (v, b): rng.randint(-3, 3) for v in variables for b in (True, False) if rng.random() < 0.5
+    }
     spec = RandomModel(variables, actions, pre, eff, init, goal, action_utility, fact_utility)
     if derived:
         _add_derived(spec, rng)
@@ -422,8 +439,12 @@ def _add_derived(spec: RandomModel, rng: random.Random) -> None:
     for index in range(rng.randint(1, 2)):
         name = f"d{index}"
         spec.derived[name] = [
-            {v: rng.random() < 0.5 for v in rng.sample(readable, rng.randint(0, min(2, len(readable))))}
-            for _ in range(rng.randint(0 if rng.random() < 0.2 else 1, 2))]
+            {
+                v: rng.random() < 0.5
+                for v in rng.sample(readable, rng.randint(0, min(2, len(readable))))
+            }
+            for _ in range(rng.randint(0 if rng.random() < 0.2 else 1, 2))
+        ]
         readable.append(name)
     for a in spec.actions:
         if rng.random() < 0.3:
@@ -437,10 +458,14 @@ def _add_conditional_effects(spec: RandomModel, rng: random.Random) -> None:
     for a in spec.actions:
         effects = []
         for k in range(rng.randint(0, 2)):
-            conditions = {v: rng.random() < 0.5
-                          for v in rng.sample(readable, rng.randint(0, min(2, len(readable))))}
-            sets = {v: rng.random() < 0.5
-                    for v in rng.sample(spec.variables, rng.randint(1, min(2, len(spec.variables))))}
+            conditions = {
+                v: rng.random() < 0.5
+                for v in rng.sample(readable, rng.randint(0, min(2, len(readable))))
+            }
+            sets = {
+                v: rng.random() < 0.5
+                for v in rng.sample(spec.variables, rng.randint(1, min(2, len(spec.variables))))
+            }
             effects.append((f"k{k}", conditions, sets))
         if effects:
             spec.ceff[a] = effects
@@ -450,15 +475,20 @@ def _add_events(spec: RandomModel, rng: random.Random) -> None:
     """One or two events at steps 1 to 3; conflicting effects (on one variable,
     of one step) are allowed: the greatest key wins."""
     for index in range(rng.randint(1, 2)):
-        pre = {v: rng.random() < 0.5
-               for v in rng.sample(spec.variables, rng.randint(0, min(1, len(spec.variables))))}
+        pre = {
+            v: rng.random() < 0.5
+            for v in rng.sample(spec.variables, rng.randint(0, min(1, len(spec.variables))))
+        }
         effects = []
         for key in rng.sample(range(1, 4), rng.randint(1, 2)):
-            conditions = {v: rng.random() < 0.5
-                          for v in rng.sample(spec.variables,
-                                              rng.randint(0, min(1, len(spec.variables))))}
-            sets = {v: rng.random() < 0.5
-                    for v in rng.sample(spec.variables, rng.randint(1, min(2, len(spec.variables))))}
+            conditions = {
+                v: rng.random() < 0.5
+                for v in rng.sample(spec.variables, rng.randint(0, min(1, len(spec.variables))))
+            }
+            sets = {
+                v: rng.random() < 0.5
+                for v in rng.sample(spec.variables, rng.randint(1, min(2, len(spec.variables))))
+            }
             effects.append((key, conditions, sets))
         spec.events.append(Event(f"e{index}", rng.randint(1, 3), pre, effects))
 
@@ -467,8 +497,11 @@ def features(seed: int) -> dict[str, bool]:
     """Which features a random model of this seed draws: each of conditional
     effects, derived variables and events in half of the models (every
     combination alike), so that property tests cover every feature together."""
-    return {"conditional": seed % 2 == 1, "derived": (seed // 2) % 2 == 1,
-            "events": (seed // 4) % 2 == 1}
+    return {
+        "conditional": seed % 2 == 1,
+        "derived": (seed // 2) % 2 == 1,
+        "events": (seed // 4) % 2 == 1,
+    }
 
 
 # -- the language L, read literally (section "Moral Action Query Language") ------
@@ -476,6 +509,7 @@ def features(seed: int) -> dict[str, bool]:
 # Formulas are tuples: ("good"|"bad"|"neutral", element), with element
 # ("action", a) or ("fact", v, value); ("caused", v, value);
 # ("geq", [(v, value), ...], [(v, value), ...]); ("not", f); ("and"|"or"|"imp", f, g).
+
 
 def element_utility(spec: RandomModel, element: tuple) -> int:
     if element[0] == "action":
@@ -495,8 +529,10 @@ def holds(spec: RandomModel, plan: list[str], formula: tuple) -> bool:
     if kind == "caused":
         return (formula[1], formula[2]) in spec.caused(plan)
     if kind == "geq":
+
         def worth(facts):
             return sum(spec.fact_utility.get(fact, 0) for fact in set(facts))
+
         return worth(formula[1]) >= worth(formula[2])
     if kind == "not":
         return not holds(spec, plan, formula[1])
@@ -511,6 +547,7 @@ def holds(spec: RandomModel, plan: list[str], formula: tuple) -> bool:
 
 def random_formula(spec: RandomModel, rng: random.Random, depth: int = 3) -> tuple:
     """A random formula of L over the model's actions and variables."""
+
     def fact() -> tuple:
         return rng.choice(spec.variables), rng.random() < 0.5
 
@@ -519,10 +556,12 @@ def random_formula(spec: RandomModel, rng: random.Random, depth: int = 3) -> tup
         if kind == "caused":
             return ("caused", *fact())
         if kind == "geq":
-            return ("geq", [fact() for _ in range(rng.randint(1, 3))],
-                    [fact() for _ in range(rng.randint(1, 3))])
-        element = (("action", rng.choice(spec.actions)) if rng.random() < 0.4
-                   else ("fact", *fact()))
+            return (
+                "geq",
+                [fact() for _ in range(rng.randint(1, 3))],
+                [fact() for _ in range(rng.randint(1, 3))],
+            )
+        element = ("action", rng.choice(spec.actions)) if rng.random() < 0.4 else ("fact", *fact())
         return (kind, element)
     kind = rng.choice(["not", "and", "or", "imp"])
     if kind == "not":

@@ -70,13 +70,13 @@ def effect_text(e) -> str:
 
 @dataclass
 class PddlTask:
-    types: dict[str, str]                       # type -> parent type
-    objects: dict[str, tuple[str, ...]]         # object -> declared types
-    constants: list[str]                        # objects declared in the domain
-    predicates: dict[str, tuple]                # predicate -> argument types
-    derived: list[tuple[str, list, tuple]]      # (predicate, params, body), in strata order
+    types: dict[str, str]  # type -> parent type
+    objects: dict[str, tuple[str, ...]]  # object -> declared types
+    constants: list[str]  # objects declared in the domain
+    predicates: dict[str, tuple]  # predicate -> argument types
+    derived: list[tuple[str, list, tuple]]  # (predicate, params, body), in strata order
     actions: list[tuple[str, list, tuple, tuple]]  # (name, params, precondition, effect)
-    init: frozenset                             # ground atoms (p, (o, ...))
+    init: frozenset  # ground atoms (p, (o, ...))
     goal: tuple
     requirements: str = ":adl :derived-predicates"
     _ground: list | None = field(default=None, repr=False)
@@ -88,28 +88,36 @@ class PddlTask:
         constants = " ".join(f"{o} - {_type_text(self.objects[o])}" for o in self.constants)
         predicates = " ".join(
             f"({p} {' '.join(f'?a{i} - {_type_text(t)}' for i, t in enumerate(args))})"
-            for p, args in self.predicates.items())
-        parts = [f"(define (domain random)",
-                 f"  (:requirements {self.requirements})" if self.requirements else "",
-                 f"  (:types {types})",
-                 f"  (:constants {constants})" if constants else "",
-                 f"  (:predicates {predicates})"]
+            for p, args in self.predicates.items()
+        )
+        parts = [
+            "(define (domain random)",
+            f"  (:requirements {self.requirements})" if self.requirements else "",
+            f"  (:types {types})",
+            f"  (:constants {constants})" if constants else "",
+            f"  (:predicates {predicates})",
+        ]
         for name, params, body in self.derived:
             head = " ".join([name] + [f"{v} - {_type_text(t)}" for v, t in params])
             parts.append(f"  (:derived ({head}) {formula_text(body)})")
         for name, params, pre, effect in self.actions:
-            parts.append(f"  (:action {name} :parameters ({_params_text(params)})\n"
-                         f"    :precondition {formula_text(pre)}\n"
-                         f"    :effect {effect_text(effect)})")
+            parts.append(
+                f"  (:action {name} :parameters ({_params_text(params)})\n"
+                f"    :precondition {formula_text(pre)}\n"
+                f"    :effect {effect_text(effect)})"
+            )
         return "\n".join(part for part in parts if part) + ")\n"
 
     def problem_text(self) -> str:
-        objects = " ".join(f"{o} - {_type_text(t)}" for o, t in self.objects.items()
-                           if o not in self.constants)
+        objects = " ".join(
+            f"{o} - {_type_text(t)}" for o, t in self.objects.items() if o not in self.constants
+        )
         init = " ".join(f"({' '.join([p, *args])})" for p, args in sorted(self.init))
-        return (f"(define (problem random-problem) (:domain random)\n"
-                f"  (:objects {objects})\n  (:init {init})\n"
-                f"  (:goal {formula_text(self.goal)}))\n")
+        return (
+            f"(define (problem random-problem) (:domain random)\n"
+            f"  (:objects {objects})\n  (:init {init})\n"
+            f"  (:goal {formula_text(self.goal)}))\n"
+        )
 
     # -- typing --------------------------------------------------------------------
 
@@ -127,13 +135,18 @@ class PddlTask:
     def objects_of(self, types: tuple[str, ...]) -> list[str]:
         if not types:
             return sorted(self.objects)
-        return sorted(o for o, declared in self.objects.items()
-                      if any(t in self.type_closure(d) for d in declared for t in types))
+        return sorted(
+            o
+            for o, declared in self.objects.items()
+            if any(t in self.type_closure(d) for d in declared for t in types)
+        )
 
     def bindings(self, params, binding: dict) -> list[dict]:
         domains = [self.objects_of(types) for _, types in params]
-        return [{**binding, **{var: value for (var, _), value in zip(params, values)}}
-                for values in itertools.product(*domains)]
+        return [
+            {**binding, **{var: value for (var, _), value in zip(params, values, strict=True)}}
+            for values in itertools.product(*domains)
+        ]
 
     # -- formulas -------------------------------------------------------------------
 
@@ -256,6 +269,7 @@ def asp_atom(atom) -> str:
 
 # -- random tasks -----------------------------------------------------------------------
 
+
 class _Generator:
     def __init__(self, rng: random.Random):
         self.rng = rng
@@ -289,14 +303,22 @@ class _Generator:
         if kind == "not":
             return ("not", self.formula(predicates, variables, objects, types, depth - 1))
         if kind in ("and", "or"):
-            return (kind, [self.formula(predicates, variables, objects, types, depth - 1)
-                           for _ in range(rng.randint(0 if rng.random() < 0.1 else 1, 3))])
+            return (
+                kind,
+                [
+                    self.formula(predicates, variables, objects, types, depth - 1)
+                    for _ in range(rng.randint(0 if rng.random() < 0.1 else 1, 3))
+                ],
+            )
         if kind == "imply":
-            return ("imply", self.formula(predicates, variables, objects, types, depth - 1),
-                    self.formula(predicates, variables, objects, types, depth - 1))
+            return (
+                "imply",
+                self.formula(predicates, variables, objects, types, depth - 1),
+                self.formula(predicates, variables, objects, types, depth - 1),
+            )
         self.fresh += 1
         var = f"?q{self.fresh}"
-        body = self.formula(predicates, variables + [var], objects, types, depth - 1)
+        body = self.formula(predicates, [*variables, var], objects, types, depth - 1)
         return (kind, [(var, self.type_spec(types))], body)
 
     def literal(self, basic: dict, variables, objects):
@@ -316,10 +338,9 @@ class _Generator:
             return ("when", condition, inner[0] if len(inner) == 1 else ("and", inner))
         self.fresh += 1
         var = f"?e{self.fresh}"
-        inner = self.literal(basic, variables + [var], objects)
+        inner = self.literal(basic, [*variables, var], objects)
         if rng.random() < 0.6:
-            condition = self.formula(readable, variables + [var], objects, types,
-                                     rng.randint(0, 1))
+            condition = self.formula(readable, [*variables, var], objects, types, rng.randint(0, 1))
             inner = ("when", condition, inner)
         return ("forall", [(var, self.type_spec(types))], inner)
 
@@ -330,16 +351,22 @@ def random_task(seed: int) -> PddlTask:
     use as plain conjuncts, positive and negative, as well as anywhere else."""
     rng = random.Random(seed)
     gen = _Generator(rng)
-    types = {"t0": "object", "t1": "t0"} if rng.random() < 0.5 else {"t0": "object",
-                                                                      "t1": "object"}
+    types = {"t0": "object", "t1": "t0"} if rng.random() < 0.5 else {"t0": "object", "t1": "object"}
     type_names = sorted(types)
-    objects = {f"o{i}": (tuple(sorted(rng.sample(type_names, 2))) if rng.random() < 0.15
-                         else (rng.choice(type_names),))
-               for i in range(rng.randint(2, 3))}
+    objects = {
+        f"o{i}": (
+            tuple(sorted(rng.sample(type_names, 2)))
+            if rng.random() < 0.15
+            else (rng.choice(type_names),)
+        )
+        for i in range(rng.randint(2, 3))
+    }
     names = sorted(objects)
     constants = [names[0]] if rng.random() < 0.5 else []
-    basic = {f"p{i}": tuple(gen.type_spec(type_names) for _ in range(rng.randint(0, 2)))
-             for i in range(rng.randint(2, 3))}
+    basic = {
+        f"p{i}": tuple(gen.type_spec(type_names) for _ in range(rng.randint(0, 2)))
+        for i in range(rng.randint(2, 3))
+    }
     if all(args for args in basic.values()) and rng.random() < 0.5:
         basic["p9"] = ()
     # static predicates: no effect changes them (the translation prunes actions by them)
@@ -361,8 +388,10 @@ def random_task(seed: int) -> PddlTask:
             # a recursive disjunct (transitive closure), positive only
             gen.fresh += 1
             other = f"?r{gen.fresh}"
-            step = ("and", [("atom", name, (other,)), ("atom", rng.choice(binary),
-                                                        (other, variables[0]))])
+            step = (
+                "and",
+                [("atom", name, (other,)), ("atom", rng.choice(binary), (other, variables[0]))],
+            )
             body = ("or", [body, ("exists", [(other, params[0][1])], step)])
         derived.append((name, params, body))
         predicates[name] = tuple(types for _, types in params)
@@ -371,8 +400,11 @@ def random_task(seed: int) -> PddlTask:
     for i in range(rng.randint(2, 4)):
         params = [(f"?x{j}", gen.type_spec(type_names)) for j in range(rng.randint(0, 2))]
         variables = [var for var, _ in params]
-        pre = (("and", []) if rng.random() < 0.4 else
-               gen.formula(readable, variables, names, type_names, rng.randint(0, 2)))
+        pre = (
+            ("and", [])
+            if rng.random() < 0.4
+            else gen.formula(readable, variables, names, type_names, rng.randint(0, 2))
+        )
         if static and variables and rng.random() < 0.6:
             # plain conjuncts on static predicates, positive and negative
             literals = []
@@ -381,24 +413,43 @@ def random_task(seed: int) -> PddlTask:
                 atom = ("atom", name, tuple(gen.term(variables, names) for _ in static[name]))
                 literals.append(("not", atom) if rng.random() < 0.4 else atom)
             pre = ("and", [pre, *literals])
-        effect = ("and", [gen.effect(basic, readable, variables, names, type_names)
-                          for _ in range(rng.randint(1, 4))])
+        effect = (
+            "and",
+            [
+                gen.effect(basic, readable, variables, names, type_names)
+                for _ in range(rng.randint(1, 4))
+            ],
+        )
         actions.append((f"a{i}", params, pre, effect))
-    task = PddlTask(types, objects, constants, predicates, derived, actions, frozenset(),
-                    ("and", []))
-    ground = [(p, args) for p, arg_types in basic.items()
-              for args in itertools.product(*[task.objects_of(t) for t in arg_types])]
-    fixed = [(p, args) for p, arg_types in static.items()
-             for args in itertools.product(*[task.objects_of(t) for t in arg_types])]
-    task.init = frozenset([*(atom for atom in ground if rng.random() < 0.4),
-                           *(atom for atom in fixed if rng.random() < 0.5)])
+    task = PddlTask(
+        types, objects, constants, predicates, derived, actions, frozenset(), ("and", [])
+    )
+    ground = [
+        (p, args)
+        for p, arg_types in basic.items()
+        for args in itertools.product(*[task.objects_of(t) for t in arg_types])
+    ]
+    fixed = [
+        (p, args)
+        for p, arg_types in static.items()
+        for args in itertools.product(*[task.objects_of(t) for t in arg_types])
+    ]
+    task.init = frozenset(
+        [
+            *(atom for atom in ground if rng.random() < 0.4),
+            *(atom for atom in fixed if rng.random() < 0.5),
+        ]
+    )
     # Mostly a goal that a far reachable state meets (some of its literals),
     # sometimes with a random formula (then often unreachable).
     distances = task.distances()
     far = max(distances.values())
     target = rng.choice(sorted((s for s, d in distances.items() if d >= far - 1), key=sorted))
-    literals = [("atom", p, args) if (p, args) in target else ("not", ("atom", p, args))
-                for p, args in ground if ((p, args) in target) != ((p, args) in task.init)]
+    literals = [
+        ("atom", p, args) if (p, args) in target else ("not", ("atom", p, args))
+        for p, args in ground
+        if ((p, args) in target) != ((p, args) in task.init)
+    ]
     goal = rng.sample(literals, min(len(literals), rng.randint(1, 3)))
     if rng.random() < 0.4 or not goal:
         goal.append(gen.formula(readable, [], names, type_names, rng.randint(0, 2)))

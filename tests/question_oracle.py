@@ -54,7 +54,7 @@ def meets(spec: RandomModel, plan: list[str], term: tuple) -> bool:
         return term[1] not in plan
     if kind == "before":
         first, then = term[1], term[2]
-        return any(x == first and then in plan[i + 1:] for i, x in enumerate(plan))
+        return any(x == first and then in plan[i + 1 :] for i, x in enumerate(plan))
     if kind in ("at", "not_at"):
         there = term[2] <= n and plan[term[2] - 1] == term[1]
         return there if kind == "at" else not there
@@ -76,9 +76,7 @@ def _largest_step(terms) -> int:
     for term in terms:
         if term[0] in ("at", "not_at"):
             bound = max(bound, term[2])
-        elif term[0] in ("within", "not_within"):
-            bound = max(bound, term[3])
-        elif term[0] == "fact_at":
+        elif term[0] in ("within", "not_within") or term[0] == "fact_at":
             bound = max(bound, term[3])
         elif term[0] == "at_most":
             bound = max(bound, term[1])
@@ -105,8 +103,9 @@ def shortest_meeting(spec: RandomModel, terms, principles=()) -> int | None:
     clock = _largest_step(terms) + 1
     top = max(clock, spec.last_event)
     limit = min((t[1] for t in terms if t[0] == "at_most"), default=None)
-    watched = {t[1] for t in terms if t[0] in ("used", "unused", "at", "not_at", "within",
-                                              "not_within")}
+    watched = {
+        t[1] for t in terms if t[0] in ("used", "unused", "at", "not_at", "within", "not_within")
+    }
     watched |= {a for t in terms if t[0] == "before" for a in t[1:]}
     named_steps = {t[3] for t in terms if t[0] == "fact_at"}
     best = spec.best_reachable_utility() if "utilitarianism" in principles else None
@@ -136,7 +135,7 @@ def shortest_meeting(spec: RandomModel, terms, principles=()) -> int | None:
         if accepted(node):
             return depth[node]
         state, time, memory, produced = node
-        step = time + 1               # the step taken next (exact while below the top)
+        step = time + 1  # the step taken next (exact while below the top)
         if limit is not None and depth[node] + 1 > limit:
             continue
         for action in spec.actions:
@@ -154,12 +153,14 @@ def shortest_meeting(spec: RandomModel, terms, principles=()) -> int | None:
             if step < clock:
                 remember.add(("at", action, step))
                 if step in named_steps:
-                    remember.add(("after", step, spec.extended(after) if spec.derived
-                                  else after))
+                    remember.add(("after", step, spec.extended(after) if spec.derived else after))
             if harmless:
                 acted = spec.apply(state, action)
-                fired = {(v, b) for v, b in spec.firing(state, action)
-                         if spec.bad_fact(v, b) and (v in acted) == b}
+                fired = {
+                    (v, b)
+                    for v, b in spec.firing(state, action)
+                    if spec.bad_fact(v, b) and (v in acted) == b
+                }
                 produced_after = carry(after, produced | fired)
             else:
                 produced_after = produced
@@ -190,8 +191,7 @@ def _met(spec: RandomModel, term: tuple, final: frozenset, time: int, memory) ->
         return value(spec, final, term[1]) == term[2]
     if kind == "fact_at":
         if time >= term[3]:
-            after = next(s for tag, t, s in (m for m in memory if m[0] == "after")
-                         if t == term[3])
+            after = next(s for tag, t, s in (m for m in memory if m[0] == "after") if t == term[3])
             return (term[1] in after) == term[2]
         return value(spec, final, term[1]) == term[2]
     if kind == "at_most":
@@ -201,6 +201,7 @@ def _met(spec: RandomModel, term: tuple, final: frozenset, time: int, memory) ->
 
 # -- step-by-step explanations ---------------------------------------------------------
 
+
 def _sets(spec: RandomModel, state: frozenset, action: str) -> dict[str, bool]:
     """What the action sets in a state: its firing effects, true winning."""
     result: dict[str, bool] = {}
@@ -209,8 +210,9 @@ def _sets(spec: RandomModel, state: frozenset, action: str) -> dict[str, bool]:
     return result
 
 
-def _support(spec: RandomModel, state: frozenset, variable: str, wanted: bool,
-             seen=None) -> set[tuple[str, bool]]:
+def _support(
+    spec: RandomModel, state: frozenset, variable: str, wanted: bool, seen=None
+) -> set[tuple[str, bool]]:
     """The state variables (with values) that give a derived variable its value
     in a state: for true, the conditions of every axiom that holds; for false,
     every condition that fails; derived conditions expanded in turn."""
@@ -240,21 +242,40 @@ def _event_sets(spec: RandomModel, state: frozenset, step: int) -> dict[str, dic
     with an equal key to true (so the greatest key wins, true between equal
     keys, as RandomModel.happen; an effect overridden by one that is in turn
     overridden sets nothing)."""
-    happening = [event for event in spec.events if event.step == step
-                 and all((v in state) == b for v, b in event.pre.items())]
-    firing = {event.name: [(key, sets) for key, conditions, sets in event.effects
-                           if all((v in state) == b for v, b in conditions.items())]
-              for event in happening}
-    every = [(key, variable, setting) for effects in firing.values()
-             for key, sets in effects for variable, setting in sets.items()]
+    happening = [
+        event
+        for event in spec.events
+        if event.step == step and all((v in state) == b for v, b in event.pre.items())
+    ]
+    firing = {
+        event.name: [
+            (key, sets)
+            for key, conditions, sets in event.effects
+            if all((v in state) == b for v, b in conditions.items())
+        ]
+        for event in happening
+    }
+    every = [
+        (key, variable, setting)
+        for effects in firing.values()
+        for key, sets in effects
+        for variable, setting in sets.items()
+    ]
 
     def wins(key: int, variable: str, setting: bool) -> bool:
-        return not any(v == variable and b != setting and (k > key or (k == key and b))
-                       for k, v, b in every)
+        return not any(
+            v == variable and b != setting and (k > key or (k == key and b)) for k, v, b in every
+        )
 
-    return {name: {variable: setting for key, sets in effects
-                   for variable, setting in sets.items() if wins(key, variable, setting)}
-            for name, effects in firing.items()}
+    return {
+        name: {
+            variable: setting
+            for key, sets in effects
+            for variable, setting in sets.items()
+            if wins(key, variable, setting)
+        }
+        for name, effects in firing.items()
+    }
 
 
 def _event_needs(spec: RandomModel, state: frozenset, step: int) -> dict[str, dict[str, bool]]:
@@ -337,13 +358,16 @@ def causes(spec: RandomModel, plan: list[str]) -> dict[int, set[tuple[str, bool,
     caused = spec.caused(plan)
     result = {}
     for step, action in enumerate(plan, start=1):
-        result[step] = {(v, b, spec.fact_utility[(v, b)])
-                        for v, b in _sets(spec, states[step - 1], action).items()
-                        if (v, b) in caused and spec.fact_utility.get((v, b), 0) != 0}
+        result[step] = {
+            (v, b, spec.fact_utility[(v, b)])
+            for v, b in _sets(spec, states[step - 1], action).items()
+            if (v, b) in caused and spec.fact_utility.get((v, b), 0) != 0
+        }
     return result
 
 
 def removable(spec: RandomModel, plan: list[str]) -> set[int]:
     """The steps without which the plan is still a plan."""
-    return {step for step in range(1, len(plan) + 1)
-            if spec.is_plan(plan[:step - 1] + plan[step:])}
+    return {
+        step for step in range(1, len(plan) + 1) if spec.is_plan(plan[: step - 1] + plan[step:])
+    }

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import itertools
 import re
-from typing import Iterable
+from collections.abc import Iterable
 
 Formula = object
 Literal = tuple[str, bool]
@@ -88,9 +88,9 @@ def consistent(assignment: dict[str, bool]) -> bool:
         if c < d and (d, c) in geq and not value and not geq[(d, c)]:
             return False
     for (c, d), (d2, e) in itertools.product(geq, geq):
-        if d == d2 and len({c, d, e}) == 3 and (c, e) in geq:
-            if geq[(c, d)] and geq[(d, e)] and not geq[(c, e)]:
-                return False
+        chained = d == d2 and len({c, d, e}) == 3 and (c, e) in geq
+        if chained and geq[(c, d)] and geq[(d, e)] and not geq[(c, e)]:
+            return False
     return True
 
 
@@ -98,13 +98,14 @@ def assignments(atoms: list[str]) -> list[dict[str, bool]]:
     """Every assignment of the atoms that respects the theory."""
     result = []
     for values in itertools.product([False, True], repeat=len(atoms)):
-        assignment = dict(zip(atoms, values))
+        assignment = dict(zip(atoms, values, strict=True))
         if consistent(assignment):
             result.append(assignment)
     return result
 
 
 # -- reasons --------------------------------------------------------------------------
+
 
 def _minimal(sets: Iterable[frozenset]) -> set[frozenset]:
     sets = set(sets)
@@ -140,6 +141,7 @@ def necessary_reasons(formula: Formula, actual: dict[str, bool]) -> set[frozense
 
 
 # -- ASP facts ----------------------------------------------------------------------
+
 
 def to_asp(formula: Formula, name: str = "q") -> str:
     """``formula(name,F)`` and ``member/2`` facts for a formula."""

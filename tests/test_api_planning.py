@@ -1,8 +1,8 @@
 """The Python API of the planning core: models, plan search, validation."""
 
 import pytest
-
 from conftest import MODELS
+
 from ethasp import InputError, Model, Plan, find_plan, validate
 from ethasp.planning import search as search_module
 from ethasp.principles.restriction import plan_with_principles
@@ -34,7 +34,9 @@ def test_model_from_string_and_empty_plan():
 
 
 def test_none_is_proven_by_relaxed_reachability():
-    model = Model.from_string("variable(a;b). action(x). pre(x,a,true). eff(x,b,true). goal(b,true).")
+    model = Model.from_string(
+        "variable(a;b). action(x). pre(x,a,true). eff(x,b,true). goal(b,true)."
+    )
     result = find_plan(model)
     assert result.status == "none" and result.horizon == 0
     assert "unreachable" in result.proof
@@ -44,7 +46,8 @@ def test_none_is_proven_by_the_loop_free_threshold():
     # Each action blocks the other: the goal is relaxed reachable but not reachable.
     model = Model.from_string(
         "variable(a;b). action(x;y). pre(x,b,false). eff(x,a,true). "
-        "pre(y,a,false). eff(y,b,true). goal(a,true). goal(b,true).")
+        "pre(y,a,false). eff(y,b,true). goal(a,true). goal(b,true)."
+    )
     result = find_plan(model)
     assert result.status == "none" and "every reachable state" in result.proof
 
@@ -89,15 +92,21 @@ def test_unknown_action_in_plan_is_an_input_error():
         validate(trolley(), Plan.parse("pull jump"))
 
 
-@pytest.mark.parametrize("text,message", [
-    ("variable(a). goal(a,true). action(x). eff(x,b,true).", "unknown variable b"),
-    ("variable(a). goal(b,true).", "unknown variable b"),
-    ("variable(a). goal(a,true). pre(x,a,true).", "unknown action x"),
-    ("variable(a). goal(a,true). action(x). utility(x,high).", "must be an integer"),
-    ("variable(a). goal(a,true). action(x). eff(x,a,true). eff(x,a,false).", "both to true and to false"),
-    ("% nothing", "the model is empty"),
-    ("variable(a). goal(a,true) p.", "syntax error"),
-])
+@pytest.mark.parametrize(
+    "text,message",
+    [
+        ("variable(a). goal(a,true). action(x). eff(x,b,true).", "unknown variable b"),
+        ("variable(a). goal(b,true).", "unknown variable b"),
+        ("variable(a). goal(a,true). pre(x,a,true).", "unknown action x"),
+        ("variable(a). goal(a,true). action(x). utility(x,high).", "must be an integer"),
+        (
+            "variable(a). goal(a,true). action(x). eff(x,a,true). eff(x,a,false).",
+            "both to true and to false",
+        ),
+        ("% nothing", "the model is empty"),
+        ("variable(a). goal(a,true) p.", "syntax error"),
+    ],
+)
 def test_bad_models_are_input_errors(text, message):
     with pytest.raises(InputError, match=message):
         Model.from_string(text)
@@ -140,12 +149,14 @@ def test_searches_share_one_grounding(monkeypatch):
     hplan = plan_with_principles(model, ["deontology"], max_horizon=10)
     assert hplan.status == "found" and model.planner is planner and planner.ctl is control
     restricted = hmodel(model, Restriction.of(["deontology"]))
-    assert restricted is not model                 # rescue's break_door is bad
+    assert restricted is not model  # rescue's break_door is bad
     restricted_control, restricted_grounded = restricted.planner.ctl, restricted.planner.grounded
     # Asking again grounds nothing new, in either.
     assert find_plan(model, max_horizon=10).plan == result.plan
     assert plan_with_principles(model, ["deontology"], max_horizon=10).plan == hplan.plan
     assert hmodel(model, Restriction.of(["deontology"])) is restricted
     assert (planner.ctl, planner.grounded) == (control, grounded)
-    assert (restricted.planner.ctl, restricted.planner.grounded) == (restricted_control,
-                                                                     restricted_grounded)
+    assert (restricted.planner.ctl, restricted.planner.grounded) == (
+        restricted_control,
+        restricted_grounded,
+    )

@@ -13,8 +13,8 @@ import sys
 from pathlib import Path
 
 import pytest
-
 from conftest import MODELS, ROOT
+
 from ethasp.interfaces.cli import main
 from ethasp.planning.namespace import reserved, signature_text
 
@@ -28,7 +28,7 @@ PLACEHOLDERS = {
     "deep_name": shlex.quote("Good(" + "f(" * 10_001 + "a" + ")" * 10_001 + ")"),
     "deep_question": shlex.quote("why " + "f(" * 10_001 + "a" + ")" * 10_001),
     "long": "a" * 5000,
-    "undecodable": shlex.quote('"\udcff"'),        # a byte that is not UTF-8, as Python keeps it
+    "undecodable": shlex.quote('"\udcff"'),  # a byte that is not UTF-8, as Python keeps it
 }
 
 
@@ -57,9 +57,14 @@ def run_in_process(arguments: list[str], stdin: str = "") -> tuple[int, str, str
 
 
 def run_process(arguments: list[str]) -> tuple[int, str, str]:
-    done = subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", *arguments],
-                          stdin=subprocess.DEVNULL, capture_output=True, text=True,
-                          timeout=300, cwd=ROOT)
+    done = subprocess.run(
+        [sys.executable, "-m", "ethasp.interfaces.cli", *arguments],
+        stdin=subprocess.DEVNULL,
+        capture_output=True,
+        text=True,
+        timeout=300,
+        cwd=ROOT,
+    )
     return done.returncode, done.stdout, done.stderr
 
 
@@ -83,7 +88,7 @@ def test_the_corpus_is_large_and_well_formed():
 
 @pytest.mark.parametrize("row", CASES, ids=[row["command"][:60] for row in CASES])
 def test_bad_input_in_process(row, monkeypatch, tmp_path):
-    monkeypatch.chdir(tmp_path)     # nothing is written beside the sources
+    monkeypatch.chdir(tmp_path)  # nothing is written beside the sources
     fragment = row["fragment"].replace("{f}", str(FIXTURES))
     assert_refused(*run_in_process(argv(row)), fragment, row["exit"])
 
@@ -100,6 +105,7 @@ def test_bad_input_as_a_process(row):
 
 # -- every reserved predicate, generated from the encodings -----------------------
 
+
 def _fact(signature: tuple[str, int]) -> str:
     name, arity = signature
     return f"{name}({','.join(['x'] * arity)})." if arity else f"{name}."
@@ -112,9 +118,11 @@ RESERVED = sorted(reserved(pddl=False))
 def test_every_reserved_predicate_is_refused(signature, tmp_path):
     model = tmp_path / "model.lp"
     model.write_text((MODELS / "trolley.lp").read_text() + "\n" + _fact(signature) + "\n")
-    assert_refused(*run_in_process(["plan", str(model)]),
-                   f"model.lp:{len((MODELS / 'trolley.lp').read_text().splitlines()) + 2}: "
-                   f"the model defines {signature_text(signature)}")
+    assert_refused(
+        *run_in_process(["plan", str(model)]),
+        f"model.lp:{len((MODELS / 'trolley.lp').read_text().splitlines()) + 2}: "
+        f"the model defines {signature_text(signature)}",
+    )
 
 
 @pytest.mark.parametrize("signature", sorted(set(reserved(pddl=True)) - set(RESERVED)))
@@ -122,9 +130,17 @@ def test_pddl_typing_is_reserved_for_pddl_tasks(signature, tmp_path):
     annotations = tmp_path / "annotations.lp"
     annotations.write_text(_fact(signature) + "\n")
     pddl = MODELS / "pddl"
-    assert_refused(*run_in_process(["plan", str(pddl / "trolley-domain.pddl"),
-                                    str(pddl / "trolley-problem.pddl"), str(annotations)]),
-                   f"the model defines {signature_text(signature)}")
+    assert_refused(
+        *run_in_process(
+            [
+                "plan",
+                str(pddl / "trolley-domain.pddl"),
+                str(pddl / "trolley-problem.pddl"),
+                str(annotations),
+            ]
+        ),
+        f"the model defines {signature_text(signature)}",
+    )
 
 
 def test_a_time_limit_of_zero_means_no_limit():

@@ -14,11 +14,11 @@ import time
 from pathlib import Path
 
 import pytest
+from test_batch import by_hash, variants, without_times
 
 import ethasp
 from ethasp.batch.output import read_lines
 from ethasp.principles.principle import HERA
-from test_batch import by_hash, variants, without_times
 
 distributed = pytest.importorskip("distributed")
 
@@ -28,9 +28,14 @@ WAIT = 180.0
 
 def _dask(*arguments: str, folder: Path, log: Path) -> subprocess.Popen:
     environment = dict(os.environ, DASK_TEMPORARY_DIRECTORY=str(folder))
-    return subprocess.Popen([sys.executable, "-m", "dask", *arguments], cwd=folder,
-                            env=environment, stdin=subprocess.DEVNULL,
-                            stdout=subprocess.DEVNULL, stderr=open(log, "wb"))
+    return subprocess.Popen(
+        [sys.executable, "-m", "dask", *arguments],
+        cwd=folder,
+        env=environment,
+        stdin=subprocess.DEVNULL,
+        stdout=subprocess.DEVNULL,
+        stderr=open(log, "wb"),
+    )
 
 
 def _poll(condition, what: str, processes) -> None:
@@ -51,26 +56,51 @@ def cluster(tmp_path):
     folder.mkdir()
     address_file = folder / "scheduler.json"
     try:
-        processes.append(_dask("scheduler", "--host", "127.0.0.1", "--port", "0",
-                               "--no-dashboard", "--scheduler-file", str(address_file),
-                               folder=folder, log=tmp_path / "scheduler.log"))
-        _poll(lambda: address_file.is_file() and address_file.stat().st_size > 0,
-              "scheduler address", processes)
+        processes.append(
+            _dask(
+                "scheduler",
+                "--host",
+                "127.0.0.1",
+                "--port",
+                "0",
+                "--no-dashboard",
+                "--scheduler-file",
+                str(address_file),
+                folder=folder,
+                log=tmp_path / "scheduler.log",
+            )
+        )
+        _poll(
+            lambda: address_file.is_file() and address_file.stat().st_size > 0,
+            "scheduler address",
+            processes,
+        )
         time.sleep(0.1)
         address = json.loads(address_file.read_text())["address"]
         workers = []
         for name in ("one", "two"):
             home = tmp_path / name
             home.mkdir()
-            worker = _dask("worker", address, "--name", name, "--nthreads", "1",
-                           "--no-nanny", "--no-dashboard", "--host", "127.0.0.1",
-                           "--local-directory", str(home), folder=home,
-                           log=tmp_path / f"{name}.log")
+            worker = _dask(
+                "worker",
+                address,
+                "--name",
+                name,
+                "--nthreads",
+                "1",
+                "--no-nanny",
+                "--no-dashboard",
+                "--host",
+                "127.0.0.1",
+                "--local-directory",
+                str(home),
+                folder=home,
+                log=tmp_path / f"{name}.log",
+            )
             processes.append(worker)
             workers.append(worker)
         with distributed.Client(address, timeout=60, set_as_default=False) as client:
-            _poll(lambda: len(client.scheduler_info()["workers"]) == 2, "two workers",
-                  processes)
+            _poll(lambda: len(client.scheduler_info()["workers"]) == 2, "two workers", processes)
         yield address, workers
     finally:
         for process in reversed(processes):
@@ -97,14 +127,15 @@ def test_a_cluster_computes_the_lines_of_the_local_pool_and_loses_no_case(cluste
     for line in running:
         lines.append(line)
         if not killed and running.cases_done >= 3:
-            workers[0].send_signal(signal.SIGKILL)     # a worker lost mid-run
+            workers[0].send_signal(signal.SIGKILL)  # a worker lost mid-run
             workers[0].wait()
             killed = True
     assert killed
     assert len(lines) == 24 * len(HERA) + 1
     assert len(list(read_lines(output))) == len(lines)
-    assert {h: without_times(line) for h, line in by_hash(lines).items()} == \
-        {h: without_times(line) for h, line in by_hash(local).items()}
+    assert {h: without_times(line) for h, line in by_hash(lines).items()} == {
+        h: without_times(line) for h, line in by_hash(local).items()
+    }
     [error] = [line for line in lines if "error" in line]
     assert error["case"] == str(bad) and error["error"].startswith(f"{bad}:4:1")
     # Run again: nothing is missing.

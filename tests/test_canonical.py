@@ -3,28 +3,30 @@ canonical.lp): it removes plans in other orders, never every plan of a length;
 against the oracle, and switched off where a search needs every order."""
 
 import pytest
+from conftest import answer_sets
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from oracle import features, random_model
 
-from conftest import answer_sets
 from ethasp import Model
 from ethasp.planning.budget import Budget
 from ethasp.planning.plan import Plan
 from ethasp.planning.planner import Setting
 from ethasp.planning.search import plans_of
-from oracle import features, random_model
 
 FILES = ["planning/plan.lp", "planning/canonical.lp"]
-TWO = ("variable(p;q). action(a;b). eff(a,p,true). eff(b,q,true). "
-       "goal(p,true). goal(q,true).")
+TWO = "variable(p;q). action(a;b). eff(a,p,true). eff(b,q,true). goal(p,true). goal(q,true)."
 
 
 def plans(model: str, horizon: int, canonical: bool) -> set[tuple[str, ...]]:
     program = model + (" require(canonical)." if canonical else "")
     result = set()
     for answer in answer_sets(FILES, program, arguments=("0", "-c", f"horizon={horizon}")):
-        steps = sorted((int(a.split(",")[-1].rstrip(")")), a[len("occurs("):a.rindex(",")])
-                       for a in answer if a.startswith("occurs("))
+        steps = sorted(
+            (int(a.split(",")[-1].rstrip(")")), a[len("occurs(") : a.rindex(",")])
+            for a in answer
+            if a.startswith("occurs(")
+        )
         result.add(tuple(name for _, name in steps))
     return result
 
@@ -34,11 +36,14 @@ def test_independent_actions_come_in_the_order_of_their_terms():
     assert plans(TWO, 2, True) == {("a", "b")}
 
 
-@pytest.mark.parametrize("extra", [
-    "pre(b,p,true).",                       # b reads what a writes
-    "eff(b,p,false).",                      # both write p
-    "pre(a,q,false).",                      # a reads what b writes
-])
+@pytest.mark.parametrize(
+    "extra",
+    [
+        "pre(b,p,true).",  # b reads what a writes
+        "eff(b,p,false).",  # both write p
+        "pre(a,q,false).",  # a reads what b writes
+    ],
+)
 def test_dependent_actions_keep_both_orders_where_both_are_plans(extra):
     model = TWO + " " + extra
     assert plans(model, 2, True) == plans(model, 2, False)
@@ -66,9 +71,15 @@ def first_plan(model: Model, canonical: bool, max_horizon: int = 14):
 @settings(max_examples=60, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9), st.booleans(), st.booleans())
 def test_canonical_search_finds_plans_of_the_shortest_length(seed, conditional, derived):
-    spec = random_model(seed, max_variables=5, max_actions=6, conditional=conditional,
-                        derived=derived, far_goal=seed % 2 == 0,
-                        events=features(seed)["events"])   # then no canonical order
+    spec = random_model(
+        seed,
+        max_variables=5,
+        max_actions=6,
+        conditional=conditional,
+        derived=derived,
+        far_goal=seed % 2 == 0,
+        events=features(seed)["events"],
+    )  # then no canonical order
     expected = spec.shortest_plan_length()
     plan = first_plan(Model.from_string(spec.to_asp()), canonical=True)
     if expected is None:

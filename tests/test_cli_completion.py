@@ -12,8 +12,8 @@ import subprocess
 import sys
 
 import pytest
-
 from conftest import ROOT
+
 from ethasp.interfaces.cli import build_parser
 from ethasp.interfaces.completion import bundled_models, commands, principle_names, script
 
@@ -27,8 +27,12 @@ def scripts(tmp_path_factory):
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
     paths = {}
     for shell in ("bash", "zsh"):
-        run = subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", "completion", shell],
-                             capture_output=True, text=True, env=env)
+        run = subprocess.run(
+            [sys.executable, "-m", "ethasp.interfaces.cli", "completion", shell],
+            capture_output=True,
+            text=True,
+            env=env,
+        )
         assert run.returncode == 0 and run.stderr == "", run.stderr
         paths[shell] = folder / f"ethasp.{shell}"
         paths[shell].write_text(run.stdout)
@@ -50,37 +54,56 @@ def test_the_scripts_follow_the_parser():
 
 
 def test_an_unknown_shell_is_one_line():
-    run = subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", "completion", "fish"],
-                         capture_output=True, text=True,
-                         env={**os.environ, "PYTHONPATH": str(ROOT)})
+    run = subprocess.run(
+        [sys.executable, "-m", "ethasp.interfaces.cli", "completion", "fish"],
+        capture_output=True,
+        text=True,
+        env={**os.environ, "PYTHONPATH": str(ROOT)},
+    )
     assert run.returncode == 2 and run.stderr.count("\n") == 1 and "invalid choice" in run.stderr
 
 
 @pytest.mark.skipif(BASH is None, reason="bash is not installed")
-@pytest.mark.parametrize("words, expected", [
-    (["ethasp", "ju"], ["judge"]),
-    (["ethasp", "-"], ["-h", "--help", "-V", "--version"]),
-    (["ethasp", "judge", "trolley", "--pri"], ["--principle"]),
-    (["ethasp", "judge", "trolley", "--principle", "do"],
-     ["do-no-harm", "do-no-instrumental-harm", "double-effect"]),
-    (["ethasp", "plan", "trolley", "--principle", "do"], ["do-no-harm"]),
-    (["ethasp", "ask", "trolley", "--under", "util"], ["utilitarianism"]),
-    (["ethasp", "judge", "trolley", "--principle", "pa"], ["paper"]),
-    (["ethasp", "judge", "troll"], ["trolley", "trolley.yaml", "trolley-domain.pddl",
-                                    "trolley-problem.pddl", "trolley-utility.lp"]),
-    (["ethasp", "judge", "asp/foot"], ["asp/footbridge.lp"]),
-    (["ethasp", "completion", ""], ["bash", "zsh"]),
-    (["ethasp", "serve", "trolley", "--log"], ["--log-requests"]),
-    (["ethasp", "judge", "trolley", "--max-horizon", ""], []),
-])
+@pytest.mark.parametrize(
+    "words, expected",
+    [
+        (["ethasp", "ju"], ["judge"]),
+        (["ethasp", "-"], ["-h", "--help", "-V", "--version"]),
+        (["ethasp", "judge", "trolley", "--pri"], ["--principle"]),
+        (
+            ["ethasp", "judge", "trolley", "--principle", "do"],
+            ["do-no-harm", "do-no-instrumental-harm", "double-effect"],
+        ),
+        (["ethasp", "plan", "trolley", "--principle", "do"], ["do-no-harm"]),
+        (["ethasp", "ask", "trolley", "--under", "util"], ["utilitarianism"]),
+        (["ethasp", "judge", "trolley", "--principle", "pa"], ["paper"]),
+        (
+            ["ethasp", "judge", "troll"],
+            [
+                "trolley",
+                "trolley.yaml",
+                "trolley-domain.pddl",
+                "trolley-problem.pddl",
+                "trolley-utility.lp",
+            ],
+        ),
+        (["ethasp", "judge", "asp/foot"], ["asp/footbridge.lp"]),
+        (["ethasp", "completion", ""], ["bash", "zsh"]),
+        (["ethasp", "serve", "trolley", "--log"], ["--log-requests"]),
+        (["ethasp", "judge", "trolley", "--max-horizon", ""], []),
+    ],
+)
 def test_bash_completes(scripts, words, expected):
     line = " ".join(f"'{word}'" for word in words)
-    program = (f"source {scripts['bash']}\n"
-               f"COMP_WORDS=({line}); COMP_CWORD={len(words) - 1}; COMPREPLY=()\n"
-               "_ethasp 2>/dev/null\n"
-               'printf "%s\\n" "${COMPREPLY[@]}"\n')
-    run = subprocess.run([BASH, "--norc", "--noprofile", "-c", program], capture_output=True,
-                         text=True, cwd=ROOT)
+    program = (
+        f"source {scripts['bash']}\n"
+        f"COMP_WORDS=({line}); COMP_CWORD={len(words) - 1}; COMPREPLY=()\n"
+        "_ethasp 2>/dev/null\n"
+        'printf "%s\\n" "${COMPREPLY[@]}"\n'
+    )
+    run = subprocess.run(
+        [BASH, "--norc", "--noprofile", "-c", program], capture_output=True, text=True, cwd=ROOT
+    )
     assert run.returncode == 0, run.stderr
     assert sorted(filter(None, run.stdout.split("\n"))) == sorted(expected)
 
@@ -101,17 +124,28 @@ zpty -d z
 
 
 @pytest.mark.skipif(ZSH is None, reason="zsh is not installed")
-@pytest.mark.parametrize("typed, shown, hidden", [
-    ("ethasp judge trolley --principle do", ["double-effect", "do-no-instrumental-harm"], []),
-    ("ethasp plan trolley --principle hera-", ["hera-deontology", "hera-utilitarianism"],
-     ["hera-do-no-harm"]),
-    ("ethasp ser", ["serve"], []),
-])
+@pytest.mark.parametrize(
+    "typed, shown, hidden",
+    [
+        ("ethasp judge trolley --principle do", ["double-effect", "do-no-instrumental-harm"], []),
+        (
+            "ethasp plan trolley --principle hera-",
+            ["hera-deontology", "hera-utilitarianism"],
+            ["hera-do-no-harm"],
+        ),
+        ("ethasp ser", ["serve"], []),
+    ],
+)
 def test_zsh_completes(scripts, tmp_path, typed, shown, hidden):
     driver = tmp_path / "driver.zsh"
     driver.write_text(ZSH_DRIVER)
-    run = subprocess.run([ZSH, "-f", str(driver), str(scripts["zsh"]), typed, shown[-1]],
-                         capture_output=True, text=True, cwd=ROOT, timeout=120)
+    run = subprocess.run(
+        [ZSH, "-f", str(driver), str(scripts["zsh"]), typed, shown[-1]],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+        timeout=120,
+    )
     screen = run.stdout.replace("\r", "")
     for word in shown:
         assert word in screen, screen

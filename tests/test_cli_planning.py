@@ -10,8 +10,12 @@ TROLLEY = str(MODELS / "trolley.lp")
 
 
 def ethasp(*args: str, cwd=ROOT) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", *args], capture_output=True,
-                          text=True, cwd=cwd)
+    return subprocess.run(
+        [sys.executable, "-m", "ethasp.interfaces.cli", *args],
+        capture_output=True,
+        text=True,
+        cwd=cwd,
+    )
 
 
 def test_plan_json_on_trolley():
@@ -42,8 +46,12 @@ def test_plan_bounded_and_none():
 def test_validate_reports_failure(tmp_path):
     run = ethasp("validate", str(MODELS / "heist.lp"), "--plan", "steal give_jewels")
     assert run.returncode == 2
-    assert "step 1: action steal is not applicable: precondition scouted does not hold" in run.stdout
-    run = ethasp("validate", str(MODELS / "heist.lp"), "--plan", "scout steal give_jewels", "--json")
+    assert (
+        "step 1: action steal is not applicable: precondition scouted does not hold" in run.stdout
+    )
+    run = ethasp(
+        "validate", str(MODELS / "heist.lp"), "--plan", "scout steal give_jewels", "--json"
+    )
     assert run.returncode == 0 and json.loads(run.stdout)["valid"] is True
 
 
@@ -73,17 +81,24 @@ def test_scripts_refused_unless_allowed(tmp_path):
 
 def test_installed_package_holds_every_encoding_and_model(tmp_path):
     """A non-editable install carries the encodings and bundled models (run from elsewhere)."""
-    code = ("import ethasp.resources as r, json; "
-            "print(json.dumps([sorted(str(p.relative_to(r.ENCODINGS)) for p in r.ENCODINGS.rglob('*.lp')),"
-            " sorted(str(p.relative_to(r.MODELS)) for p in r.MODELS.rglob('*') if p.is_file()"
-            " and p.suffix in ('.lp', '.pddl', '.yaml', '.json'))]))")
+    code = (
+        "import ethasp.resources as r, json; "
+        "print(json.dumps([sorted(str(p.relative_to(r.ENCODINGS))"
+        " for p in r.ENCODINGS.rglob('*.lp')),"
+        " sorted(str(p.relative_to(r.MODELS)) for p in r.MODELS.rglob('*') if p.is_file()"
+        " and p.suffix in ('.lp', '.pddl', '.yaml', '.json'))]))"
+    )
     run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path)
     assert run.returncode == 0, run.stderr
     encodings, models = json.loads(run.stdout)
-    assert encodings == sorted(str(p.relative_to(ROOT / "encodings"))
-                               for p in (ROOT / "encodings").rglob("*.lp"))
-    assert models == sorted(str(p.relative_to(MODELS)) for p in MODELS.rglob("*")
-                            if p.is_file() and p.suffix in (".lp", ".pddl", ".yaml", ".json"))
+    assert encodings == sorted(
+        str(p.relative_to(ROOT / "encodings")) for p in (ROOT / "encodings").rglob("*.lp")
+    )
+    assert models == sorted(
+        str(p.relative_to(MODELS))
+        for p in MODELS.rglob("*")
+        if p.is_file() and p.suffix in (".lp", ".pddl", ".yaml", ".json")
+    )
 
 
 def test_time_limit_zero_means_none_and_negative_is_refused():

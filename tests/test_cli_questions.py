@@ -15,15 +15,27 @@ KEY_PLAN = "take_key move(r1,r2) move(r2,r3) unlock_door move(r3,r4)"
 
 
 def ethasp(*args, stdin=None, cwd=ROOT):
-    return subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", *args], input=stdin,
-                          capture_output=True, text=True, cwd=cwd)
+    return subprocess.run(
+        [sys.executable, "-m", "ethasp.interfaces.cli", *args],
+        input=stdin,
+        capture_output=True,
+        text=True,
+        cwd=cwd,
+    )
 
 
 def test_ask_help_lists_the_grammar():
     run = ethasp("ask", "--help")
     text = " ".join(run.stdout.split())
-    for form in ("'why A after B'", "'why A at T'", "'why not A within T1..T2'", "'why F'",
-                 "'why not F at T'", "'why not in N steps'", "'why fact X'"):
+    for form in (
+        "'why A after B'",
+        "'why A at T'",
+        "'why not A within T1..T2'",
+        "'why F'",
+        "'why not F at T'",
+        "'why not in N steps'",
+        "'why fact X'",
+    ):
         assert form in text, form
     assert "dropped only when no plan meeting the question is proven permissible" in text
 
@@ -44,10 +56,12 @@ def test_ask_new_forms_json():
 
 
 def test_ask_errors_are_one_line():
-    for question, message in (("why take_key at 2", "step 2 of the plan is move(r1,r2)"),
-                              ("why take_key at x", "expected a step number"),
-                              ("why door_broken", "door_broken is false at the end"),
-                              ("why jump", "unknown action jump (nor a state variable)")):
+    for question, message in (
+        ("why take_key at 2", "step 2 of the plan is move(r1,r2)"),
+        ("why take_key at x", "expected a step number"),
+        ("why door_broken", "door_broken is false at the end"),
+        ("why jump", "unknown action jump (nor a state variable)"),
+    ):
         run = ethasp("ask", RESCUE, "--plan", KEY_PLAN, "--question", question)
         assert run.returncode == 2 and message in run.stderr, run.stderr
         assert run.stderr.count("\n") == 1 and "Traceback" not in run.stderr
@@ -60,15 +74,17 @@ def test_explain_words():
     assert run.returncode == 0, run.stderr
     lines = run.stdout.splitlines()
     assert lines[0] == f"plan of 5 steps: {KEY_PLAN}"
-    assert lines[1] == ("Step 1, take the key, lets step 4 unlock the door (the fact "
-                        "holding_key).")
-    assert lines[4] == ("Step 4, unlock the door, lets step 5 move to the exit (the fact "
-                        "door_open).")
+    assert lines[1] == ("Step 1, take the key, lets step 4 unlock the door (the fact holding_key).")
+    assert lines[4] == (
+        "Step 4, unlock the door, lets step 5 move to the exit (the fact door_open)."
+    )
     assert lines[5] == "Step 5, move to the exit, brings about the goal (the fact at(r4))."
     assert lines[-1] == "removable steps: none"
     run = ethasp("explain", TROLLEY, "--plan", "refrain pull")
-    assert "Step 1, refrain from action, is not needed: the plan without it is still a plan." \
+    assert (
+        "Step 1, refrain from action, is not needed: the plan without it is still a plan."
         in run.stdout
+    )
     assert "it causes the death of the one person (utility -1)" in run.stdout
     assert run.stdout.splitlines()[-1] == "removable steps: 1, 2"
 
@@ -80,8 +96,15 @@ def test_explain_json_and_svg(tmp_path):
     data = json.loads(run.stdout)
     first = data["steps"][0]
     assert first["step"] == 1 and first["action"] == "take_key" and first["removable"] is False
-    assert first["links"] == [{"variable": "holding_key", "value": True, "to": 4,
-                               "kind": "precondition", "shown": "holding_key"}]
+    assert first["links"] == [
+        {
+            "variable": "holding_key",
+            "value": True,
+            "to": 4,
+            "kind": "precondition",
+            "shown": "holding_key",
+        }
+    ]
     assert data["steps"][4]["links"][0]["to"] == "goal"
     assert first["chain"] == [1, 4, 5, "goal"] and first["bad"] is False
     svg = picture.read_text()
@@ -89,8 +112,9 @@ def test_explain_json_and_svg(tmp_path):
     # The model's own plan (a HERA situation's), with events.
     data = json.loads(ethasp("explain", FRANK, "--json").stdout)
     assert data["plan"] == ["lie_to_frank"] and data["steps"][0]["bad"] is True
-    assert data["steps"][0]["harms"] == [{"variable": "frank_deceived", "value": True,
-                                          "utility": -2}]
+    assert data["steps"][0]["harms"] == [
+        {"variable": "frank_deceived", "value": True, "utility": -2}
+    ]
     assert any(link["to"] == "goal" for event in data["events"] for link in event["links"])
     # Without a plan: the plan made under a principle.
     data = json.loads(ethasp("explain", RESCUE, "--principle", "deontology", "--json").stdout)
@@ -105,9 +129,22 @@ def test_explain_errors():
 
 
 def test_dialogue_why_step_drop_and_principles(tmp_path):
-    script = "\n".join(["why step 1", "why step 9", "principle kantian-humanity",
-                        "principle all", "why lie_to_frank", "why not lie_to_frank", "drop",
-                        "drop", "history"]) + "\n"
+    script = (
+        "\n".join(
+            [
+                "why step 1",
+                "why step 9",
+                "principle kantian-humanity",
+                "principle all",
+                "why lie_to_frank",
+                "why not lie_to_frank",
+                "drop",
+                "drop",
+                "history",
+            ]
+        )
+        + "\n"
+    )
     run = ethasp("dialogue", FRANK, "--save", "-", stdin=script, cwd=tmp_path)
     assert run.returncode == 0, run.stderr
     out = run.stdout

@@ -5,6 +5,7 @@ import subprocess
 import sys
 
 from conftest import MODELS, ROOT
+
 from ethasp import Model, Plan
 from ethasp.principles.restriction import plan_with_principles
 
@@ -12,8 +13,12 @@ TROLLEY = str(MODELS / "trolley.lp")
 
 
 def ethasp(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", *args], capture_output=True,
-                          text=True, cwd=ROOT)
+    return subprocess.run(
+        [sys.executable, "-m", "ethasp.interfaces.cli", *args],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
 
 
 def test_trolley_hplans_as_json_with_judgements():
@@ -32,14 +37,16 @@ def test_trolley_hplans_as_json_with_judgements():
 
 
 def test_several_principles_and_no_permissible_plan():
-    run = ethasp("plan", "footbridge", "--principle", "deontology",
-                 "--principle", "utilitarianism", "--json")
+    run = ethasp(
+        "plan", "footbridge", "--principle", "deontology", "--principle", "utilitarianism", "--json"
+    )
     data = json.loads(run.stdout)
     assert run.returncode == 0
     assert data["status"] == "none" and data["plan"] is None
     assert data["principles"] == ["deontology", "utilitarianism"] and data["best_utility"] == 4
-    text = ethasp("plan", "footbridge", "--principle", "deontology",
-                  "--principle", "utilitarianism").stdout
+    text = ethasp(
+        "plan", "footbridge", "--principle", "deontology", "--principle", "utilitarianism"
+    ).stdout
     assert text.startswith("no permissible plan exists")
 
 
@@ -48,13 +55,14 @@ def test_text_output_names_the_principle_and_the_verdict():
     assert run.stdout.startswith("plan of 1 step permissible under do-no-harm: refrain")
     assert "do-no-harm: permissible (proven)" in run.stdout
     # The HPlan's explanation is shown, as ethasp judge shows it.
-    assert ("The man can refrain from action. Doing so is permissible because this way the "
-            "death of the five persons is not caused by the man's action.") in run.stdout
+    assert (
+        "The man can refrain from action. Doing so is permissible because this way the "
+        "death of the five persons is not caused by the man's action."
+    ) in run.stdout
 
 
 def test_bounded_is_not_none():
-    run = ethasp("plan", "rescue", "--principle", "utilitarianism", "--max-horizon", "3",
-                 "--json")
+    run = ethasp("plan", "rescue", "--principle", "utilitarianism", "--max-horizon", "3", "--json")
     data = json.loads(run.stdout)
     assert data["status"] == "bounded" and data["plan"] is None
     assert data["best_utility_status"] == "bounded"
@@ -80,8 +88,10 @@ def test_api_rescue_under_every_principle():
 
 # -- the edges of the horizon (bounded only where the horizon cut the search) --------
 
-EDGE = ("variable(p;q). action(s1;s2). eff(s1,p,true). pre(s2,p,true). eff(s2,q,true). "
-        "goal(q,false). utility(p,true,-10). utility(q,true,5).")
+EDGE = (
+    "variable(p;q). action(s1;s2). eff(s1,p,true). pre(s2,p,true). eff(s2,q,true). "
+    "goal(q,false). utility(p,true,-10). utility(q,true,5)."
+)
 
 
 def test_states_closed_at_the_maximal_horizon_are_a_proof(tmp_path):
@@ -91,13 +101,25 @@ def test_states_closed_at_the_maximal_horizon_are_a_proof(tmp_path):
     path = tmp_path / "edge.lp"
     path.write_text(EDGE)
     for horizon in ("2", "3"):
-        data = json.loads(ethasp("plan", str(path), "--principle", "utilitarianism",
-                                 "--max-horizon", horizon, "--json").stdout)
+        data = json.loads(
+            ethasp(
+                "plan",
+                str(path),
+                "--principle",
+                "utilitarianism",
+                "--max-horizon",
+                horizon,
+                "--json",
+            ).stdout
+        )
         assert data["status"] == "found" and data["plan"] == [], data
         assert data["best_utility_status"] == "proven"
-    data = json.loads(ethasp("plan", str(path), "--principle", "utilitarianism",
-                             "--max-horizon", "1", "--json").stdout)
-    assert data["status"] == "bounded"          # layer 2 holds new states: cut by the horizon
+    data = json.loads(
+        ethasp(
+            "plan", str(path), "--principle", "utilitarianism", "--max-horizon", "1", "--json"
+        ).stdout
+    )
+    assert data["status"] == "bounded"  # layer 2 holds new states: cut by the horizon
 
 
 def test_plan_search_proves_none_at_the_maximal_horizon(tmp_path):
@@ -105,9 +127,11 @@ def test_plan_search_proves_none_at_the_maximal_horizon(tmp_path):
     maximal horizon 2 itself (here by the loop-free check: events keep the
     exact layers out)."""
     path = tmp_path / "none.lp"
-    path.write_text("variable(p;q;g). action(s1;s2). eff(s1,p,true). pre(s2,p,true). "
-                    "eff(s2,q,true). goal(g,true). event(e). event_at(e,1). "
-                    "event_effect(e,1,p,true). event_pre(e,q,true).")
+    path.write_text(
+        "variable(p;q;g). action(s1;s2). eff(s1,p,true). pre(s2,p,true). "
+        "eff(s2,q,true). goal(g,true). event(e). event_at(e,1). "
+        "event_effect(e,1,p,true). event_pre(e,q,true)."
+    )
     data = json.loads(ethasp("plan", str(path), "--max-horizon", "2", "--json").stdout)
     assert data["status"] == "none", data
 
@@ -118,18 +142,21 @@ def test_a_bounded_hplan_is_reported_with_its_plan(tmp_path):
     its utility (the event due at step 8 keeps the loop-free proof beyond
     the maximal horizon 5)."""
     path = tmp_path / "never.lp"
-    path.write_text("variable(g;x;y;h). action(a;b;c). eff(a,x,true). pre(b,x,true). "
-                    "eff(b,g,true). eff(c,y,true). goal(g,true). utility(g,true,5). "
-                    "utility(h,true,10). event(e). event_at(e,8). event_pre(e,y,true). "
-                    "event_pre(e,x,false). event_effect(e,1,h,true). event_condition(e,1,g,true).")
-    run = ethasp("plan", str(path), "--principle", "utilitarianism", "--max-horizon", "5",
-                 "--json")
+    path.write_text(
+        "variable(g;x;y;h). action(a;b;c). eff(a,x,true). pre(b,x,true). "
+        "eff(b,g,true). eff(c,y,true). goal(g,true). utility(g,true,5). "
+        "utility(h,true,10). event(e). event_at(e,8). event_pre(e,y,true). "
+        "event_pre(e,x,false). event_effect(e,1,h,true). event_condition(e,1,g,true)."
+    )
+    run = ethasp("plan", str(path), "--principle", "utilitarianism", "--max-horizon", "5", "--json")
     data = json.loads(run.stdout)
     assert data["status"] == "bounded" and data["plan"] == ["a", "b"], data
     assert data["utility"] == 5 and data["best_utility_status"] == "bounded"
     text = ethasp("plan", str(path), "--principle", "utilitarianism", "--max-horizon", "5").stdout
-    assert text.startswith("bounded: plan of 2 steps, permissible under utilitarianism as far "
-                           "as searched (not proven): a b")
+    assert text.startswith(
+        "bounded: plan of 2 steps, permissible under utilitarianism as far "
+        "as searched (not proven): a b"
+    )
 
 
 def test_a_restricted_search_that_only_the_engines_prove_none_is_proven():
@@ -138,10 +165,15 @@ def test_a_restricted_search_that_only_the_engines_prove_none_is_proven():
     "none", but the HModel of deontology lacks the bad action, and relaxed
     reachability in it refutes the goal at once.  Likewise a question whose
     constraint needs an action that only a long path makes applicable."""
-    ladder = " ".join(f"variable(s{i}). action(up{i}). pre(up{i},s{i},true). "
-                      f"eff(up{i},s{i},false). eff(up{i},s{i + 1},true)." for i in range(80))
-    text = ladder + " variable(s80). init(s0). variable(g). action(cheat). eff(cheat,g,true). " \
-                    "utility(cheat,-1). goal(g,true)."
+    ladder = " ".join(
+        f"variable(s{i}). action(up{i}). pre(up{i},s{i},true). "
+        f"eff(up{i},s{i},false). eff(up{i},s{i + 1},true)."
+        for i in range(80)
+    )
+    text = (
+        ladder + " variable(s80). init(s0). variable(g). action(cheat). eff(cheat,g,true). "
+        "utility(cheat,-1). goal(g,true)."
+    )
     model = Model.from_string(text)
     result = plan_with_principles(model, ["deontology"], max_horizon=64)
     assert result.status == "none", result
@@ -149,8 +181,14 @@ def test_a_restricted_search_that_only_the_engines_prove_none_is_proven():
     assert plan_with_principles(model, []).status == "found"
     from ethasp.questions.contrast import ask
 
-    answer = ask(model, "why cheat", plan=Plan.parse("cheat"), principle="deontology",
-                 under="deontology", max_horizon=64)
+    answer = ask(
+        model,
+        "why cheat",
+        plan=Plan.parse("cheat"),
+        principle="deontology",
+        under="deontology",
+        max_horizon=64,
+    )
     assert answer.status == "none" and answer.contrast is None
 
 
@@ -161,7 +199,8 @@ def test_a_restriction_that_changes_nothing_keeps_the_model_and_its_grounding():
 
     model = Model.from_string("variable(g). action(a). eff(a,g,true). goal(g,true).")
     assert hmodel(model, Restriction.of(["deontology"])) is model
-    assert hmodel(model, Restriction.of(["do_no_harm"])) is model       # nothing is bad
-    bad = Model.from_string("variable(g). action(a;b). eff(a,g,true). eff(b,g,true). "
-                            "goal(g,true). utility(b,-1).")
+    assert hmodel(model, Restriction.of(["do_no_harm"])) is model  # nothing is bad
+    bad = Model.from_string(
+        "variable(g). action(a;b). eff(a,g,true). eff(b,g,true). goal(g,true). utility(b,-1)."
+    )
     assert hmodel(bad, Restriction.of(["deontology"])) is not bad

@@ -12,19 +12,27 @@ import subprocess
 import sys
 
 from conftest import MODELS, ROOT
+
 from ethasp.interfaces.shortening import reasons_lines, shorten_literal, shorten_reason
 
 TROLLEY = (MODELS / "trolley.lp").read_text()
-CARE = [str(MODELS / "pddl" / name) for name in
-        ("care-domain.pddl", "care-problem.pddl", "care-utility.lp")]
+CARE = [
+    str(MODELS / "pddl" / name)
+    for name in ("care-domain.pddl", "care-problem.pddl", "care-utility.lp")
+]
 
 
 def ethasp(*args: str, stdin: str | bytes | None = None, cwd=ROOT) -> subprocess.CompletedProcess:
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
     binary = isinstance(stdin, bytes)
-    return subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", *args],
-                          capture_output=True, text=not binary, cwd=cwd, env=env,
-                          input=stdin if stdin is not None else ("" if not binary else b""))
+    return subprocess.run(
+        [sys.executable, "-m", "ethasp.interfaces.cli", *args],
+        capture_output=True,
+        text=not binary,
+        cwd=cwd,
+        env=env,
+        input=stdin if stdin is not None else ("" if not binary else b""),
+    )
 
 
 def one_line_error(run, code: int = 2) -> str:
@@ -36,6 +44,7 @@ def one_line_error(run, code: int = 2) -> str:
 
 # -- standard input -----------------------------------------------------------------------
 
+
 def test_a_model_from_standard_input(tmp_path):
     run = ethasp("judge", "-", "--plan", "pull", "--principle", "do-no-harm", stdin=TROLLEY)
     assert run.returncode == 0, run.stderr
@@ -44,8 +53,9 @@ def test_a_model_from_standard_input(tmp_path):
     rules = "\n".join(line for line in TROLLEY.splitlines() if "label" not in line)
     labels = "\n".join(line for line in TROLLEY.splitlines() if "label" in line)
     (tmp_path / "rules.lp").write_text(rules)
-    both = ethasp("plan", str(tmp_path / "rules.lp"), "-", "--principle", "deontology",
-                  stdin=labels)
+    both = ethasp(
+        "plan", str(tmp_path / "rules.lp"), "-", "--principle", "deontology", stdin=labels
+    )
     assert both.returncode == 0 and "The man can refrain from action." in both.stdout, both.stderr
 
 
@@ -53,7 +63,8 @@ def test_bad_models_from_standard_input_are_one_line():
     assert "<stdin>:" in one_line_error(ethasp("plan", "-", stdin="variable(a). action(b"))
     assert "<stdin>:1:" in one_line_error(ethasp("plan", "-", stdin="variable(a). p(X)."))
     assert "looks like PDDL" in one_line_error(
-        ethasp("plan", "-", stdin=(MODELS / "pddl" / "care-domain.pddl").read_text()))
+        ethasp("plan", "-", stdin=(MODELS / "pddl" / "care-domain.pddl").read_text())
+    )
     assert "HERA situation" in one_line_error(ethasp("plan", "-", stdin='{"actions": []}'))
     assert "not UTF-8" in one_line_error(ethasp("plan", "-", stdin=b"variable(\xff)."))
     assert "only once" in one_line_error(ethasp("plan", "-", "-", stdin=TROLLEY))
@@ -63,6 +74,7 @@ def test_bad_models_from_standard_input_are_one_line():
 
 # -- standard output -----------------------------------------------------------------------
 
+
 def test_svg_to_standard_output_and_the_answer_to_standard_error():
     run = ethasp("judge", "trolley", "--plan", "pull", "--svg", "-")
     assert run.returncode == 0, run.stderr
@@ -71,18 +83,27 @@ def test_svg_to_standard_output_and_the_answer_to_standard_error():
     as_json = ethasp("plan", "trolley", "--svg", "-", "--json")
     assert as_json.stdout.startswith("<svg ")
     assert json.loads(as_json.stderr)["plan"] == ["refrain"]
-    none = ethasp("plan", "-", "--svg", "-", "--max-horizon", "1",
-                  stdin="variable(a;b). action(x). pre(x,a,true). eff(x,b,true). goal(b,true).")
+    none = ethasp(
+        "plan",
+        "-",
+        "--svg",
+        "-",
+        "--max-horizon",
+        "1",
+        stdin="variable(a;b). action(x). pre(x,a,true). eff(x,b,true). goal(b,true).",
+    )
     assert none.returncode == 0 and none.stdout == ""
     assert "no picture was written to standard output" in none.stderr
 
 
 # -- small promises -------------------------------------------------------------------------
 
+
 def test_version_short_and_long():
     short, long = ethasp("-V"), ethasp("--version")
-    assert short.returncode == 0 and short.stdout == long.stdout and \
-        short.stdout.startswith("ethasp ")
+    assert (
+        short.returncode == 0 and short.stdout == long.stdout and short.stdout.startswith("ethasp ")
+    )
 
 
 def test_help_shows_real_defaults_and_what_models_may_be():
@@ -109,7 +130,7 @@ def test_answers_need_at_least_one_reason():
 def test_plan_reasons_limit_and_bounded_reason_lines():
     run = ethasp("plan", *CARE, "--principle", "do-no-harm", "--quiet")
     assert run.returncode == 0, run.stderr
-    assert max(map(len, run.stdout.splitlines()[1:4])) < 1000   # not 46,000 characters
+    assert max(map(len, run.stdout.splitlines()[1:4])) < 1000  # not 46,000 characters
     reasons = [line for line in run.stdout.splitlines() if line.startswith("    {")]
     assert reasons and all(len(line) <= 100 for line in reasons)
     assert "(long reasons are shortened here; --json prints them whole)" in run.stdout
@@ -117,8 +138,7 @@ def test_plan_reasons_limit_and_bounded_reason_lines():
     sufficient = whole["judgements"][0]["sufficient_reasons"]
     # whole in JSON: longer than the 100 characters a line of text shows
     assert len(sufficient) == 10 and len(", ".join(sufficient[0])) > 100
-    limited = ethasp("plan", *CARE, "--principle", "do-no-harm", "--reasons-limit", "2",
-                     "--json")
+    limited = ethasp("plan", *CARE, "--principle", "do-no-harm", "--reasons-limit", "2", "--json")
     assert len(json.loads(limited.stdout)["judgements"][0]["sufficient_reasons"]) == 2
     silent = ethasp("plan", "trolley", "--principle", "do-no-harm", "--reasons-limit", "0")
     assert silent.returncode == 0 and "reasons" not in silent.stdout
@@ -127,8 +147,10 @@ def test_plan_reasons_limit_and_bounded_reason_lines():
 
 def test_short_reasons_stay_on_one_line():
     run = ethasp("judge", "trolley", "--plan", "pull")
-    assert "  necessary reasons: {GEq(done & -five_will_die & one_will_die, done & " \
-           "five_will_die & -one_will_die)}" in run.stdout
+    assert (
+        "  necessary reasons: {GEq(done & -five_will_die & one_will_die, done & "
+        "five_will_die & -one_will_die)}" in run.stdout
+    )
     assert "shortened" not in run.stdout
 
 
@@ -137,8 +159,9 @@ def test_shortening():
     geq = f"not GEq(a & {both}, -a & {both})"
     short = shorten_literal(geq, 100)
     assert short == "not GEq(a & \u2026 [50 shared], -a & \u2026 [50 shared])"
-    long_sides = f"GEq(a & b & c & d & e & g & h & {both}, -a & -b & -c & -d & -e & -g & -h & " \
-                 f"{both})"
+    long_sides = (
+        f"GEq(a & b & c & d & e & g & h & {both}, -a & -b & -c & -d & -e & -g & -h & {both})"
+    )
     assert "[" in shorten_literal(long_sides, 60) and len(shorten_literal(long_sides, 60)) <= 72
     assert shorten_literal("Caused(" + "x" * 300 + ")", 50) == "Caused(" + "x" * 42 + "\u2026"
     reason = [f"not Bad(fact_{i})" for i in range(40)]
@@ -147,5 +170,7 @@ def test_shortening():
     lines, cut = reasons_lines("sufficient", [reason, reason[:2]], True, 80)
     assert lines[0] == "  sufficient reasons (2; limit reached, more may exist):"
     assert lines[2] == "    {not Bad(fact_0), not Bad(fact_1)}" and cut
-    assert reasons_lines("necessary", [["Bad(a)"], ["Caused(a)"]], False) == \
-        (["  necessary reasons: {Bad(a)}; {Caused(a)}"], False)
+    assert reasons_lines("necessary", [["Bad(a)"], ["Caused(a)"]], False) == (
+        ["  necessary reasons: {Bad(a)}; {Caused(a)}"],
+        False,
+    )

@@ -9,16 +9,16 @@ import sys
 
 import clingo
 import pytest
-
 from conftest import MODELS
+
 from ethasp import Model, Plan, query
 from ethasp.errors import InputError
-from ethasp.principles.formula import Elements, format_formula, parse_formula
 from ethasp.planning.terms import MAX_NESTING, parse_symbol
+from ethasp.principles.formula import Elements, format_formula, parse_formula
 from ethasp.questions.dialogue import Dialogue
 from ethasp.questions.question import Question
 
-DEEP = sys.getrecursionlimit() * 5          # far beyond Python's recursion limit
+DEEP = sys.getrecursionlimit() * 5  # far beyond Python's recursion limit
 
 
 @pytest.fixture(scope="module")
@@ -46,13 +46,20 @@ def test_parentheses_have_no_limit(elements):
 def test_operators_nest_up_to_the_limit(trolley, operator):
     atom = "Good(-five_will_die)"
     count = MAX_NESTING
-    text = ("not " * count + atom if operator == "not " else
-            f" {operator} ".join([atom] * (count + 1)))
+    text = (
+        "not " * count + atom if operator == "not " else f" {operator} ".join([atom] * (count + 1))
+    )
     assert query(trolley, Plan.parse("pull"), text).value is True
-    deeper = ("not " * (count + 1) + atom if operator == "not " else
-              f" {operator} ".join([atom] * (count + 2)))
-    with pytest.raises(InputError, match=rf"formula: column \d+: the formula nests operators "
-                                         rf"more than {MAX_NESTING} deep"):
+    deeper = (
+        "not " * (count + 1) + atom
+        if operator == "not "
+        else f" {operator} ".join([atom] * (count + 2))
+    )
+    with pytest.raises(
+        InputError,
+        match=rf"formula: column \d+: the formula nests operators "
+        rf"more than {MAX_NESTING} deep",
+    ):
         parse_formula(deeper, Elements.of_model(trolley))
 
 
@@ -70,11 +77,14 @@ def test_printing_is_iterative_and_round_trips(elements):
 def test_printing_members_and_cycles():
     member = clingo.Function("m")
     good = clingo.Function("good", [clingo.Function("action", [clingo.Function("pull")])])
-    assert format_formula(clingo.Function("all", [member]), members={member: [good, good]}) \
+    assert (
+        format_formula(clingo.Function("all", [member]), members={member: [good, good]})
         == "Good(pull) and Good(pull)"
+    )
     with pytest.raises(ValueError, match="contains itself"):
-        format_formula(clingo.Function("all", [member]),
-                       members={member: [clingo.Function("all", [member])]})
+        format_formula(
+            clingo.Function("all", [member]), members={member: [clingo.Function("all", [member])]}
+        )
 
 
 def test_deep_names_are_refused_at_the_limit():
@@ -109,7 +119,15 @@ def test_deep_saved_dialogues_are_refused(trolley, tmp_path):
     path.write_text("[" * 100_000 + "]" * 100_000)
     with pytest.raises(InputError, match="nested too deeply"):
         Dialogue.load(path, trolley)
-    path.write_text(json.dumps({"format": "ethasp-dialogue", "version": 1, "principle":
-                                "deontology", "plan": ["f(" * 20_000 + "a" + ")" * 20_000]}))
+    path.write_text(
+        json.dumps(
+            {
+                "format": "ethasp-dialogue",
+                "version": 1,
+                "principle": "deontology",
+                "plan": ["f(" * 20_000 + "a" + ")" * 20_000],
+            }
+        )
+    )
     with pytest.raises(InputError, match="nested more than"):
         Dialogue.load(path, trolley)

@@ -11,53 +11,87 @@ import time
 from pathlib import Path
 
 import pytest
-
 from conftest import ROOT
+
 from ethasp.interfaces.editing import Completer, history_path
 
-WAIT = 120   # seconds a step may take on a busy machine (no timing is asserted)
+WAIT = 120  # seconds a step may take on a busy machine (no timing is asserted)
 
 
 # -- completion --------------------------------------------------------------------------
 
-ASP = Completer(["pull", "refrain", "move(r1,r2)", "move(r2,r3)"], ["five_will_die", "at(r1)"],
-                ["deontology", "do-no-harm", "utilitarianism"])
-PDDL = Completer(["(move kitchen hall)", "(move kitchen store-room)",
-                  "(pick-up pills-ann store-room)"], ["(robot-at hall)"], ["deontology"])
+ASP = Completer(
+    ["pull", "refrain", "move(r1,r2)", "move(r2,r3)"],
+    ["five_will_die", "at(r1)"],
+    ["deontology", "do-no-harm", "utilitarianism"],
+)
+PDDL = Completer(
+    ["(move kitchen hall)", "(move kitchen store-room)", "(pick-up pills-ann store-room)"],
+    ["(robot-at hall)"],
+    ["deontology"],
+)
 
 
-@pytest.mark.parametrize("line, expected", [
-    ("", ["why ", "principle ", "plan ", "history ", "undo ", "save ", "load ", "help ",
-          "quit "]),
-    ("un", ["undo "]),
-    ("why p", ["pull "]),
-    ("why ", ["move(r1,r2) ", "move(r2,r3) ", "pull ", "refrain ", "at(r1) ",
-              "five_will_die ", "not "]),
-    ("why n", ["not "]),
-    ("why not f", ["five_will_die "]),
-    ("why move(r", ["move(r1,r2) ", "move(r2,r3) "]),
-    ("why pull ", ["rather ", "before "]),
-    ("why pull rather ", ["than "]),
-    ("why pull rather than re", ["refrain "]),
-    ("why pull rather than f", []),            # a fact cannot be the contrast's action
-    ("why move(r1,r2) before m", ["move(r1,r2) ", "move(r2,r3) "]),
-    ("why not pull ", []),
-    ("principle d", ["deontology ", "do-no-harm "]),
-    ("principle do-no-harm ", []),
-    ("history ", []),
-])
+@pytest.mark.parametrize(
+    "line, expected",
+    [
+        (
+            "",
+            [
+                "why ",
+                "principle ",
+                "plan ",
+                "history ",
+                "undo ",
+                "save ",
+                "load ",
+                "help ",
+                "quit ",
+            ],
+        ),
+        ("un", ["undo "]),
+        ("why p", ["pull "]),
+        (
+            "why ",
+            [
+                "move(r1,r2) ",
+                "move(r2,r3) ",
+                "pull ",
+                "refrain ",
+                "at(r1) ",
+                "five_will_die ",
+                "not ",
+            ],
+        ),
+        ("why n", ["not "]),
+        ("why not f", ["five_will_die "]),
+        ("why move(r", ["move(r1,r2) ", "move(r2,r3) "]),
+        ("why pull ", ["rather ", "before "]),
+        ("why pull rather ", ["than "]),
+        ("why pull rather than re", ["refrain "]),
+        ("why pull rather than f", []),  # a fact cannot be the contrast's action
+        ("why move(r1,r2) before m", ["move(r1,r2) ", "move(r2,r3) "]),
+        ("why not pull ", []),
+        ("principle d", ["deontology ", "do-no-harm "]),
+        ("principle do-no-harm ", []),
+        ("history ", []),
+    ],
+)
 def test_completion_of_asp_names(line, expected):
     assert ASP.candidates(line) == expected
 
 
-@pytest.mark.parametrize("line, expected", [
-    ("why (m", ["(move kitchen hall) ", "(move kitchen store-room) "]),
-    ("why (move k", ["kitchen hall) ", "kitchen store-room) "]),     # word by word
-    ("why (move kitchen s", ["store-room) "]),
-    ("why (move kitchen hall) ", ["rather ", "before "]),
-    ("why (move kitchen hall) before (p", ["(pick-up pills-ann store-room) "]),
-    ("why not (r", ["(robot-at hall) "]),
-])
+@pytest.mark.parametrize(
+    "line, expected",
+    [
+        ("why (m", ["(move kitchen hall) ", "(move kitchen store-room) "]),
+        ("why (move k", ["kitchen hall) ", "kitchen store-room) "]),  # word by word
+        ("why (move kitchen s", ["store-room) "]),
+        ("why (move kitchen hall) ", ["rather ", "before "]),
+        ("why (move kitchen hall) before (p", ["(pick-up pills-ann store-room) "]),
+        ("why not (r", ["(robot-at hall) "]),
+    ],
+)
 def test_completion_of_pddl_names(line, expected):
     assert PDDL.candidates(line) == expected
 
@@ -74,8 +108,9 @@ def test_where_the_history_is_kept(tmp_path):
     assert history_path({"ETHASP_HISTORY": str(tmp_path / "h")}) == tmp_path / "h"
     assert history_path({"ETHASP_HISTORY": ""}) is None
     assert history_path({"XDG_STATE_HOME": "/state"}) == Path("/state/ethasp/history")
-    assert history_path({"HOME": "/home/someone"}) == \
-        Path("/home/someone/.local/state/ethasp/history")
+    assert history_path({"HOME": "/home/someone"}) == Path(
+        "/home/someone/.local/state/ethasp/history"
+    )
 
 
 # -- at a real terminal --------------------------------------------------------------------
@@ -90,9 +125,12 @@ class Terminal:
     def __init__(self, *args: str, env: dict):
         environment = {**os.environ, "PYTHONPATH": str(ROOT), "TERM": "xterm", **env}
         self.pid, self.fd = pty.fork()
-        if self.pid == 0:                      # the child: the dialogue
-            os.execve(sys.executable, [sys.executable, "-m", "ethasp.interfaces.cli",
-                                       "dialogue", *args], environment)
+        if self.pid == 0:  # the child: the dialogue
+            os.execve(
+                sys.executable,
+                [sys.executable, "-m", "ethasp.interfaces.cli", "dialogue", *args],
+                environment,
+            )
         self.output = b""
 
     def read(self, seconds: float) -> None:
@@ -138,14 +176,17 @@ def test_tab_completion_and_a_history_across_runs(tmp_path):
     env = {"ETHASP_HISTORY": str(history)}
     first = Terminal("trolley", "--save", "-", env=env)
     first.wait_for("ethasp> ")
-    mark = first.type("why re\trather than pu\t\n")      # completion adds the spaces
+    mark = first.type("why re\trather than pu\t\n")  # completion adds the spaces
     first.wait_for("Alternatively, the man could pull the lever.", mark)
     mark = first.type("princ\tutil\t\n")
     first.wait_for("next contrasts must satisfy: utilitarianism", mark)
     first.type("quit\n")
     assert first.end() == 0
-    assert history.read_text().splitlines() == ["why refrain rather than pull ",
-                                                "principle utilitarianism ", "quit"]
+    assert history.read_text().splitlines() == [
+        "why refrain rather than pull ",
+        "principle utilitarianism ",
+        "quit",
+    ]
 
     # The next run recalls the question with the up arrow (three lines back).
     second = Terminal("trolley", "--save", "-", env=env)
@@ -159,8 +200,7 @@ def test_tab_completion_and_a_history_across_runs(tmp_path):
 def test_a_history_that_cannot_be_kept_is_no_error(tmp_path):
     blocker = tmp_path / "a-file"
     blocker.write_text("not a folder")
-    terminal = Terminal("trolley", "--save", "-",
-                        env={"ETHASP_HISTORY": str(blocker / "history")})
+    terminal = Terminal("trolley", "--save", "-", env={"ETHASP_HISTORY": str(blocker / "history")})
     terminal.wait_for("ethasp> ")
     mark = terminal.type("why refrain\n")
     terminal.wait_for("contrast plan", mark)

@@ -41,10 +41,10 @@ TIMEOUT = 300  # seconds for one block (a guard against hangs, not a measure of 
 @dataclass
 class Example:
     path: Path
-    line: int        # of the fence, 1-based
+    line: int  # of the fence, 1-based
     language: str
-    text: str        # the block's lines
-    exit_code: int   # of the block's last command
+    text: str  # the block's lines
+    exit_code: int  # of the block's last command
 
     @property
     def name(self) -> str:
@@ -52,8 +52,10 @@ class Example:
 
 
 def documents() -> list[Path]:
-    return [ROOT / "README.md"] + sorted(path for path in (ROOT / "docs").rglob("*.md")
-                                         if "hooks" not in path.parts)
+    return [
+        ROOT / "README.md",
+        *sorted(path for path in (ROOT / "docs").rglob("*.md") if "hooks" not in path.parts),
+    ]
 
 
 def examples_of(path: Path) -> list[Example]:
@@ -66,13 +68,21 @@ def examples_of(path: Path) -> list[Example]:
         fence = FENCE.match(lines[index + 1]) if index + 1 < len(lines) else None
         where = f"{path.relative_to(ROOT)}:{index + 1}"
         if fence is None or fence.group(1) not in LANGUAGES:
-            raise AssertionError(f"{where}: a runnable marker must stand right before a "
-                                 f"```console or ```pycon block")
+            raise AssertionError(
+                f"{where}: a runnable marker must stand right before a ```console or ```pycon block"
+            )
         end = next((j for j in range(index + 2, len(lines)) if lines[j].startswith("```")), None)
         if end is None:
             raise AssertionError(f"{where}: the block does not end")
-        found.append(Example(path, index + 2, fence.group(1), "\n".join(lines[index + 2:end]),
-                             int(marker.group(1) or 0)))
+        found.append(
+            Example(
+                path,
+                index + 2,
+                fence.group(1),
+                "\n".join(lines[index + 2 : end]),
+                int(marker.group(1) or 0),
+            )
+        )
     return found
 
 
@@ -95,7 +105,7 @@ def commands_of(text: str) -> list[tuple[str, list[str]]]:
         command = line[2:]
         while command.endswith("\\") and index + 1 < len(lines):
             index += 1
-            command = command + "\n" + lines[index]     # bash joins the lines
+            command = command + "\n" + lines[index]  # bash joins the lines
         commands.append((command, []))
         index += 1
     return commands
@@ -155,16 +165,27 @@ def run_console(example: Example, workdir: Path) -> None:
     commands = commands_of(example.text)
     for number, (command, shown) in enumerate(commands, start=1):
         expected_code = example.exit_code if number == len(commands) else 0
-        run = subprocess.run(["bash", "-c", command], cwd=workdir, env=environment(),
-                             stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-                             stderr=subprocess.STDOUT, text=True, timeout=TIMEOUT)
+        run = subprocess.run(
+            ["bash", "-c", command],
+            cwd=workdir,
+            env=environment(),
+            stdin=subprocess.DEVNULL,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
+            timeout=TIMEOUT,
+        )
         output = normalised(run.stdout)
         where = f"{example.name}: $ {command}"
         assert run.returncode == expected_code, (
-            f"{where}\nexit code {run.returncode}, expected {expected_code}\n{output}")
+            f"{where}\nexit code {run.returncode}, expected {expected_code}\n{output}"
+        )
         assert pattern(shown).fullmatch(output), (
             f"{where}\nthe output differs from the documentation's:\n--- shown\n"
-            + "\n".join(shown) + "\n--- printed\n" + output)
+            + "\n".join(shown)
+            + "\n--- printed\n"
+            + output
+        )
 
 
 # Runs a doctest given on standard input; prints the failures, exits with their count.
@@ -179,9 +200,15 @@ sys.exit(min(runner.failures, 100))
 
 
 def run_pycon(example: Example, workdir: Path) -> None:
-    run = subprocess.run([sys.executable, "-c", DOCTEST, example.name], input=example.text,
-                         cwd=workdir, env=environment(), capture_output=True, text=True,
-                         timeout=TIMEOUT)
+    run = subprocess.run(
+        [sys.executable, "-c", DOCTEST, example.name],
+        input=example.text,
+        cwd=workdir,
+        env=environment(),
+        capture_output=True,
+        text=True,
+        timeout=TIMEOUT,
+    )
     assert run.returncode == 0, f"{example.name}\n{run.stdout}{run.stderr}"
 
 
@@ -199,5 +226,7 @@ def test_elisions_match_what_they_should():
     assert pattern(["...", "z"]).fullmatch("z\n")
     assert not pattern(["a", "z"]).fullmatch("a\nb\nz\n")
     assert not pattern(["a (1.0 s)"]).fullmatch("a (1.05 s)\n")
-    assert commands_of("$ echo a \\\n  b\na b\n$ true") == [("echo a \\\n  b", ["a b"]),
-                                                         ("true", [])]
+    assert commands_of("$ echo a \\\n  b\na b\n$ true") == [
+        ("echo a \\\n  b", ["a b"]),
+        ("true", []),
+    ]

@@ -29,9 +29,13 @@ def test_the_site_builds_strictly(tmp_path):
             raise AssertionError("mkdocs is not installed: pip install '.[docs]'")
         pytest.skip("mkdocs is not installed (pip install '.[docs]')")
     site = tmp_path / "site"
-    run = subprocess.run([sys.executable, "-m", "mkdocs", "build", "--strict",
-                          "--site-dir", str(site)],
-                         cwd=ROOT, capture_output=True, text=True, timeout=600)
+    run = subprocess.run(
+        [sys.executable, "-m", "mkdocs", "build", "--strict", "--site-dir", str(site)],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     assert run.returncode == 0, run.stderr[-5000:]
     # The generated tables are there.
     principles = (site / "principles" / "index.html").read_text()
@@ -50,6 +54,9 @@ def test_the_readme_is_a_front_page():
     # It links to every page of the site's navigation.
     nav = re.findall(r"^\s*-[^#\n]*:\s*([\w/-]+\.md)\s*$", (ROOT / "mkdocs.yml").read_text(), re.M)
     linked = {target.split("#")[0] for target in LINK.findall(text)}
-    missing = [page for page in nav
-               if f"docs/{page}" not in linked and page not in ("index.md", "changelog.md")]
+    missing = [
+        page
+        for page in nav
+        if f"docs/{page}" not in linked and page not in ("index.md", "changelog.md")
+    ]
     assert not missing, missing

@@ -6,8 +6,7 @@ from conftest import answer_sets, only_answer
 CHECK = ["planning/model.lp", "planning/check.lp"]
 RELAXED = ["planning/model.lp", "planning/relaxed.lp"]
 TRACE = ["planning/model.lp", "planning/trace.lp"]
-SEARCH = ["planning/model.lp", "planning/relaxed.lp", "planning/transition.lp",
-          "planning/goal.lp"]
+SEARCH = ["planning/model.lp", "planning/relaxed.lp", "planning/transition.lp", "planning/goal.lp"]
 
 
 def fixed(horizon: int) -> str:
@@ -17,8 +16,11 @@ def fixed(horizon: int) -> str:
 def plans(model: str, horizon: int, extra=()) -> set[tuple[str, ...]]:
     result = set()
     for answer in answer_sets(SEARCH + list(extra), model + fixed(horizon)):
-        steps = sorted((int(a.rsplit(",", 1)[1].rstrip(")")), a[len("occurs("):a.rindex(",")])
-                       for a in answer if a.startswith("occurs("))
+        steps = sorted(
+            (int(a.rsplit(",", 1)[1].rstrip(")")), a[len("occurs(") : a.rindex(",")])
+            for a in answer
+            if a.startswith("occurs(")
+        )
         result.add(tuple(name for _, name in steps))
     return result
 
@@ -43,9 +45,13 @@ goal(done,true).
 
 # -- check.lp -----------------------------------------------------------------------
 
+
 def test_check_accepts_conditional_effects_and_derived_variables():
-    model = LAMP + """derived(lit). axiom(lit,1). axiom_pre(lit,1,on,true).
+    model = (
+        LAMP
+        + """derived(lit). axiom(lit,1). axiom_pre(lit,1,on,true).
                       pre(finish,lit,true). goal(lit,true)."""
+    )
     assert only_answer(CHECK, model) == set()
 
 
@@ -86,6 +92,7 @@ def test_check_contradicting_effects_only_when_unconditional():
 
 # -- relaxed.lp ---------------------------------------------------------------------
 
+
 def test_relaxed_conditional_effect_needs_reachable_conditions():
     model = """variable(a;b;g). action(x;y). ceff(x,1,g,true). cpre(x,1,a,true).
                eff(y,b,true). goal(g,true). #show reachable/2."""
@@ -106,13 +113,17 @@ def test_relaxed_derived_variables_true_and_false():
     # "none" has no axiom: always false
     assert "reachable(none,false)" in answer and "reachable(none,true)" not in answer
     assert "unreachable_goal" in answer
-    answer = only_answer(RELAXED, model.replace("goal(b,true).", "goal(both,false).")
-                         + "derived(always). axiom(always,1). goal(always,false).")
+    answer = only_answer(
+        RELAXED,
+        model.replace("goal(b,true).", "goal(both,false).")
+        + "derived(always). axiom(always,1). goal(always,false).",
+    )
     assert "reachable(always,true)" in answer and "reachable(always,false)" not in answer
     assert "unreachable_goal" in answer
 
 
 # -- transition.lp and goal.lp -------------------------------------------------------------
+
 
 def test_conditional_effects_fire_on_the_state_before():
     assert plans(LAMP, 1) == set()
@@ -147,6 +158,7 @@ def test_derived_variables_in_preconditions_and_goals():
 
 
 # -- trace.lp ---------------------------------------------------------------------------
+
 
 def test_trace_final_state_with_conditional_effects():
     answer = trace(LAMP, ["press", "finish"])
@@ -186,13 +198,14 @@ def test_trace_derived_preconditions_and_goals():
 
 # -- mutex.lp ------------------------------------------------------------------------------
 
+
 def test_mutexes_leave_out_variables_set_by_conditional_effects():
     # a and b are exclusive for STRIPS actions; "both" sets b when a holds
     model = """variable(a;b). init(a). action(swap;back;both).
                pre(swap,a,true). eff(swap,a,false). eff(swap,b,true).
                pre(back,b,true). eff(back,b,false). eff(back,a,true).
                ceff(both,1,b,true). cpre(both,1,a,true). #show mutex/4. #show fluent/1."""
-    files = RELAXED + ["planning/mutex.lp"]
+    files = [*RELAXED, "planning/mutex.lp"]
     without = only_answer(files, model.replace("ceff(both,1,b,true). cpre(both,1,a,true).", ""))
     assert "mutex(a,true,b,true)" in without
     answer = only_answer(files, model)
@@ -205,6 +218,7 @@ def test_mutexes_leave_out_variables_set_by_conditional_effects():
 
 # -- restrictions/do_no_harm.lp ---------------------------------------------------------------
 
+
 def test_do_no_harm_counts_only_effects_that_fire():
     # The lamp is bad when on; a press that does not fire (wire cut) harms nothing.
     from test_encodings_restrictions import hmodel, plans_of
@@ -214,8 +228,10 @@ def test_do_no_harm_counts_only_effects_that_fire():
     restricted = hmodel(["do_no_harm"], model)
     assert ("press", "finish") not in plans_of(restricted, 2)
     assert ("cut", "press", "finish") in plans_of(restricted, 3)
-    answers = answer_sets(SEARCH, restricted + fixed(3) + ":- not occurs(cut,1). "
-                          ":- not occurs(press,2). #show holds/2.")
+    answers = answer_sets(
+        SEARCH,
+        restricted + fixed(3) + ":- not occurs(cut,1). :- not occurs(press,2). #show holds/2.",
+    )
     assert answers and not any("produced" in atom for atom in answers[0])
 
 
@@ -227,6 +243,7 @@ def test_do_no_harm_an_overridden_delete_produces_nothing():
                cpre(a,k,g,true). eff(a,g,false). goal(g,false). utility(v,false,-1)."""
     assert plans_of(hmodel(["do_no_harm"], model), 1) == {("a",)}
     # without g, the delete wins and causes the bad fact
-    model = model.replace("init(v;g).", "init(v). variable(h). init(h).") \
-                 .replace("goal(g,false).", "goal(h,true).")
+    model = model.replace("init(v;g).", "init(v). variable(h). init(h).").replace(
+        "goal(g,false).", "goal(h,true)."
+    )
     assert ("a",) not in plans_of(hmodel(["do_no_harm"], model), 1)

@@ -1,7 +1,6 @@
 """Encoding-level tests of the language L (language.lp) and the principles."""
 
 import pytest
-
 from conftest import MODELS, only_answer
 
 LANGUAGE = ["planning/model.lp", "planning/trace.lp", "judgement/language.lp"]
@@ -25,26 +24,41 @@ def truth(formula: str, extra: str = "") -> bool:
     return "verdict(f,true)" in answer
 
 
-@pytest.mark.parametrize("formula, expected", [
-    ("good(action(y))", True), ("good(action(x))", False), ("good(action(z))", False),
-    ("bad(action(x))", True), ("bad(action(y))", False), ("bad(action(z))", False),
-    ("neutral(action(z))", True), ("neutral(action(x))", False),
-    ("good(fact(a,true))", True), ("bad(fact(a,false))", True), ("bad(fact(a,true))", False),
-    ("bad(fact(b,true))", True), ("neutral(fact(b,false))", True),
-    ("neutral(fact(c,true))", True), ("good(fact(c,false))", False),
-])
+@pytest.mark.parametrize(
+    "formula, expected",
+    [
+        ("good(action(y))", True),
+        ("good(action(x))", False),
+        ("good(action(z))", False),
+        ("bad(action(x))", True),
+        ("bad(action(y))", False),
+        ("bad(action(z))", False),
+        ("neutral(action(z))", True),
+        ("neutral(action(x))", False),
+        ("good(fact(a,true))", True),
+        ("bad(fact(a,false))", True),
+        ("bad(fact(a,true))", False),
+        ("bad(fact(b,true))", True),
+        ("neutral(fact(b,false))", True),
+        ("neutral(fact(c,true))", True),
+        ("good(fact(c,false))", False),
+    ],
+)
 def test_good_bad_neutral_for_actions_and_facts_of_both_polarities(formula, expected):
     assert truth(formula) is expected
 
 
-@pytest.mark.parametrize("formula, expected", [
-    ("caused(a,true)", True),     # x set a, and a holds at the end
-    ("caused(b,false)", True),    # y set b to false, and b is false at the end
-    ("caused(b,true)", False),    # x set b, but b does not hold at the end
-    ("caused(c,false)", False),   # c is false at the end, but no action of the plan set it
-    ("caused(c,true)", False),    # z could set c, but it is not in the plan
-    ("caused(a,false)", False),
-])
+@pytest.mark.parametrize(
+    "formula, expected",
+    [
+        ("caused(a,true)", True),  # x set a, and a holds at the end
+        ("caused(b,false)", True),  # y set b to false, and b is false at the end
+        ("caused(b,true)", False),  # x set b, but b does not hold at the end
+        ("caused(c,false)", False),  # c is false at the end, but no action of the plan set it
+        ("caused(c,true)", False),  # z could set c, but it is not in the plan
+        ("caused(a,false)", False),
+    ],
+)
 def test_caused_of_both_polarities(formula, expected):
     assert truth(formula) is expected
 
@@ -69,8 +83,7 @@ def test_all_and_any_including_empty():
 
 def test_geq_with_negative_facts():
     # u(c1) = u(a) + u(-b) = 4; u(c2) = u(-a) + u(b) = -4; u(c3) = u(-a) = -1
-    conj = ("conj(c1,a,true). conj(c1,b,false). conj(c2,a,false). conj(c2,b,true). "
-            "conj(c3,a,false).")
+    conj = "conj(c1,a,true). conj(c1,b,false). conj(c2,a,false). conj(c2,b,true). conj(c3,a,false)."
     assert truth("geq(c1,c2)", conj) and not truth("geq(c2,c1)", conj)
     assert truth("geq(c3,c2)", conj) and truth("geq(c1,c1)", conj)
     # the empty conjunction is worth 0
@@ -79,17 +92,27 @@ def test_geq_with_negative_facts():
 
 
 def test_several_formulas_at_once_do_not_interfere():
-    answer = only_answer(LANGUAGE, SMALL + "formula(f,bad(action(x))). formula(g,neg(bad(action(x)))).")
+    answer = only_answer(
+        LANGUAGE, SMALL + "formula(f,bad(action(x))). formula(g,neg(bad(action(x))))."
+    )
     assert {"verdict(f,true)", "verdict(g,false)"} <= answer
 
 
-PRINCIPLES = ["planning/model.lp", "planning/trace.lp", "judgement/language.lp", "principles/deontology.lp",
-              "principles/do_no_harm.lp", "principles/utilitarianism.lp"]
+PRINCIPLES = [
+    "planning/model.lp",
+    "planning/trace.lp",
+    "judgement/language.lp",
+    "principles/deontology.lp",
+    "principles/do_no_harm.lp",
+    "principles/utilitarianism.lp",
+]
 
 
 def verdicts(model: str, plan: str, alternative: list[str]) -> set[str]:
-    alt = "alternative(s). " + " ".join(f"conj(s,{lit.lstrip('-')},{'false' if lit.startswith('-') else 'true'})."
-                                        for lit in alternative)
+    alt = "alternative(s). " + " ".join(
+        f"conj(s,{lit.lstrip('-')},{'false' if lit.startswith('-') else 'true'})."
+        for lit in alternative
+    )
     answer = only_answer(PRINCIPLES, (MODELS / model).read_text() + plan + alt)
     return {atom for atom in answer if atom.startswith("verdict(")}
 
@@ -97,17 +120,29 @@ def verdicts(model: str, plan: str, alternative: list[str]) -> set[str]:
 def test_principle_encodings_on_the_trolley_problem():
     best = ["-five_will_die", "one_will_die", "done"]
     assert verdicts("trolley.lp", "occurs(pull,1).", best) == {
-        "verdict(deontology,true)", "verdict(do_no_harm,false)", "verdict(utilitarianism,true)"}
+        "verdict(deontology,true)",
+        "verdict(do_no_harm,false)",
+        "verdict(utilitarianism,true)",
+    }
     assert verdicts("trolley.lp", "occurs(refrain,1).", best) == {
-        "verdict(deontology,true)", "verdict(do_no_harm,true)", "verdict(utilitarianism,false)"}
+        "verdict(deontology,true)",
+        "verdict(do_no_harm,true)",
+        "verdict(utilitarianism,false)",
+    }
 
 
 def test_principle_encodings_on_the_footbridge_dilemma():
     best = ["-five_will_die", "heavy_man_will_die", "done"]
     assert verdicts("footbridge.lp", "occurs(push,1).", best) == {
-        "verdict(deontology,false)", "verdict(do_no_harm,false)", "verdict(utilitarianism,true)"}
+        "verdict(deontology,false)",
+        "verdict(do_no_harm,false)",
+        "verdict(utilitarianism,true)",
+    }
     assert verdicts("footbridge.lp", "occurs(refrain,1).", best) == {
-        "verdict(deontology,true)", "verdict(do_no_harm,true)", "verdict(utilitarianism,false)"}
+        "verdict(deontology,true)",
+        "verdict(do_no_harm,true)",
+        "verdict(utilitarianism,false)",
+    }
 
 
 def test_utility_of_final_state():

@@ -16,9 +16,14 @@ goal(c,true).
 
 def plans(horizon: int, model: str) -> set[tuple[str, ...]]:
     result = set()
-    for answer in answer_sets(["planning/plan.lp"], model, arguments=("0", "-c", f"horizon={horizon}")):
-        steps = sorted((int(a.split(",")[-1].rstrip(")")), a[len("occurs("):a.rindex(",")])
-                       for a in answer if a.startswith("occurs("))
+    for answer in answer_sets(
+        ["planning/plan.lp"], model, arguments=("0", "-c", f"horizon={horizon}")
+    ):
+        steps = sorted(
+            (int(a.split(",")[-1].rstrip(")")), a[len("occurs(") : a.rindex(",")])
+            for a in answer
+            if a.startswith("occurs(")
+        )
         result.add(tuple(name for _, name in steps))
     return result
 
@@ -41,9 +46,13 @@ def test_relaxed_reachability_proves_unreachable_goal():
     model = "variable(a;b). action(x). pre(x,a,true). eff(x,b,true). goal(b,true)."
     assert "unreachable_goal" in only_answer(["planning/model.lp", "planning/relaxed.lp"], model)
     model = "variable(a;b). init(a). action(x). pre(x,a,true). eff(x,b,true). goal(b,true)."
-    assert "unreachable_goal" not in only_answer(["planning/model.lp", "planning/relaxed.lp"], model)
+    assert "unreachable_goal" not in only_answer(
+        ["planning/model.lp", "planning/relaxed.lp"], model
+    )
     contradictory = "variable(a). action(x). eff(x,a,true). goal(a,true). goal(a,false)."
-    assert "unreachable_goal" in only_answer(["planning/model.lp", "planning/relaxed.lp"], contradictory)
+    assert "unreachable_goal" in only_answer(
+        ["planning/model.lp", "planning/relaxed.lp"], contradictory
+    )
 
 
 def test_trace_of_a_valid_plan():
@@ -110,5 +119,7 @@ def test_check_reports_each_defect():
 
 
 def test_weights_default_to_zero():
-    answer = answer_sets(["planning/model.lp"], "variable(x). action(a). utility(x,true,3). #show weight/2.")[0]
+    answer = answer_sets(
+        ["planning/model.lp"], "variable(x). action(a). utility(x,true,3). #show weight/2."
+    )[0]
     assert answer == {"weight(action(a),0)", "weight(fact(x,true),3)", "weight(fact(x,false),0)"}

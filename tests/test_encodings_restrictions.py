@@ -4,8 +4,13 @@ then planned for with a fixed horizon, as on the clingo command line."""
 
 from conftest import MODELS, answer_sets, only_answer
 
-SEARCH = ["planning/model.lp", "planning/relaxed.lp", "planning/transition.lp",
-          "planning/events.lp", "planning/goal.lp"]
+SEARCH = [
+    "planning/model.lp",
+    "planning/relaxed.lp",
+    "planning/transition.lp",
+    "planning/events.lp",
+    "planning/goal.lp",
+]
 COMPILE = ["planning/model.lp", "restrictions/hmodel.lp"]
 
 
@@ -19,15 +24,18 @@ def hmodel(restrictions, model: str, inputs: str = "", questions: bool = False) 
     if questions:
         files.append("questions/restriction.lp")
     answer = only_answer(files, model + inputs)
-    return "".join(f"{atom[len('hmodel('):-1]}.\n" for atom in sorted(answer))
+    return "".join(f"{atom[len('hmodel(') : -1]}.\n" for atom in sorted(answer))
 
 
 def plans_of(model: str, horizon: int, files=SEARCH, show: str = "") -> set[tuple[str, ...]]:
     """The action sequences of all answer sets (idle steps dropped)."""
     result = set()
     for answer in answer_sets(files, model + fixed(horizon) + show):
-        steps = sorted((int(a.rsplit(",", 1)[1].rstrip(")")), a[len("occurs("):a.rindex(",")])
-                       for a in answer if a.startswith("occurs("))
+        steps = sorted(
+            (int(a.rsplit(",", 1)[1].rstrip(")")), a[len("occurs(") : a.rindex(",")])
+            for a in answer
+            if a.startswith("occurs(")
+        )
         result.add(tuple(name for _, name in steps))
     return result
 
@@ -71,8 +79,10 @@ def test_a_goal_utility_above_the_relaxed_upper_bound_is_unreachable():
     # Relaxed, both the five and the one may live: 5 + 1 = 6 bounds every state.
     for goal, unreachable in (("6", False), ("7", True)):
         program = hmodel(["utilitarianism"], TROLLEY, f"best_utility({goal}).")
-        answer = only_answer(["planning/model.lp", "planning/relaxed.lp"],
-                             program + "#show unreachable_goal/0. #show upper_bound/1.")
+        answer = only_answer(
+            ["planning/model.lp", "planning/relaxed.lp"],
+            program + "#show unreachable_goal/0. #show upper_bound/1.",
+        )
         assert answer == {"upper_bound(6)"} | ({"unreachable_goal"} if unreachable else set())
 
 
@@ -107,8 +117,9 @@ PRODUCED = "ethasp(produced(hurt,true))"
 
 def test_do_no_harm_an_undone_harm_is_not_caused():
     assert plans(["do_no_harm"], HEAL, 2) == {("harm", "heal")}
-    answers = answer_sets(SEARCH, hmodel(["do_no_harm"], HEAL) + fixed(2)
-                          + ":- not occurs(harm,1). #show holds/2.")
+    answers = answer_sets(
+        SEARCH, hmodel(["do_no_harm"], HEAL) + fixed(2) + ":- not occurs(harm,1). #show holds/2."
+    )
     assert len(answers) == 1
     # the flag is set by the harm and reset by the healing
     assert f"holds({PRODUCED},1)" in answers[0] and f"holds({PRODUCED},2)" not in answers[0]
@@ -125,8 +136,12 @@ def test_the_produced_flags_are_state_variables_for_the_loop_free_check():
     # With p true initially, "on" sets p again: only the produced flag changes.
     model = """variable(p). init(p). action(on; off). eff(on, p, true). eff(off, p, false).
                goal(p, false). utility(p, true, -1)."""
-    loopfree = ["planning/model.lp", "planning/relaxed.lp", "planning/transition.lp",
-                "planning/loopfree.lp"]
+    loopfree = [
+        "planning/model.lp",
+        "planning/relaxed.lp",
+        "planning/transition.lp",
+        "planning/loopfree.lp",
+    ]
     assert answer_sets(loopfree, model + "simple_path(c)." + fixed(2)) == []
     compiled = hmodel(["do_no_harm"], model) + "simple_path(c)."
     assert answer_sets(loopfree, compiled + fixed(2)) != []
@@ -156,14 +171,18 @@ def test_do_no_harm_an_overridden_delete_that_an_event_completes_is_not_caused()
                event(e). event_at(e,1). event_effect(e,1,v,false)."""
     assert plans([], model, 1) == {("a",)}
     assert plans(["do_no_harm"], model, 1) == {("a",)}
-    caused = only_answer(["planning/model.lp", "planning/trace.lp", "planning/trace_events.lp"],
-                         model + "occurs(a,1). #show caused/2.")
+    caused = only_answer(
+        ["planning/model.lp", "planning/trace.lp", "planning/trace_events.lp"],
+        model + "occurs(a,1). #show caused/2.",
+    )
     assert "caused(v,false)" not in caused
     # without the add, the delete of a wins and causes it (the event keeps it)
     model = model.replace("ceff(a,k,v,true).", "")
     assert plans(["do_no_harm"], model, 1) == set()
-    caused = only_answer(["planning/model.lp", "planning/trace.lp", "planning/trace_events.lp"],
-                         model + "occurs(a,1). #show caused/2.")
+    caused = only_answer(
+        ["planning/model.lp", "planning/trace.lp", "planning/trace_events.lp"],
+        model + "occurs(a,1). #show caused/2.",
+    )
     assert "caused(v,false)" in caused
 
 
@@ -175,12 +194,13 @@ def test_do_no_harm_a_harm_an_action_undoes_and_an_event_of_its_step_redoes_is_c
     model = """variable(v;w). action(p;u). eff(p,v,true). eff(p,w,true). eff(u,v,false).
                event(e). event_at(e,2). event_effect(e,1,v,true). goal(w,true).
                utility(v,true,-1)."""
-    caused = only_answer(["planning/model.lp", "planning/trace.lp", "planning/trace_events.lp"],
-                         model + "occurs(p,1). occurs(u,2). #show caused/2.")
+    caused = only_answer(
+        ["planning/model.lp", "planning/trace.lp", "planning/trace_events.lp"],
+        model + "occurs(p,1). occurs(u,2). #show caused/2.",
+    )
     assert "caused(v,true)" in caused
     assert plans(["do_no_harm"], model, 2) == set()
-    assert plans(["do_no_harm"], model, 3) == {("u", "p", "u"), ("p", "u", "u"),
-                                               ("p", "p", "u")}
+    assert plans(["do_no_harm"], model, 3) == {("u", "p", "u"), ("p", "u", "u"), ("p", "p", "u")}
 
 
 def test_avoid_any_harm_adds_the_opposite_goals():
@@ -208,8 +228,7 @@ def question_plans(model: str, contrasts: str, horizon: int) -> set[tuple[str, .
 
 def test_question_constraints_as_hmodels():
     assert question_plans(ROUTES, "contrast(q,unused(a)).", 2) == {("b", "c")}
-    assert question_plans(ROUTES, "contrast(q,used(b)).", 2) == {("b", "c"), ("b", "a"),
-                                                                  ("a", "b")}
+    assert question_plans(ROUTES, "contrast(q,used(b)).", 2) == {("b", "c"), ("b", "a"), ("a", "b")}
     assert question_plans(ROUTES, "contrast(q,before(b,a)).", 2) == {("b", "a")}
     # some b before some a: b a, not a b
     found = question_plans(ROUTES, "contrast(q,before(b,a)).", 3)

@@ -20,13 +20,12 @@ import os
 import re
 import sys
 import threading
-from pathlib import Path
 
 import pytest
+from conftest import ENCODINGS, MODELS
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from conftest import ENCODINGS, MODELS
 from ethasp.interfaces.cli import main
 from ethasp.planning.namespace import reserved
 
@@ -38,41 +37,73 @@ LIMITS = ["--time-limit", "2", "--max-horizon", "3"]
 HANG = 120.0
 
 ASP_MODELS = {path.stem: path.read_text() for path in sorted(MODELS.glob("*.lp"))}
-PLANS = {"trolley": "pull", "footbridge": "push", "heist": "", "rescue": "",
-         "lightning": "drop_match"}
-ACTIONS = {"trolley": ["pull", "refrain"], "footbridge": ["push", "refrain"],
-           "heist": ["stage_heist", "buy_flowers"], "rescue": ["take_key", "break_door"],
-           "lightning": ["drop_match", "keep_match"]}
+PLANS = {
+    "trolley": "pull",
+    "footbridge": "push",
+    "heist": "",
+    "rescue": "",
+    "lightning": "drop_match",
+}
+ACTIONS = {
+    "trolley": ["pull", "refrain"],
+    "footbridge": ["push", "refrain"],
+    "heist": ["stage_heist", "buy_flowers"],
+    "rescue": ["take_key", "break_door"],
+    "lightning": ["drop_match", "keep_match"],
+}
 PDDL = {path.name: path.read_text() for path in sorted((MODELS / "pddl").glob("*"))}
 PDDL_TASKS = [("trolley", "(pull)"), ("care", ""), ("blocksworld", ""), ("gripper", "")]
-ENCODING_LINES = [line for path in sorted(ENCODINGS.rglob("*.lp"))
-                  for line in path.read_text().splitlines()
-                  if line.strip() and not line.lstrip().startswith("%")]
+ENCODING_LINES = [
+    line
+    for path in sorted(ENCODINGS.rglob("*.lp"))
+    for line in path.read_text().splitlines()
+    if line.strip() and not line.lstrip().startswith("%")
+]
 RESERVED = sorted(reserved(pddl=True))
 
 FORMULAS = [
-    "Good(pull)", "Bad(one_will_die) -> not Caused(one_will_die)",
+    "Good(pull)",
+    "Bad(one_will_die) -> not Caused(one_will_die)",
     "GEq(-five_will_die & one_will_die & done, five_will_die & -one_will_die & done)",
-    "not (Caused(-five_will_die) or Neutral(refrain)) and true", "GEq((), done)",
+    "not (Caused(-five_will_die) or Neutral(refrain)) and true",
+    "GEq((), done)",
 ]
-QUESTIONS = ["why refrain rather than pull", "why pull", "why not pull", "why refrain before pull",
-             "why pull?", "WHY NOT refrain"]
+QUESTIONS = [
+    "why refrain rather than pull",
+    "why pull",
+    "why not pull",
+    "why refrain before pull",
+    "why pull?",
+    "WHY NOT refrain",
+]
 
 TOKEN = re.compile(r"[A-Za-z_'][A-Za-z0-9_']*|\d+|\s+|.", re.S)
 CHARACTERS = "()[]{},.;:-_'\"%#&|+*/\\<>=!~@? \n\tabzXY0129é€\x7f"
-NUMBERS = ["0", "-1", "2147483647", "2147483648", "-2147483648", "3000000000",
-           "99999999999999999999", "1073741823", "0x7FFFFFFF", "0xFFFFFFFFF"]
+NUMBERS = [
+    "0",
+    "-1",
+    "2147483647",
+    "2147483648",
+    "-2147483648",
+    "3000000000",
+    "99999999999999999999",
+    "1073741823",
+    "0x7FFFFFFF",
+    "0xFFFFFFFFF",
+]
 
 
 # -- mutations -----------------------------------------------------------------------
+
 
 def _splice(draw) -> str:
     kind = draw(st.sampled_from(["fact", "rule", "encoding"]))
     if kind == "encoding":
         return draw(st.sampled_from(ENCODING_LINES))
     name, arity = draw(st.sampled_from(RESERVED))
-    arguments = ",".join(draw(st.sampled_from(["x", "X", "1", "pull", "done", "true"]))
-                         for _ in range(arity))
+    arguments = ",".join(
+        draw(st.sampled_from(["x", "X", "1", "pull", "done", "true"])) for _ in range(arity)
+    )
     atom = f"{name}({arguments})" if arity else name
     if kind == "fact":
         return f"{atom}."
@@ -86,21 +117,28 @@ def mutated(draw, text: str, splices: bool = True) -> str:
         tokens = TOKEN.findall(text)
         # Token edits and splices keep more programs parseable, so they are drawn
         # more often than byte edits.
-        kind = draw(st.sampled_from(["delete", "insert", "replace", "token-delete",
-                                     "token-duplicate", "token-swap"]
-                                    + ["token-replace", "number"] * 3
-                                    + (["splice"] * 3 if splices else [])))
+        kind = draw(
+            st.sampled_from(
+                ["delete", "insert", "replace", "token-delete", "token-duplicate", "token-swap"]
+                + ["token-replace", "number"] * 3
+                + (["splice"] * 3 if splices else [])
+            )
+        )
         if kind in ("delete", "insert", "replace"):
             index = draw(st.integers(0, max(0, len(text) - 1)))
             char = draw(st.sampled_from(CHARACTERS))
-            text = (text[:index] + text[index + 1:] if kind == "delete" else
-                    text[:index] + char + text[index:] if kind == "insert" else
-                    text[:index] + char + text[index + 1:])
+            text = (
+                text[:index] + text[index + 1 :]
+                if kind == "delete"
+                else text[:index] + char + text[index:]
+                if kind == "insert"
+                else text[:index] + char + text[index + 1 :]
+            )
             continue
         if kind == "splice":
             lines = text.split("\n")
             index = draw(st.integers(0, len(lines)))
-            text = "\n".join(lines[:index] + [_splice(draw)] + lines[index:])
+            text = "\n".join([*lines[:index], _splice(draw), *lines[index:]])
             continue
         if not tokens:
             continue
@@ -125,6 +163,7 @@ def mutated(draw, text: str, splices: bool = True) -> str:
 
 # -- running a command --------------------------------------------------------------
 
+
 def run(arguments: list[str], stdin: str = "") -> tuple[int, str, str]:
     """ethasp in-process, in a thread, so that a hang fails the test instead of
     stalling it."""
@@ -137,7 +176,7 @@ def run(arguments: list[str], stdin: str = "") -> tuple[int, str, str]:
         try:
             with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
                 code = main(arguments)
-        except BaseException as error:  # noqa: BLE001 (reported below)
+        except BaseException as error:
             result.append(error)
             return
         finally:
@@ -153,8 +192,13 @@ def run(arguments: list[str], stdin: str = "") -> tuple[int, str, str]:
     return result[0]
 
 
-JSON_KEYS = {"plan": "status", "judge": "judgements", "query": "value", "ask": "status",
-             "validate": "valid"}
+JSON_KEYS = {
+    "plan": "status",
+    "judge": "judgements",
+    "query": "value",
+    "ask": "status",
+    "validate": "valid",
+}
 
 
 def check(arguments: list[str], stdin: str = "") -> None:
@@ -170,7 +214,7 @@ def check(arguments: list[str], stdin: str = "") -> None:
             assert JSON_KEYS[command] in json.loads(out)
         else:
             assert out.strip()
-    elif code == 2 and command == "validate" and not err:     # a sequence that is no plan
+    elif code == 2 and command == "validate" and not err:  # a sequence that is no plan
         if "--json" in arguments:
             assert json.loads(out)["valid"] is False
         else:
@@ -194,8 +238,16 @@ def command_lines(model: list[str], plan: str, actions: list[str], draw) -> list
     if kind == "query":
         return ["query", *model, *plan_args, "--json", draw(st.sampled_from(FORMULAS))]
     first, second = actions
-    question = draw(st.sampled_from([f"why {first}", f"why {first} rather than {second}",
-                                     f"why not {second}", f"why {second} before {first}"]))
+    question = draw(
+        st.sampled_from(
+            [
+                f"why {first}",
+                f"why {first} rather than {second}",
+                f"why not {second}",
+                f"why {second} before {first}",
+            ]
+        )
+    )
     if kind == "ask":
         return ["ask", *model, "--question", question, "--json", "--reasons-limit", "2", *LIMITS]
     return ["dialogue", *model, "--save", "-", "--reasons-limit", "2", *LIMITS]
@@ -203,12 +255,15 @@ def command_lines(model: list[str], plan: str, actions: list[str], draw) -> list
 
 def fuzz(examples: int) -> settings:
     examples *= int(os.environ.get("ETHASP_FUZZ_SCALE", "1"))
-    return settings(max_examples=examples, deadline=None,
-                    suppress_health_check=[HealthCheck.too_slow,
-                                           HealthCheck.function_scoped_fixture])
+    return settings(
+        max_examples=examples,
+        deadline=None,
+        suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture],
+    )
 
 
 # -- the fuzzers --------------------------------------------------------------------
+
 
 @fuzz(180)
 @given(data=st.data())
@@ -242,8 +297,18 @@ def test_mutated_pddl_tasks(data, tmp_path_factory):
     elif kind == "validate":
         check(["validate", *model, "--plan", plan or "(nothing)", "--json"])
     else:
-        check(["judge", *model, "--plan", plan or "(nothing)", "--json", "--reasons-limit", "2",
-               *LIMITS])
+        check(
+            [
+                "judge",
+                *model,
+                "--plan",
+                plan or "(nothing)",
+                "--json",
+                "--reasons-limit",
+                "2",
+                *LIMITS,
+            ]
+        )
 
 
 @fuzz(240)
@@ -253,15 +318,18 @@ def test_mutated_formulas(formula):
 
 
 @fuzz(75)
-@given(st.sampled_from(QUESTIONS).flatmap(lambda text: mutated(text, splices=False)),
-       st.sampled_from(["ask", "dialogue"]))
+@given(
+    st.sampled_from(QUESTIONS).flatmap(lambda text: mutated(text, splices=False)),
+    st.sampled_from(["ask", "dialogue"]),
+)
 def test_mutated_questions(question, command):
     if command == "ask":
-        check(["ask", "trolley", "--question", question, "--json", "--reasons-limit", "2",
-               *LIMITS])
+        check(["ask", "trolley", "--question", question, "--json", "--reasons-limit", "2", *LIMITS])
     else:
-        check(["dialogue", "trolley", "--save", "-", "--reasons-limit", "2", *LIMITS],
-              stdin=question + "\nhistory\n")
+        check(
+            ["dialogue", "trolley", "--save", "-", "--reasons-limit", "2", *LIMITS],
+            stdin=question + "\nhistory\n",
+        )
 
 
 @fuzz(120)

@@ -27,15 +27,15 @@ import os
 import tempfile
 
 import pytest
+from hera_situations import situations
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from ethasp import Model, Plan
 from ethasp.planning.search import FOUND, find_plan
 from ethasp.planning.situation import name_term
-from ethasp.principles.judgement import judge
 from ethasp.planning.validation import validate
-from hera_situations import situations
+from ethasp.principles.judgement import judge
 
 pytestmark = pytest.mark.slow  # random situations through ethasp and HERA both
 ethics = pytest.importorskip("ethics.plans.semantics")
@@ -67,10 +67,15 @@ def _write(data: dict, directory: str, name: str) -> str:
 
 def hera_verdicts(data: dict, directory: str, skip=()) -> dict[str, bool | None]:
     """HERA's verdict for each principle (None: HERA gives none, or it is in ``skip``)."""
-    path = _write({key: value for key, value in data.items() if key != "alternatives"},
-                  directory, "situation.json")
-    alternatives = [_write(dict(data, plan=plan), directory, f"alternative{number}.json")
-                    for number, plan in enumerate(data.get("alternatives", []))]
+    path = _write(
+        {key: value for key, value in data.items() if key != "alternatives"},
+        directory,
+        "situation.json",
+    )
+    alternatives = [
+        _write(dict(data, plan=plan), directory, f"alternative{number}.json")
+        for number, plan in enumerate(data.get("alternatives", []))
+    ]
     verdicts: dict[str, bool | None] = {}
     for name, (principle, arguments) in PRINCIPLES.items():
         if name in skip:
@@ -81,7 +86,7 @@ def hera_verdicts(data: dict, directory: str, skip=()) -> dict[str, bool | None]
             situation.alethicAlternatives = [ethics.Situation(alt) for alt in alternatives]
         try:
             verdict = situation.evaluate(principle, *arguments)
-        except Exception:       # HERA fails on this input
+        except Exception:  # HERA fails on this input
             verdict = None
         verdicts[name] = verdict if isinstance(verdict, bool) else None
     return verdicts
@@ -98,14 +103,16 @@ def ethasp_verdicts(data: dict, directory: str) -> tuple[dict[str, bool], dict, 
     model = Model.load([path])
     plan = Plan(tuple(name_term(action) for action in data["plan"]))
     report = judge(model, plan, list(PRINCIPLES))
-    final = {literal.lstrip("-"): not literal.startswith("-")
-             for literal in validate(model, plan).final_state}
+    final = {
+        literal.lstrip("-"): not literal.startswith("-")
+        for literal in validate(model, plan).final_state
+    }
     verdicts = {j.principle: j.permissible for j in report.judgements}
     if any(j.status != "proven" for j in report.judgements):
         raise AssertionError(f"a verdict is not proven: {report.to_json()}")
     # HERA's planner searches plans of at most ten actions.
     if not data.get("goal"):
-        return verdicts, final, True          # the empty goal: the empty plan reaches it
+        return verdicts, final, True  # the empty goal: the empty plan reaches it
     within_ten = find_plan(model, max_horizon=10).status == FOUND
     if not within_ten and find_plan(model, max_horizon=40).status == FOUND:
         verdicts.pop("avoid-avoidable-harm")
@@ -119,7 +126,7 @@ def agree(data: dict) -> None:
         expected = hera_verdicts(data, directory, slow)
         # A variable that initialState leaves out and no effect sets is absent
         # from HERA's final state, and false in ethasp's.
-        assert final == {**{v: False for v in final}, **hera_final_state(data, directory)}
+        assert final == {**dict.fromkeys(final, False), **hera_final_state(data, directory)}
         for name, verdict in expected.items():
             if verdict is None or name not in ours:
                 continue
@@ -143,15 +150,17 @@ def test_every_principle_agrees_with_hera(data):
     agree(data)
 
 
-@settings(max_examples=max(EXAMPLES // 3, 10), deadline=None,
-          suppress_health_check=list(HealthCheck))
+@settings(
+    max_examples=max(EXAMPLES // 3, 10), deadline=None, suppress_health_check=list(HealthCheck)
+)
 @given(with_alternatives(max_actions=2, max_events=4, max_plan=5))
 def test_longer_plans_and_more_events_agree_with_hera(data):
     agree(data)
 
 
-@settings(max_examples=max(EXAMPLES // 3, 10), deadline=None,
-          suppress_health_check=list(HealthCheck))
+@settings(
+    max_examples=max(EXAMPLES // 3, 10), deadline=None, suppress_health_check=list(HealthCheck)
+)
 @given(with_alternatives(undefined=True))
 def test_variables_initialstate_leaves_out_agree_with_hera(data):
     """HERA's own files may leave variables out of initialState (undefined
@@ -164,30 +173,94 @@ def test_variables_initialstate_leaves_out_agree_with_hera(data):
 # is the action's), duplicate and negative time points, events after the plan,
 # an empty plan with events, a repeated action whose later effect overrides.
 CORNERS = [
- # name clash: action a and variable a
- {"actions": [{"name": "a", "intrinsicvalue": "neutral", "preconditions": {}, "effects": [{"condition": {}, "effect": {"a": True, "b": True}}]},
-              {"name": "b", "intrinsicvalue": "bad", "preconditions": {}, "effects": [{"condition": {}, "effect": {"b": False}}]}],
-  "utilities": [{"fact": {"a": True}, "utility": -2}, {"fact": {"b": True}, "utility": -1}],
-  "affects": {"p": {"pos": [{"b": False}], "neg": [{"a": True}]}},
-  "plan": ["a"], "goal": {"a": True, "b": True}, "initialState": {"a": False, "b": False}},
- # duplicate and negative timepoints, events after the plan
- {"actions": [{"name": "x", "preconditions": {}, "effects": [{"condition": {}, "effect": {"c": True}}]}],
-  "events": [{"name": "e", "preconditions": {"c": True}, "effects": [{"condition": {}, "effect": {"d": True}}], "timepoints": [-1, 1, 1, 3]},
-             {"name": "f", "preconditions": {}, "effects": [{"condition": {"d": True}, "effect": {"c": False}}], "timepoints": [3]}],
-  "utilities": [{"fact": {"d": True}, "utility": -1}, {"fact": {"c": False}, "utility": 2}],
-  "affects": {"q": {"pos": [{"c": False}], "neg": [{"d": True}]}},
-  "plan": ["x"], "goal": {"d": True}, "initialState": {"c": False, "d": False}},
- # empty plan with events
- {"actions": [{"name": "x", "preconditions": {}, "effects": []}],
-  "events": [{"name": "e", "preconditions": {}, "effects": [{"condition": {}, "effect": {"c": True}}], "timepoints": [0]}],
-  "utilities": [{"fact": {"c": True}, "utility": -1}], "affects": {"q": {"pos": [], "neg": [{"c": True}]}},
-  "plan": [], "goal": {"c": True}, "initialState": {"c": False}},
- # the plan repeats an action; conflicting effects in one action (later false wins)
- {"actions": [{"name": "x", "intrinsicvalue": "good", "preconditions": {}, "effects": [
-      {"condition": {}, "effect": {"c": True}}, {"condition": {"d": True}, "effect": {"c": False}}, {"condition": {}, "effect": {"d": True}}]}],
-  "utilities": [{"fact": {"c": False}, "utility": -1}, {"fact": {"d": True}, "utility": 1}],
-  "affects": {"q": {"pos": [{"d": True}], "neg": [{"c": False}]}},
-  "plan": ["x", "x"], "goal": {"c": False}, "initialState": {"c": False, "d": False}},
+    # name clash: action a and variable a
+    {
+        "actions": [
+            {
+                "name": "a",
+                "intrinsicvalue": "neutral",
+                "preconditions": {},
+                "effects": [{"condition": {}, "effect": {"a": True, "b": True}}],
+            },
+            {
+                "name": "b",
+                "intrinsicvalue": "bad",
+                "preconditions": {},
+                "effects": [{"condition": {}, "effect": {"b": False}}],
+            },
+        ],
+        "utilities": [{"fact": {"a": True}, "utility": -2}, {"fact": {"b": True}, "utility": -1}],
+        "affects": {"p": {"pos": [{"b": False}], "neg": [{"a": True}]}},
+        "plan": ["a"],
+        "goal": {"a": True, "b": True},
+        "initialState": {"a": False, "b": False},
+    },
+    # duplicate and negative timepoints, events after the plan
+    {
+        "actions": [
+            {
+                "name": "x",
+                "preconditions": {},
+                "effects": [{"condition": {}, "effect": {"c": True}}],
+            }
+        ],
+        "events": [
+            {
+                "name": "e",
+                "preconditions": {"c": True},
+                "effects": [{"condition": {}, "effect": {"d": True}}],
+                "timepoints": [-1, 1, 1, 3],
+            },
+            {
+                "name": "f",
+                "preconditions": {},
+                "effects": [{"condition": {"d": True}, "effect": {"c": False}}],
+                "timepoints": [3],
+            },
+        ],
+        "utilities": [{"fact": {"d": True}, "utility": -1}, {"fact": {"c": False}, "utility": 2}],
+        "affects": {"q": {"pos": [{"c": False}], "neg": [{"d": True}]}},
+        "plan": ["x"],
+        "goal": {"d": True},
+        "initialState": {"c": False, "d": False},
+    },
+    # empty plan with events
+    {
+        "actions": [{"name": "x", "preconditions": {}, "effects": []}],
+        "events": [
+            {
+                "name": "e",
+                "preconditions": {},
+                "effects": [{"condition": {}, "effect": {"c": True}}],
+                "timepoints": [0],
+            }
+        ],
+        "utilities": [{"fact": {"c": True}, "utility": -1}],
+        "affects": {"q": {"pos": [], "neg": [{"c": True}]}},
+        "plan": [],
+        "goal": {"c": True},
+        "initialState": {"c": False},
+    },
+    # the plan repeats an action; conflicting effects in one action (later false wins)
+    {
+        "actions": [
+            {
+                "name": "x",
+                "intrinsicvalue": "good",
+                "preconditions": {},
+                "effects": [
+                    {"condition": {}, "effect": {"c": True}},
+                    {"condition": {"d": True}, "effect": {"c": False}},
+                    {"condition": {}, "effect": {"d": True}},
+                ],
+            }
+        ],
+        "utilities": [{"fact": {"c": False}, "utility": -1}, {"fact": {"d": True}, "utility": 1}],
+        "affects": {"q": {"pos": [{"d": True}], "neg": [{"c": False}]}},
+        "plan": ["x", "x"],
+        "goal": {"c": False},
+        "initialState": {"c": False, "d": False},
+    },
 ]
 
 

@@ -13,28 +13,40 @@ import subprocess
 import sys
 
 import pytest
+from conftest import MODELS, ROOT, only_answer
+from hera_situations import situations
 from hypothesis import HealthCheck, assume, given, settings
 
-from conftest import MODELS, ROOT, answer_sets, only_answer
 from ethasp import InputError, Model, Plan
 from ethasp.planning.situation import name_term, translate_data
+from ethasp.planning.validation import validate
 from ethasp.principles.formula import Elements, parse_formula
 from ethasp.principles.judgement import counterfactuals, judge, query
 from ethasp.principles.restriction import plan_with_principles
-from ethasp.planning.validation import validate
 from ethasp.reasons.reasons import explain
-from hera_situations import situations
 
 FRANK = MODELS / "hera" / "robot-and-frank.yaml"
 TROLLEY = MODELS / "hera" / "trolley.yaml"
 LIGHTNING = MODELS / "lightning.lp"
-RESTRICTED = ["hera-deontology", "goal-deontology", "avoid-any-harm", "avoid-avoidable-harm",
-              "hera-utilitarianism", "deontology", "do-no-harm", "utilitarianism"]
+RESTRICTED = [
+    "hera-deontology",
+    "goal-deontology",
+    "avoid-any-harm",
+    "avoid-avoidable-harm",
+    "hera-utilitarianism",
+    "deontology",
+    "do-no-harm",
+    "utilitarianism",
+]
 
 
 def ethasp(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", *args],
-                          capture_output=True, text=True, cwd=ROOT)
+    return subprocess.run(
+        [sys.executable, "-m", "ethasp.interfaces.cli", *args],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
 
 
 def verdicts(model: Model, plan: Plan | None = None, principles=("all",)) -> dict[str, bool]:
@@ -77,14 +89,22 @@ def test_equal_keys_let_true_win_and_events_override_the_action():
 
 def test_trace_steps_runs_and_search_agree_on_events():
     program = EVENTS + "goal(b,false). goal(c,false)."
-    steps = only_answer(TRACE + ["planning/steps.lp"], program + "occurs(go,1).")
-    assert {"event_set(1,b,false)", "event_set(1,c,false)", "happened(1,e)",
-            "happened(1,f)", "happened(3,f)"} <= steps
-    runs = only_answer(["planning/model.lp", "judgement/runs.lp"],
-                       program + "run(r). run_length(r,1). run_occurs(r,go,1).")
+    steps = only_answer([*TRACE, "planning/steps.lp"], program + "occurs(go,1).")
+    assert {
+        "event_set(1,b,false)",
+        "event_set(1,c,false)",
+        "happened(1,e)",
+        "happened(1,f)",
+        "happened(3,f)",
+    } <= steps
+    runs = only_answer(
+        ["planning/model.lp", "judgement/runs.lp"],
+        program + "run(r). run_length(r,1). run_occurs(r,go,1).",
+    )
     assert {"run_final(r,a,true)", "run_final(r,b,false)", "run_final(r,c,false)"} <= runs
     model = Model.from_string(program)
     from ethasp.planning.search import find_plan
+
     assert find_plan(model).plan == Plan.parse("go")
 
 
@@ -96,14 +116,21 @@ def test_the_trace_and_the_runs_give_the_same_final_state(data):
     model = Model.from_string(translate_data(data))
     plan = model.own_plan()
     final = set(validate(model, plan).final_state)
-    occurs = "".join(f"run_occurs(r,{action},{step}). "
-                     for step, action in enumerate(plan.actions, 1))
-    runs = only_answer(["planning/model.lp", "judgement/runs.lp"],
-                       model.planner.model_text() + f"run(r). run_length(r,{len(plan)}). " + occurs
-                       + "#show run_final/3.")
+    occurs = "".join(
+        f"run_occurs(r,{action},{step}). " for step, action in enumerate(plan.actions, 1)
+    )
+    runs = only_answer(
+        ["planning/model.lp", "judgement/runs.lp"],
+        model.planner.model_text()
+        + f"run(r). run_length(r,{len(plan)}). "
+        + occurs
+        + "#show run_final/3.",
+    )
     literal = {"true": "", "false": "-"}
-    assert final == {literal[atom.split(",")[-1][:-1]] + atom[len("run_final(r,"):].rsplit(",", 1)[0]
-                     for atom in runs}
+    assert final == {
+        literal[atom.split(",")[-1][:-1]] + atom[len("run_final(r,") :].rsplit(",", 1)[0]
+        for atom in runs
+    }
 
 
 @pytest.mark.slow
@@ -119,7 +146,7 @@ def test_plan_search_with_events_finds_shortest_plans(data):
     result = find_plan(model, max_horizon=4)
     actions = [name_term(action["name"]) for action in data["actions"]]
     shortest = None
-    for length in range(0, 4):
+    for length in range(4):
         for sequence in itertools.product(actions, repeat=length):
             if validate(model, Plan(sequence)).valid:
                 shortest = length
@@ -135,6 +162,7 @@ def test_plan_search_with_events_finds_shortest_plans(data):
 
 # -- the examples ---------------------------------------------------------------------
 
+
 def test_overdetermination_the_paper_forbids_what_hera_permits():
     """A match dropped while lightning strikes: the paper's Caused holds (an
     action has the fire as an effect, and it burns on), HERA's but-for
@@ -149,8 +177,9 @@ def test_overdetermination_the_paper_forbids_what_hera_permits():
     # Without the lightning, HERA's causation credits the match.
     calm = Model.from_string(LIGHTNING.read_text().replace("event_at(lightning,1).", ""))
     assert verdicts(calm, plan, ["hera-do-no-harm"]) == {"hera-do-no-harm": False}
-    run = ethasp("judge", "lightning", "--principle", "do-no-harm", "--principle",
-                 "hera-do-no-harm")
+    run = ethasp(
+        "judge", "lightning", "--principle", "do-no-harm", "--principle", "hera-do-no-harm"
+    )
     assert run.returncode == 0, run.stderr
     assert "would come about even without the camper's action" in run.stdout
 
@@ -159,9 +188,9 @@ def test_robot_and_frank():
     model = Model.load([FRANK])
     lie = verdicts(model)
     assert lie["hera-deontology"] is False and lie["deontology"] is False
-    assert lie["do-no-instrumental-harm"] is False       # deceiving Frank is a means
-    assert lie["kantian-humanity"] is True               # ... but Frank is also an end
-    assert lie["hera-utilitarianism"] is False           # persuading him ends better
+    assert lie["do-no-instrumental-harm"] is False  # deceiving Frank is a means
+    assert lie["kantian-humanity"] is True  # ... but Frank is also an end
+    assert lie["hera-utilitarianism"] is False  # persuading him ends better
     persuade = verdicts(model, Plan.parse("persuade_frank"))
     assert all(persuade.values()), persuade
     assert query(model, model.own_plan(), "Means(frank) and End(frank)").value
@@ -182,8 +211,9 @@ def test_trolley_in_hera_format():
 
 
 def test_a_situation_is_judged_on_its_own_plan_by_default():
-    run = ethasp("judge", "robot-and-frank.yaml", "--principle", "hera", "--json",
-                 "--reasons-limit", "1")
+    run = ethasp(
+        "judge", "robot-and-frank.yaml", "--principle", "hera", "--json", "--reasons-limit", "1"
+    )
     assert run.returncode == 0, run.stderr
     data = json.loads(run.stdout)
     assert data["plan"] == ["lie_to_frank"]
@@ -191,19 +221,32 @@ def test_a_situation_is_judged_on_its_own_plan_by_default():
     words = {j["principle"]: j["explanation"] for j in data["judgements"]}
     assert words["do-no-instrumental-harm"].startswith("The robot can lie to Frank.")
     assert "is a means to the robot's goal" in words["do-no-instrumental-harm"]
-    run = ethasp("judge", "trolley")      # an ASP model without a plan of its own
+    run = ethasp("judge", "trolley")  # an ASP model without a plan of its own
     assert run.returncode == 2 and "no plan given" in run.stderr
 
 
 def test_a_plan_that_misses_its_goal_is_judged(tmp_path):
-    data = {"actions": [{"name": "step", "preconditions": {"alive": True},
-                         "effects": [{"condition": {}, "effect": {"crossed": True}}]}],
-            "events": [{"name": "car", "preconditions": {},
-                        "effects": [{"condition": {}, "effect": {"alive": False}}],
-                        "timepoints": [0]}],
-            "utilities": [{"fact": {"alive": False}, "utility": -5}],
-            "plan": ["step", "step"], "goal": {"crossed": True, "alive": True},
-            "initialState": {"alive": True, "crossed": False}}
+    data = {
+        "actions": [
+            {
+                "name": "step",
+                "preconditions": {"alive": True},
+                "effects": [{"condition": {}, "effect": {"crossed": True}}],
+            }
+        ],
+        "events": [
+            {
+                "name": "car",
+                "preconditions": {},
+                "effects": [{"condition": {}, "effect": {"alive": False}}],
+                "timepoints": [0],
+            }
+        ],
+        "utilities": [{"fact": {"alive": False}, "utility": -5}],
+        "plan": ["step", "step"],
+        "goal": {"crossed": True, "alive": True},
+        "initialState": {"alive": True, "crossed": False},
+    }
     path = tmp_path / "crossing.json"
     path.write_text(json.dumps(data))
     run = ethasp("judge", str(path), "--principle", "avoid-any-harm", "--json")
@@ -216,6 +259,7 @@ def test_a_plan_that_misses_its_goal_is_judged(tmp_path):
 
 
 # -- HModels ------------------------------------------------------------------------------
+
 
 @pytest.mark.slow
 @settings(max_examples=15, deadline=None, suppress_health_check=list(HealthCheck))
@@ -234,7 +278,7 @@ def test_restrictions_find_shortest_permissible_plans(data):
     for principle in RESTRICTED:
         result = plan_with_principles(model, [principle], max_horizon=3)
         shortest, unknown = None, False
-        for length in range(0, 4):
+        for length in range(4):
             for sequence in itertools.product(actions, repeat=length):
                 plan = Plan(sequence)
                 if not validate(model, plan).valid:
@@ -255,8 +299,13 @@ def test_restrictions_find_shortest_permissible_plans(data):
 
 
 def test_principles_without_a_restriction_say_so_in_one_line():
-    for principle in ("hera-do-no-harm", "do-no-instrumental-harm", "kantian-humanity",
-                      "kantian-humanity-2", "double-effect"):
+    for principle in (
+        "hera-do-no-harm",
+        "do-no-instrumental-harm",
+        "kantian-humanity",
+        "kantian-humanity-2",
+        "double-effect",
+    ):
         run = ethasp("plan", "robot-and-frank.yaml", "--principle", principle)
         assert run.returncode == 2 and len(run.stderr.splitlines()) == 1
         assert "has no restriction encoding" in run.stderr
@@ -273,29 +322,35 @@ def test_goal_less_models():
     # The lightning burns the forest whatever the camper does: proven.
     result = plan_with_principles(model, ["avoid-any-harm"])
     assert result.status == "none"
-    assert verdicts(model, Plan.parse("keep_match"), ["avoid-avoidable-harm"]) == \
-        {"avoid-avoidable-harm": False}
+    assert verdicts(model, Plan.parse("keep_match"), ["avoid-avoidable-harm"]) == {
+        "avoid-avoidable-harm": False
+    }
 
 
 # -- formulas, words, reasons ------------------------------------------------------------
 
+
 def test_hera_operators_in_formulas():
     model = Model.load([FRANK])
     elements = Elements.of_model(model)
-    for text in ["Goal(frank_healthy) and not Finally(-frank_healthy)",
-                 "ButFor(frank_deceived) -> Instrumental(frank_deceived)",
-                 "Avoidable(-frank_healthy) or Means2(frank) or not End(frank)",
-                 "U(frank_healthy & -frank_deceived) >= 2 - U(())",
-                 "U(frank_healthy) > U(frank_deceived) -> Means(frank)"]:
+    for text in [
+        "Goal(frank_healthy) and not Finally(-frank_healthy)",
+        "ButFor(frank_deceived) -> Instrumental(frank_deceived)",
+        "Avoidable(-frank_healthy) or Means2(frank) or not End(frank)",
+        "U(frank_healthy & -frank_deceived) >= 2 - U(())",
+        "U(frank_healthy) > U(frank_deceived) -> Means(frank)",
+    ]:
         formula = parse_formula(text, elements)
         assert str(parse_formula(str(formula), elements)) == str(formula)
     lie = model.own_plan()
     assert query(model, lie, "U(frank_healthy & frank_deceived) = 1").value
     assert query(model, lie, "U(frank_deceived) < 0 and Goal(frank_healthy)").value
     assert not query(model, lie, "Avoidable(frank_healthy)").value
-    for bad, message in [("Means(nobody)", "unknown moral patient"),
-                         ("Goal(lie_to_frank)", "takes facts"),
-                         ("U(frank_healthy) >", "expected U(...) or a number")]:
+    for bad, message in [
+        ("Means(nobody)", "unknown moral patient"),
+        ("Goal(lie_to_frank)", "takes facts"),
+        ("U(frank_healthy) >", "expected U(...) or a number"),
+    ]:
         with pytest.raises(InputError, match=re.escape(message)):
             parse_formula(bad, elements)
 
@@ -325,26 +380,36 @@ def test_moral_patients_are_named_by_their_labels(tmp_path):
     assert why.permissible and "because Frank is treated as an end" in why.text
     unlabelled = Model.from_string(
         "variable(h). action(help). eff(help,h,true). goal(h,true). patient(ann). "
-        "affects(ann,h,true,pos).")
+        "affects(ann,h,true,pos)."
+    )
     why = explain(unlabelled, Plan.parse("help"), "kantian-humanity")
     assert "ann is treated as an end" in why.text
     labelled = Model.from_string(unlabelled.sources[0].text + ' patient_label(ann,"Ann").')
-    assert "Ann is treated as an end" in explain(labelled, Plan.parse("help"),
-                                                 "kantian-humanity").text
-    data = {"actions": [{"name": "help", "effects": [{"effect": {"h": True}}]}],
-            "affects": {"ann": {"pos": [{"h": True}], "neg": []}},
-            "initialState": {"h": False}, "utilities": [],
-            "labels": {"patients": {"ann": "Ann", "bob": "Bob"}}}
+    assert (
+        "Ann is treated as an end" in explain(labelled, Plan.parse("help"), "kantian-humanity").text
+    )
+    data = {
+        "actions": [{"name": "help", "effects": [{"effect": {"h": True}}]}],
+        "affects": {"ann": {"pos": [{"h": True}], "neg": []}},
+        "initialState": {"h": False},
+        "utilities": [],
+        "labels": {"patients": {"ann": "Ann", "bob": "Bob"}},
+    }
     with pytest.raises(InputError, match="bob is not a patient of the situation"):
         translate_data(data)
 
 
 # -- the mapping and its errors ------------------------------------------------------------
 
+
 def test_names_that_are_not_asp_constants_become_strings():
-    data = {"actions": [{"name": "move_rob-a", "effects": [{"condition": {},
-                                                           "effect": {"4alive": False}}]}],
-            "initialState": {"4alive": True}, "plan": ["move_rob-a"]}
+    data = {
+        "actions": [
+            {"name": "move_rob-a", "effects": [{"condition": {}, "effect": {"4alive": False}}]}
+        ],
+        "initialState": {"4alive": True},
+        "plan": ["move_rob-a"],
+    }
     text = translate_data(data)
     assert 'action("move_rob-a").' in text and 'variable("4alive").' in text
     model = Model.from_string(text)
@@ -353,28 +418,63 @@ def test_names_that_are_not_asp_constants_become_strings():
 
 BAD = [
     ({"actions": [], "initialState": {"a": 1}}, "must be true or false"),
-    ({"actions": [{"name": "x", "intrinsicvalue": "evil"}], "initialState": {"a": True}},
-     "intrinsicvalue must be good, bad or neutral"),
-    ({"actions": [], "initialState": {"a": True}, "utilities": [{"fact": {"a": True},
-                                                                 "utility": 0.5}]},
-     "must be an integer"),
-    ({"actions": [], "initialState": {"a": True, "b": True},
-      "affects": {"p": {"pos": [{"a": True, "b": True}]}}}, "a fact of one variable"),
-    ({"actions": [], "initialState": {"a": True},
-      "events": [{"name": "e", "effects": [], "timepoints": [0]}]}, "e has no preconditions"),
-    ({"actions": [{"name": "x"}, {"name": "x"}], "initialState": {"a": True}},
-     "two actions are named x"),
-    ({"actions": [{"name": "x"}], "initialState": {"a": True}, "plan": ["x"],
-      "alternatives": [["y"]]}, "names y, which is not an action"),
+    (
+        {"actions": [{"name": "x", "intrinsicvalue": "evil"}], "initialState": {"a": True}},
+        "intrinsicvalue must be good, bad or neutral",
+    ),
+    (
+        {
+            "actions": [],
+            "initialState": {"a": True},
+            "utilities": [{"fact": {"a": True}, "utility": 0.5}],
+        },
+        "must be an integer",
+    ),
+    (
+        {
+            "actions": [],
+            "initialState": {"a": True, "b": True},
+            "affects": {"p": {"pos": [{"a": True, "b": True}]}},
+        },
+        "a fact of one variable",
+    ),
+    (
+        {
+            "actions": [],
+            "initialState": {"a": True},
+            "events": [{"name": "e", "effects": [], "timepoints": [0]}],
+        },
+        "e has no preconditions",
+    ),
+    (
+        {"actions": [{"name": "x"}, {"name": "x"}], "initialState": {"a": True}},
+        "two actions are named x",
+    ),
+    (
+        {
+            "actions": [{"name": "x"}],
+            "initialState": {"a": True},
+            "plan": ["x"],
+            "alternatives": [["y"]],
+        },
+        "names y, which is not an action",
+    ),
     ({"actions": []}, "has no initialState"),
     ([1, 2], "must be a mapping"),
 ]
 
 
 def test_what_hera_ignores_is_ignored_with_a_warning(tmp_path):
-    data = {"actions": [], "initialState": {"a": True, "b": True}, "plan": [],
-            "utilities": [{"fact": {"a": True, "b": True}, "utility": 5},
-                          {"fact": {"a": True}, "utility": 1}, {"fact": {"a": True}, "utility": 2}]}
+    data = {
+        "actions": [],
+        "initialState": {"a": True, "b": True},
+        "plan": [],
+        "utilities": [
+            {"fact": {"a": True, "b": True}, "utility": 5},
+            {"fact": {"a": True}, "utility": 1},
+            {"fact": {"a": True}, "utility": 2},
+        ],
+    }
     path = tmp_path / "case.json"
     path.write_text(json.dumps(data))
     run = ethasp("judge", str(path), "--principle", "hera-utilitarianism", "--json")
@@ -385,8 +485,12 @@ def test_what_hera_ignores_is_ignored_with_a_warning(tmp_path):
 
 
 def test_a_plan_action_hera_does_not_know_is_dropped_with_a_warning(tmp_path):
-    data = {"actions": [{"name": "x", "effects": [{"condition": {}, "effect": {"a": True}}]}],
-            "initialState": {"a": False}, "plan": ["y", "x"], "goal": {"a": True}}
+    data = {
+        "actions": [{"name": "x", "effects": [{"condition": {}, "effect": {"a": True}}]}],
+        "initialState": {"a": False},
+        "plan": ["y", "x"],
+        "goal": {"a": True},
+    }
     path = tmp_path / "case.json"
     path.write_text(json.dumps(data))
     run = ethasp("validate", str(path), "--json")
@@ -399,20 +503,35 @@ def test_a_variable_initialstate_leaves_out_is_false_until_set_with_a_warning(tm
     """HERA leaves such a variable undefined; it is read as false until an
     effect sets it, with a warning that says where the situation reads it as
     false (where HERA's answers may then differ)."""
-    data = {"actions": [{"name": "x", "effects": [{"condition": {}, "effect": {"u": True}}]},
-                        {"name": "y", "preconditions": {"w": False},
-                         "effects": [{"condition": {}, "effect": {"v": True}}]}],
-            "events": [{"name": "e", "preconditions": {}, "timepoints": [0],
-                        "effects": [{"condition": {}, "effect": {"z": True}}]}],
-            "initialState": {"a": True}, "plan": ["x"], "goal": {"u": True},
-            "utilities": [{"fact": {"z": True}, "utility": -1}]}
+    data = {
+        "actions": [
+            {"name": "x", "effects": [{"condition": {}, "effect": {"u": True}}]},
+            {
+                "name": "y",
+                "preconditions": {"w": False},
+                "effects": [{"condition": {}, "effect": {"v": True}}],
+            },
+        ],
+        "events": [
+            {
+                "name": "e",
+                "preconditions": {},
+                "timepoints": [0],
+                "effects": [{"condition": {}, "effect": {"z": True}}],
+            }
+        ],
+        "initialState": {"a": True},
+        "plan": ["x"],
+        "goal": {"u": True},
+        "utilities": [{"fact": {"z": True}, "utility": -1}],
+    }
     path = tmp_path / "case.json"
     path.write_text(json.dumps(data))
     run = ethasp("validate", str(path), "--json")
     assert run.returncode == 0, run.stderr
     assert json.loads(run.stdout)["final_state"] == ["-v", "-w", "a", "u", "z"]
     warnings = run.stderr.splitlines()
-    assert len(warnings) == 4, run.stderr          # u, w, v, z
+    assert len(warnings) == 4, run.stderr  # u, w, v, z
     (w,) = [line for line in warnings if "variable w " in line]
     assert "HERA's answers may differ" in w and "the preconditions of action y" in w
     assert all("may differ" not in line for line in warnings if line is not w)
@@ -441,10 +560,19 @@ def test_syntax_errors_name_the_file_and_line(tmp_path):
 def test_intra_action_order_is_kept():
     """HERA applies an action's effects in order: the later one wins, also when
     it sets false; ethasp's true-wins rule gets override conditions."""
-    data = {"actions": [{"name": "x", "effects": [
-        {"condition": {}, "effect": {"a": True}},
-        {"condition": {"b": True}, "effect": {"a": False}}]}],
-        "initialState": {"a": False, "b": True}, "plan": ["x"]}
+    data = {
+        "actions": [
+            {
+                "name": "x",
+                "effects": [
+                    {"condition": {}, "effect": {"a": True}},
+                    {"condition": {"b": True}, "effect": {"a": False}},
+                ],
+            }
+        ],
+        "initialState": {"a": False, "b": True},
+        "plan": ["x"],
+    }
     model = Model.from_string(translate_data(data))
     assert "-a" in validate(model, model.own_plan()).final_state
     data["initialState"]["b"] = False
@@ -454,7 +582,8 @@ def test_intra_action_order_is_kept():
 
 @pytest.mark.parametrize("satisficing", [False, True])
 def test_plan_search_sees_the_events_that_exact_reachability_does_not_model(
-        satisficing, monkeypatch):
+    satisficing, monkeypatch
+):
     """The diagrams know the actions alone: with events, the layers beside plan
     search (started at once here) are explicit ones of configurations, which
     model them.  An event at step 2 reaches the goal (the empty plan is a
@@ -469,14 +598,16 @@ def test_plan_search_sees_the_events_that_exact_reachability_does_not_model(
 
     given_by_event = Model.from_string(
         "variable(g). action(wait). goal(g,true). "
-        "event(e). event_at(e,2). event_effect(e,1,g,true).")
+        "event(e). event_at(e,2). event_effect(e,1,g,true)."
+    )
     assert search._Exact(given_by_event.planner, Setting(), Budget(), True).usable
     result = find_plan(given_by_event, satisficing=satisficing)
     assert result.status == FOUND and len(result.plan) == 0
     undone = Model.from_string(
         "variable(g). variable(h). action(set). eff(set,g,true). action(mark). "
         "pre(mark,g,true). eff(mark,h,true). goal(h,true). "
-        "event(e). event_at(e,1). event_effect(e,1,g,false).")
+        "event(e). event_at(e,1). event_effect(e,1,g,false)."
+    )
     result = find_plan(undone, satisficing=satisficing)
     assert result.status == FOUND
     assert validate(undone, result.plan).valid

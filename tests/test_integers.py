@@ -21,8 +21,17 @@ def model(*utilities: str) -> Model:
     return Model.from_string(BASE + "\n".join(utilities) + "\n", name="m.lp")
 
 
-@pytest.mark.parametrize("literal", ["2147483648", "3000000000", "99999999999999999999",
-                                     "0x80000000", "0o20000000000", "0b" + "1" * 32])
+@pytest.mark.parametrize(
+    "literal",
+    [
+        "2147483648",
+        "3000000000",
+        "99999999999999999999",
+        "0x80000000",
+        "0o20000000000",
+        "0b" + "1" * 32,
+    ],
+)
 def test_literals_beyond_32_bits_are_refused_with_their_place(literal):
     with pytest.raises(InputError, match=rf"m\.lp:2:\d+: the integer {literal} is out of range"):
         model(f"utility(a,{literal}).")
@@ -38,19 +47,24 @@ def test_the_largest_literal_is_read_as_written():
 
 
 def test_numbers_in_strings_and_comments_are_not_integers():
-    Model.from_string(BASE + 'fact_label(v,true,"3000000000 lives").  % 3000000000\n'
-                      "%* 99999999999 *%\n")
+    Model.from_string(
+        BASE + 'fact_label(v,true,"3000000000 lives").  % 3000000000\n%* 99999999999 *%\n'
+    )
 
 
 @pytest.mark.parametrize("count", [1, 2, 3, 7])
 def test_the_bound_is_the_range_divided_by_the_number_of_valued_elements(count):
     variables = " ".join(f"variable(x{i})." for i in range(count - 1))
     bound = INT_MAX // count
-    base = (BASE.replace("variable(v;w).", "variable(v;w). " + variables) +
-            "".join(f"utility(x{i},false,{bound})." for i in range(count - 1)))
+    base = BASE.replace("variable(v;w).", "variable(v;w). " + variables) + "".join(
+        f"utility(x{i},false,{bound})." for i in range(count - 1)
+    )
     # With one valued element the bound is the largest integer: beyond it, the literal.
-    beyond = (r"the integer 2147483648 is out of range" if count == 1 else
-              rf"\|utility\| must be at most {bound} \(= \(2\^31 - 1\) / {count}\)")
+    beyond = (
+        r"the integer 2147483648 is out of range"
+        if count == 1
+        else rf"\|utility\| must be at most {bound} \(= \(2\^31 - 1\) / {count}\)"
+    )
     for sign in (1, -1):
         Model.from_string(base + f"utility(a,{sign * bound}).\n")
         with pytest.raises(InputError, match=beyond):
@@ -72,8 +86,9 @@ def test_sums_at_the_bound_are_exact():
     """Three valued facts at (2^31-1)/3: the final state's utility and every GEq
     comparison are computed without wrapping."""
     bound = INT_MAX // 3
-    m = model(f"utility(v,true,{bound}).", f"utility(w,false,{bound}).",
-              f"utility(w,true,{-bound}).")
+    m = model(
+        f"utility(v,true,{bound}).", f"utility(w,false,{bound}).", f"utility(w,true,{-bound})."
+    )
     report = judge(m, Plan.parse("a"), ["utilitarianism"])
     assert report.utility == 2 * bound
     assert report.judgements[0].permissible

@@ -11,7 +11,6 @@ import threading
 import time
 
 import pytest
-
 from conftest import MODELS
 
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
@@ -28,9 +27,14 @@ def _as_at_a_terminal() -> None:
 
 
 def start(*arguments: str) -> subprocess.Popen:
-    return subprocess.Popen([sys.executable, "-m", "ethasp.interfaces.cli", *arguments],
-                            stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True, preexec_fn=_as_at_a_terminal)
+    return subprocess.Popen(
+        [sys.executable, "-m", "ethasp.interfaces.cli", *arguments],
+        stdin=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        preexec_fn=_as_at_a_terminal,
+    )
 
 
 def wait_for_line(process: subprocess.Popen, fragment: str) -> list[str]:
@@ -72,8 +76,9 @@ def assert_one_line(err: str, fragment: str) -> None:
 
 def test_dialogue_waiting_for_input_is_saved_then_exits_130(tmp_path):
     saved = tmp_path / "dialogue.json"
-    process = start("dialogue", str(MODELS / "trolley.lp"), "--principle", "do-no-harm",
-                    "--save", str(saved))
+    process = start(
+        "dialogue", str(MODELS / "trolley.lp"), "--principle", "do-no-harm", "--save", str(saved)
+    )
     wait_for_line(process, "next contrasts must satisfy")
     code, _, err = interrupt(process)
     assert code == 130
@@ -84,8 +89,9 @@ def test_dialogue_waiting_for_input_is_saved_then_exits_130(tmp_path):
 
 def test_dialogue_after_a_question_keeps_the_question(tmp_path):
     saved = tmp_path / "dialogue.json"
-    process = start("dialogue", str(MODELS / "trolley.lp"), "--principle", "do-no-harm",
-                    "--save", str(saved))
+    process = start(
+        "dialogue", str(MODELS / "trolley.lp"), "--principle", "do-no-harm", "--save", str(saved)
+    )
     wait_for_line(process, "next contrasts must satisfy")
     process.stdin.write("why refrain rather than pull\n")
     process.stdin.flush()
@@ -115,7 +121,7 @@ def hard_gripper(tmp_path, balls: int = 14):
 def test_long_plan_search_stops_at_once(tmp_path):
     # (Exact reachability solves gripper with a few dozen balls in seconds.)
     process = start("plan", *hard_gripper(tmp_path, balls=100), "--max-horizon", "1000")
-    time.sleep(5)                      # loading done, deep in the search
+    time.sleep(5)  # loading done, deep in the search
     assert process.poll() is None, "the search ended before the interrupt"
     code, out, err = interrupt(process)
     assert code == 130 and out == ""
@@ -134,20 +140,21 @@ def test_permissible_plan_search_stops_at_once(tmp_path):
 
 # -- the watchdog of commands that overrun their time limit ---------------------------
 
+
 def test_the_server_and_the_dialogue_outlive_the_time_limit(monkeypatch):
     """The watchdog ends a command that gives one answer and is stuck long after
     its time limit; a server or a dialogue runs jobs, each under its own limit,
     and is never ended by it."""
     import time as clock
 
-    from ethasp.interfaces import cli
     import ethasp.interfaces.web.server as server
+    from ethasp.interfaces import cli
 
     monkeypatch.setattr(cli, "OVERRUN_GRACE", 0.0)
     served = []
 
     def serve(workspace, host, port, open_page, **options):
-        clock.sleep(1.0)           # up ten times longer than the limit
+        clock.sleep(1.0)  # up ten times longer than the limit
         served.append(port)
         return 0
 
@@ -186,7 +193,7 @@ def test_the_memory_limit_stops_the_search_and_then_the_command(monkeypatch, cap
             clock.sleep(0.01)
         return SearchResult(BOUNDED, proof=budget.why_stopped())
 
-    assert 2**20 < cli._memory() < 2**40          # the real reading: a plausible size
+    assert 2**20 < cli._memory() < 2**40  # the real reading: a plausible size
     monkeypatch.setattr(cli, "find_plan", waits_for_its_budget)
     monkeypatch.setattr(cli, "_memory", lambda: int(1.2 * 2**30))
     assert cli.main(["plan", "trolley", "--memory-limit", "1", "--json"]) == 0

@@ -5,11 +5,11 @@ import subprocess
 import sys
 
 import pytest
-
 from conftest import MODELS, ROOT
+
 from ethasp import InputError, Model, Plan, judge, query
-from ethasp.principles.principle import available_principles, select_principles
 from ethasp.planning.budget import Budget
+from ethasp.principles.principle import available_principles, select_principles
 from ethasp.principles.utilitarianism import best_reachable
 
 TROLLEY = str(MODELS / "trolley.lp")
@@ -25,8 +25,12 @@ PAPER = {
 
 
 def ethasp(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", *args], capture_output=True,
-                          text=True, cwd=ROOT)
+    return subprocess.run(
+        [sys.executable, "-m", "ethasp.interfaces.cli", *args],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
 
 
 @pytest.mark.parametrize("case", list(PAPER))
@@ -34,7 +38,7 @@ def test_paper_cases_through_the_api(case):
     path, plan = case
     report = judge(Model.load([path]), Plan.parse(plan))
     verdicts = {j.principle: (j.permissible, j.status) for j in report.judgements}
-    expected = dict(zip(["deontology", "do-no-harm", "utilitarianism"], PAPER[case]))
+    expected = dict(zip(["deontology", "do-no-harm", "utilitarianism"], PAPER[case], strict=True))
     assert verdicts == {name: (value, "proven") for name, value in expected.items()}
 
 
@@ -45,8 +49,11 @@ def test_paper_cases_through_the_command_line(case):
     assert run.returncode == 0, run.stderr
     data = json.loads(run.stdout)
     assert data["plan"] == [plan]
-    assert [j["principle"] for j in data["judgements"]] == \
-        ["deontology", "do-no-harm", "utilitarianism"]
+    assert [j["principle"] for j in data["judgements"]] == [
+        "deontology",
+        "do-no-harm",
+        "utilitarianism",
+    ]
     assert tuple(j["permissible"] for j in data["judgements"]) == PAPER[case]
     assert all(j["status"] == "proven" for j in data["judgements"])
     # Utilitarianism: decided by a better state, or the final state is a best one.
@@ -55,8 +62,18 @@ def test_paper_cases_through_the_command_line(case):
     assert state["utility"] == 4
     assert "-five_will_die" in state["state"] and "done" in state["state"]
     assert ("compared_with" in utilitarian) != PAPER[case][2]
-    run = ethasp("judge", path, "--plan", plan, "--json", "--best", "--principle",
-                 "utilitarianism", "--reasons-limit", "0")
+    run = ethasp(
+        "judge",
+        path,
+        "--plan",
+        plan,
+        "--json",
+        "--best",
+        "--principle",
+        "utilitarianism",
+        "--reasons-limit",
+        "0",
+    )
     best = json.loads(run.stdout)["judgements"][0]["best_reachable"]
     assert best["utility"] == 4 and best["status"] == "proven" and best["horizon"] == 1
 
@@ -65,36 +82,58 @@ def test_json_report_of_pull():
     data = json.loads(ethasp("judge", TROLLEY, "--plan", "pull", "--json").stdout)
     assert data["final_state"] == ["-five_will_die", "done", "one_will_die"]
     assert data["utility"] == 4
-    assert set(data["judgements"][0]) == {"principle", "permissible", "status", "proof",
-                                          "sufficient_reasons", "necessary_reasons",
-                                          "chosen_reason", "explanation", "reasons_truncated",
-                                          "necessary_reasons_truncated",
-                                          "sufficient_reasons_truncated"}
+    assert set(data["judgements"][0]) == {
+        "principle",
+        "permissible",
+        "status",
+        "proof",
+        "sufficient_reasons",
+        "necessary_reasons",
+        "chosen_reason",
+        "explanation",
+        "reasons_truncated",
+        "necessary_reasons_truncated",
+        "sufficient_reasons_truncated",
+    }
 
 
 def test_text_report_and_principle_selection():
-    run = ethasp("judge", "trolley", "--plan", "pull", "--principle", "do-no-harm",
-                 "--principle", "deontology")
+    run = ethasp(
+        "judge",
+        "trolley",
+        "--plan",
+        "pull",
+        "--principle",
+        "do-no-harm",
+        "--principle",
+        "deontology",
+    )
     assert run.returncode == 0, run.stderr
     lines = run.stdout.splitlines()
-    lines = lines[lines.index("plan: pull"):]  # after the explanations
+    lines = lines[lines.index("plan: pull") :]  # after the explanations
     assert lines[0] == "plan: pull"
     assert lines[1] == "final state: -five_will_die done one_will_die (utility 4)"
     assert lines[2:] == ["do-no-harm: impermissible (proven)", "deontology: permissible (proven)"]
     run = ethasp("judge", "trolley", "--plan", "refrain", "--principle", "utilitarianism")
     assert "utilitarianism: impermissible (proven)" in run.stdout
-    assert "a better reachable state: -five_will_die done one_will_die (utility 4, 1 step away)" in run.stdout
+    assert (
+        "a better reachable state: -five_will_die done one_will_die (utility 4, 1 step away)"
+        in run.stdout
+    )
 
 
-@pytest.mark.parametrize("args, message", [
-    (["judge", TROLLEY, "--plan", "jump"], "unknown action jump"),
-    (["judge", "rescue", "--plan", "move(r1,r2)"], "not a plan: the goal is not reached"),
-    (["judge", "rescue", "--plan", "move(r2,r3)"], "not a plan: step 1"),
-    (["judge", TROLLEY, "--plan", "pull", "--principle", "kant"], "unknown principle 'kant'"),
-    (["query", TROLLEY, "--plan", "pull", "Bad(pull"], "formula: column 9: expected ')'"),
-    (["query", TROLLEY, "--plan", "pull", "Bad(jump)"], "unknown action or variable 'jump'"),
-    (["query", "rescue", "--plan", "move(r1,r2)", "Bad(break_door)"], "not a plan"),
-])
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["judge", TROLLEY, "--plan", "jump"], "unknown action jump"),
+        (["judge", "rescue", "--plan", "move(r1,r2)"], "not a plan: the goal is not reached"),
+        (["judge", "rescue", "--plan", "move(r2,r3)"], "not a plan: step 1"),
+        (["judge", TROLLEY, "--plan", "pull", "--principle", "kant"], "unknown principle 'kant'"),
+        (["query", TROLLEY, "--plan", "pull", "Bad(pull"], "formula: column 9: expected ')'"),
+        (["query", TROLLEY, "--plan", "pull", "Bad(jump)"], "unknown action or variable 'jump'"),
+        (["query", "rescue", "--plan", "move(r1,r2)", "Bad(break_door)"], "not a plan"),
+    ],
+)
 def test_bad_input_is_one_line_with_exit_code_2(args, message):
     run = ethasp(*args)
     assert run.returncode == 2
@@ -131,8 +170,11 @@ def test_principles_are_discovered_from_the_folder():
     assert [p.asp_name for p in select_principles(["do_no_harm", "do-no-harm"])] == ["do_no_harm"]
     assert [p.name for p in available_principles() if p.reads_alternatives] == ["utilitarianism"]
     # Without names, the paper's three; groups name several.
-    assert [p.name for p in select_principles(None)] == ["deontology", "do-no-harm",
-                                                          "utilitarianism"]
+    assert [p.name for p in select_principles(None)] == [
+        "deontology",
+        "do-no-harm",
+        "utilitarianism",
+    ]
     assert len(select_principles(["all"])) == len(names)
 
 
@@ -179,8 +221,9 @@ def test_permissible_needs_the_proven_optimum():
     assert not judgement.permissible and judgement.status == "proven"
     # the best plan: permissible, proven even with a small horizon (its final
     # state attains the upper bound, so no search is needed)
-    judgement = judge(model, Plan.parse(TO_THE_END), ["utilitarianism"],
-                      max_horizon=2).judgements[0]
+    judgement = judge(model, Plan.parse(TO_THE_END), ["utilitarianism"], max_horizon=2).judgements[
+        0
+    ]
     assert judgement.permissible and judgement.status == "proven"
     assert "upper bound" in judgement.proof
     judgement = judge(model, Plan.parse(TO_THE_END), ["utilitarianism"]).judgements[0]
@@ -199,17 +242,35 @@ def test_impermissible_is_proven_by_any_better_state_found():
 def test_time_limit_gives_bounded(tmp_path):
     path = tmp_path / "chain.lp"
     path.write_text(CHAIN)
-    run = ethasp("judge", str(path), "--plan", "finish", "--principle", "utilitarianism",
-                 "--max-horizon", "1", "--json")
+    run = ethasp(
+        "judge",
+        str(path),
+        "--plan",
+        "finish",
+        "--principle",
+        "utilitarianism",
+        "--max-horizon",
+        "1",
+        "--json",
+    )
     judgement = json.loads(run.stdout)["judgements"][0]
     assert judgement["status"] == "bounded" and judgement["permissible"]
-    run = ethasp("judge", str(path), "--plan", "finish", "--principle", "utilitarianism",
-                 "--max-horizon", "1")
+    run = ethasp(
+        "judge",
+        str(path),
+        "--plan",
+        "finish",
+        "--principle",
+        "utilitarianism",
+        "--max-horizon",
+        "1",
+    )
     assert "permissible as far as searched (bounded, not proven)" in run.stdout
     cancelled = Budget()
     cancelled.cancel()
-    report = judge(Model.from_string(CHAIN), Plan.parse("finish"), ["utilitarianism"],
-                   budget=cancelled)
+    report = judge(
+        Model.from_string(CHAIN), Plan.parse("finish"), ["utilitarianism"], budget=cancelled
+    )
     assert report.judgements[0].status == "bounded"
     assert "cancelled" in report.judgements[0].proof
 
@@ -225,35 +286,41 @@ def test_large_models_are_probed_by_short_searches_first():
     judgement = judge(model, Plan.parse("finish"), ["utilitarianism"]).judgements[0]
     assert not judgement.permissible and judgement.status == "proven"
     assert judgement.proof.startswith("a state of utility 3 is reachable within ")
-    assert model.planner.reachability_pending()          # no diagram was needed
+    assert model.planner.reachability_pending()  # no diagram was needed
 
 
 # -- utilitarianism with exogenous events: the upper bound counts what events do ----
 
-ARMED = ("variable(armed;happy). action(arm;idle). eff(arm,armed,true). event(e). "
-         "event_at(e,1). event_effect(e,1,happy,true). event_condition(e,1,armed,true). "
-         "utility(happy,true,5).")
+ARMED = (
+    "variable(armed;happy). action(arm;idle). eff(arm,armed,true). event(e). "
+    "event_at(e,1). event_effect(e,1,happy,true). event_condition(e,1,armed,true). "
+    "utility(happy,true,5)."
+)
 
 
 def test_the_relaxed_facts_include_what_events_may_set():
     from conftest import only_answer
 
-    answer = only_answer(["planning/model.lp", "planning/relaxed.lp", "judgement/best.lp"],
-                         ARMED + "#show reachable/2.")
+    answer = only_answer(
+        ["planning/model.lp", "planning/relaxed.lp", "judgement/best.lp"],
+        ARMED + "#show reachable/2.",
+    )
     assert "reachable(happy,true)" in answer
     assert "upper_bound(5)" in answer
 
 
-@pytest.mark.parametrize("source, plan, final", [
-    (ARMED, "idle", 0),
-    (str(MODELS / "hera" / "robot-and-frank.yaml"), "wait", -1),
-])
+@pytest.mark.parametrize(
+    "source, plan, final",
+    [
+        (ARMED, "idle", 0),
+        (str(MODELS / "hera" / "robot-and-frank.yaml"), "wait", -1),
+    ],
+)
 def test_a_state_only_an_event_makes_better_decides_utilitarianism(source, plan, final):
     """A better final state that only an event produces: the upper bound of the
     relaxed facts must count it, so the verdict is impermissible, never a
     proven "permissible" (a false proof)."""
-    model = (Model.load([source]) if source.endswith(".yaml")
-             else Model.from_string(source))
+    model = Model.load([source]) if source.endswith(".yaml") else Model.from_string(source)
     report = judge(model, Plan.parse(plan), ["utilitarianism"])
     judgement = report.judgements[0]
     assert report.utility == final

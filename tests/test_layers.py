@@ -12,15 +12,15 @@ import clingo
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from oracle import features, random_model
 
 import ethasp.planning.layers as layers_module
 import ethasp.planning.search as search_module
 from ethasp import Model, find_plan, validate
 from ethasp.planning.budget import Budget
 from ethasp.planning.layers import Atoms, Layers, search_model
-from oracle import features, random_model
 
-WAIT = 60.0   # seconds a test waits for the layers at most (they take milliseconds)
+WAIT = 60.0  # seconds a test waits for the layers at most (they take milliseconds)
 
 
 def finished(layers: Layers):
@@ -64,14 +64,16 @@ def check_against_oracle(spec, status, model):
 @pytest.mark.slow
 @settings(max_examples=80, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9), st.booleans(), st.booleans(), st.booleans())
-def test_layers_prove_the_shortest_length_and_read_a_shortest_plan(seed, conditional, derived,
-                                                                   events):
+def test_layers_prove_the_shortest_length_and_read_a_shortest_plan(
+    seed, conditional, derived, events
+):
     """Diagrams, or explicit layers of configurations with events."""
-    spec = random_model(seed, conditional=conditional, derived=derived, far_goal=seed % 2 == 0,
-                        events=events)
+    spec = random_model(
+        seed, conditional=conditional, derived=derived, far_goal=seed % 2 == 0, events=events
+    )
     model = Model.from_string(spec.to_asp())
     if model.planner.is_fact("unreachable_goal"):
-        return          # plan search answers this before any layer is computed
+        return  # plan search answers this before any layer is computed
     check_against_oracle(spec, run_layers(model), model)
 
 
@@ -92,26 +94,31 @@ def test_search_model_drops_what_never_changes():
         pre(fly,stuck,true). eff(fly,far,true).
         goal(far,true). goal(lit,true).""")
     ground = search_model(Atoms(model.planner))
-    assert sorted(map(str, ground.variables)) == ["door", "far"]   # lit and stuck never change
-    assert sorted(str(a.name) for a in ground.actions) == ["go", "open"]   # fly is never usable
+    assert sorted(map(str, ground.variables)) == ["door", "far"]  # lit and stuck never change
+    assert sorted(str(a.name) for a in ground.actions) == ["go", "open"]  # fly is never usable
     go = next(a for a in ground.actions if str(a.name) == "go")
     assert [(str(v), b) for v, b in go.pre] == [("door", True)]
-    assert [str(e.variable) for e in go.effects] == ["far"]            # lit stays true
+    assert [str(e.variable) for e in go.effects] == ["far"]  # lit stays true
     assert [(str(v), b) for v, b in ground.goal] == [("far", True)]
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("knob, value", [("LAYERS_AFTER", 0.0),           # after the first solve
-                                          ("LAYERS_AT_ONCE_ACTIONS", 1)])  # before any solve
+@pytest.mark.parametrize(
+    "knob, value",
+    [
+        ("LAYERS_AFTER", 0.0),  # after the first solve
+        ("LAYERS_AT_ONCE_ACTIONS", 1),
+    ],
+)  # before any solve
 @settings(max_examples=50, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9), st.booleans())
-def test_plan_search_with_layers_started_early_finds_shortest_plans(knob, value, seed,
-                                                                     conditional):
+def test_plan_search_with_layers_started_early_finds_shortest_plans(knob, value, seed, conditional):
     """The layers start early (after the first solve, or with the search in a
     child process): their bounds and plans must agree with the solver's,
     whichever proves first."""
-    spec = random_model(seed, far_goal=seed % 3 == 0,
-                        **dict(features(seed), conditional=conditional))
+    spec = random_model(
+        seed, far_goal=seed % 3 == 0, **dict(features(seed), conditional=conditional)
+    )
     model = Model.from_string(spec.to_asp())
     saved = getattr(search_module, knob)
     setattr(search_module, knob, value)
@@ -135,9 +142,11 @@ def test_models_with_events_get_explicit_layers():
     oracle above, as plan search with the layers started early)."""
     from ethasp.planning.reachability import Reachability
 
-    model = Model.from_string("variable(a;b). action(go). eff(go,a,true). event(e). "
-                              "event_at(e,2). event_effect(e,1,b,true). "
-                              "event_condition(e,1,a,true). goal(b,true).")
+    model = Model.from_string(
+        "variable(a;b). action(go). eff(go,a,true). event(e). "
+        "event_at(e,2). event_effect(e,1,b,true). "
+        "event_condition(e,1,a,true). goal(b,true)."
+    )
     ground = search_model(Atoms(model.planner))
     assert [str(event.name) for event in ground.events] == ["e"]
     with pytest.raises(ValueError, match="exogenous events"):
@@ -161,9 +170,10 @@ def test_layers_bound_restricted_searches_without_reading_plans():
 
 def test_a_plan_from_the_layers_is_checked_by_its_trace():
     model = Model.from_string("variable(a). action(x). eff(x,a,true). goal(a,true).")
-    status = layers_module.Status(bound=1, goal_layer=1,
-                                  plan=(clingo.parse_term("x"), clingo.parse_term("x")))
-    plan = search_module._layers_plan(model.planner, status)     # valid: x x reaches a
+    status = layers_module.Status(
+        bound=1, goal_layer=1, plan=(clingo.parse_term("x"), clingo.parse_term("x"))
+    )
+    plan = search_module._layers_plan(model.planner, status)  # valid: x x reaches a
     assert validate(model, plan).valid
     bad = layers_module.Status(bound=1, goal_layer=1, plan=(clingo.parse_term("y"),))
     with pytest.raises(RuntimeError):
@@ -186,7 +196,8 @@ def test_budget_until_stops_on_its_condition():
 @settings(max_examples=60, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9), st.booleans(), st.booleans())
 def test_bidirectional_layers_prove_the_shortest_length_and_read_a_shortest_plan(
-        seed, conditional, derived):
+    seed, conditional, derived
+):
     """Forward layers and backward layers from the goal states (pre-images):
     where they first meet is the oracle's shortest length, the plan read off
     through both is valid, and `complete` only when no goal state is reachable."""
@@ -215,18 +226,19 @@ def test_plain_search_solves_with_two_threads_once_the_layers_give_up(seed, monk
         pytest.skip("relaxed reachability answers this one")
     original = Layers.__init__
 
-    def giving_up(self, *args, **kwargs):   # a node limit of 0: they give up at once
+    def giving_up(self, *args, **kwargs):  # a node limit of 0: they give up at once
         original(self, *args, **{**kwargs, "node_limit": 0})
 
     counts = []
     threads = type(planner).threads
     monkeypatch.setattr(Layers, "__init__", giving_up)
-    monkeypatch.setattr(search_module, "LAYERS_AT_ONCE_ACTIONS", 0)   # waited for at the start
+    monkeypatch.setattr(search_module, "LAYERS_AT_ONCE_ACTIONS", 0)  # waited for at the start
     # ... until they report (however busy the machine: they give up at once)
     monkeypatch.setattr(search_module, "HEAD_START", 60.0)
     monkeypatch.setattr(search_module, "_cores", lambda: 2)
-    monkeypatch.setattr(type(planner), "threads",
-                        lambda self, count: (counts.append(count), threads(self, count)))
+    monkeypatch.setattr(
+        type(planner), "threads", lambda self, count: (counts.append(count), threads(self, count))
+    )
     result = find_plan(model, max_horizon=20)
     expected = spec.shortest_plan_length()
     if expected is None:
@@ -234,6 +246,6 @@ def test_plain_search_solves_with_two_threads_once_the_layers_give_up(seed, monk
     else:
         assert result.status == "found" and result.optimal, result
         assert len(result.plan) == expected and spec.is_plan([str(a) for a in result.plan])
-    assert counts[0] == 2 or result.horizon == 0          # the layers gave up first
+    assert counts[0] == 2 or result.horizon == 0  # the layers gave up first
     assert counts[-1] == 1 and planner._threads == 1
     assert str(planner.ctl.configuration.solve.parallel_mode).startswith("1")

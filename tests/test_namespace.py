@@ -12,13 +12,19 @@ import clingo
 import pytest
 from clingo import ast
 from clorm import Predicate
+from conftest import ENCODINGS, MODELS
 
 import ethasp.vocabulary
-from conftest import ENCODINGS, MODELS
 from ethasp import Model, Plan, query
 from ethasp.errors import InputError
-from ethasp.planning.namespace import (MODEL_VOCABULARY, PDDL_VOCABULARY, TRANSLATION_ONLY,
-                                       VOCABULARY, encoding_predicates, reserved)
+from ethasp.planning.namespace import (
+    MODEL_VOCABULARY,
+    PDDL_VOCABULARY,
+    TRANSLATION_ONLY,
+    VOCABULARY,
+    encoding_predicates,
+    reserved,
+)
 from ethasp.planning.plan import parse_action
 from ethasp.questions.dialogue import Dialogue
 from ethasp.questions.question import Question
@@ -82,13 +88,19 @@ def test_the_two_derivations_agree():
 
 def test_the_vocabulary_is_not_reserved_and_the_time_domain_is():
     assert set(VOCABULARY) & reserved(pddl=True) == set(TRANSLATION_ONLY)
-    assert not set(VOCABULARY) & reserved(pddl=False)     # a saved translation may write them
+    assert not set(VOCABULARY) & reserved(pddl=False)  # a saved translation may write them
     assert {("time", 1), ("step", 1), ("horizon", 1)} <= reserved()
     assert ("ceff", 4) in MODEL_VOCABULARY and ("cpre", 4) in MODEL_VOCABULARY
-    assert set(PDDL_VOCABULARY) == {("pddl_subtype", 2), ("pddl_object", 2), ("pddl_add", 2),
-                                    ("pddl_del", 2), ("pddl_candidate", 1),
-                                    ("pddl_schema_instance", 1), ("pddl_static_failure", 3),
-                                    ("pddl_static", 1)}
+    assert set(PDDL_VOCABULARY) == {
+        ("pddl_subtype", 2),
+        ("pddl_object", 2),
+        ("pddl_add", 2),
+        ("pddl_del", 2),
+        ("pddl_candidate", 1),
+        ("pddl_schema_instance", 1),
+        ("pddl_static_failure", 3),
+        ("pddl_static", 1),
+    }
 
 
 def test_every_predicate_crossing_into_python_is_vocabulary_or_reserved():
@@ -136,42 +148,45 @@ def test_plausible_names_are_free_for_models():
     assert query(model, Plan.parse("move(b,a,t) move(a,t,b)"), "Caused(on(a,b))").value
 
 
-@pytest.mark.parametrize("text, message", [
-    ("member(deontology, bad(action(refrain))).", "defines member/2"),
-    ("weight(action(pull),-5).", "defines weight/2"),
-    ("occurs(pull,1).", "defines occurs/2"),
-    ("-holds(done,1).", "defines holds/2"),
-    ("formula(query, all(empty)).", "defines formula/2"),
-    ("conj(c(1),done,true).", "defines conj/3"),
-    ("explain(deontology).", "defines explain/1"),
-    ("satisfied(X) :- action(X).", "defines satisfied/1"),
-    ("{ verdict(deontology,false) }.", "defines verdict/2"),
-    ("verdict(deontology,false) | mine.", "defines verdict/2"),
-    ("mine :- #sum{ 1 : holds(done,0) } > 0.", "reads holds/2"),
-    ("#external best_utility(100).", "defines best_utility/1"),
-    ("#show caused(done,true).", "shows caused/2"),
-    ("#show final/2.", "shows final/2"),
-    ("#show X : action(X).", "#show term X"),
-    ("time(5).", "defines time/1"),
-    (":- occurs(pull,_).", "reads occurs/2"),
-    ("mine(X) :- final(X,true).", "reads final/2"),
-    ("#minimize{ 1 : action(pull) }.", "optimisation statement"),
-    ("#maximize{ 1 : action(pull) }.", "optimisation statement"),
-    (":~ action(pull). [1@2]", "optimisation statement"),
-    ("#heuristic action(pull). [1,true]", "#heuristic"),
-    ("#project action/1.", "#project"),
-    ("#project action(pull).", "#project"),
-    ("#edge (a,b).", "#edge"),
-    ("#program check(t).", "#program check"),
-    ("#const true = false.", "constant true"),
-    ("#const deontology = do_no_harm.", "constant deontology"),
-    ("mine :- &diff{ a - b } <= 1.", "theory atom"),
-    ("{ init(done) }.", "more than one answer set"),
-    ("mine :- not other. other :- not mine.", "more than one answer set"),
-    (":- action(pull).", "no answer set"),
-    ("goal(done).", "goal/1 is not in the model vocabulary"),
-    ("utility(pull,true,-1,x).", "utility/4 is not in the model vocabulary"),
-])
+@pytest.mark.parametrize(
+    "text, message",
+    [
+        ("member(deontology, bad(action(refrain))).", "defines member/2"),
+        ("weight(action(pull),-5).", "defines weight/2"),
+        ("occurs(pull,1).", "defines occurs/2"),
+        ("-holds(done,1).", "defines holds/2"),
+        ("formula(query, all(empty)).", "defines formula/2"),
+        ("conj(c(1),done,true).", "defines conj/3"),
+        ("explain(deontology).", "defines explain/1"),
+        ("satisfied(X) :- action(X).", "defines satisfied/1"),
+        ("{ verdict(deontology,false) }.", "defines verdict/2"),
+        ("verdict(deontology,false) | mine.", "defines verdict/2"),
+        ("mine :- #sum{ 1 : holds(done,0) } > 0.", "reads holds/2"),
+        ("#external best_utility(100).", "defines best_utility/1"),
+        ("#show caused(done,true).", "shows caused/2"),
+        ("#show final/2.", "shows final/2"),
+        ("#show X : action(X).", "#show term X"),
+        ("time(5).", "defines time/1"),
+        (":- occurs(pull,_).", "reads occurs/2"),
+        ("mine(X) :- final(X,true).", "reads final/2"),
+        ("#minimize{ 1 : action(pull) }.", "optimisation statement"),
+        ("#maximize{ 1 : action(pull) }.", "optimisation statement"),
+        (":~ action(pull). [1@2]", "optimisation statement"),
+        ("#heuristic action(pull). [1,true]", "#heuristic"),
+        ("#project action/1.", "#project"),
+        ("#project action(pull).", "#project"),
+        ("#edge (a,b).", "#edge"),
+        ("#program check(t).", "#program check"),
+        ("#const true = false.", "constant true"),
+        ("#const deontology = do_no_harm.", "constant deontology"),
+        ("mine :- &diff{ a - b } <= 1.", "theory atom"),
+        ("{ init(done) }.", "more than one answer set"),
+        ("mine :- not other. other :- not mine.", "more than one answer set"),
+        (":- action(pull).", "no answer set"),
+        ("goal(done).", "goal/1 is not in the model vocabulary"),
+        ("utility(pull,true,-1,x).", "utility/4 is not in the model vocabulary"),
+    ],
+)
 def test_models_cannot_change_the_encodings(text, message):
     with pytest.raises(InputError, match=message.replace("(", r"\(").replace(")", r"\)")):
         Model.from_string(TROLLEY + "\n" + text + "\n", name="m.lp")
@@ -200,20 +215,36 @@ def test_an_included_file_is_checked_where_it_is(tmp_path):
 def test_pddl_typing_is_readable_by_annotations_and_reserved_for_them():
     assert ("has_type", 2) in reserved(pddl=True) and ("has_type", 2) not in reserved()
     pddl = MODELS / "pddl"
-    Model.load([pddl / "blocksworld-domain.pddl", pddl / "blocksworld-problem.pddl",
-                pddl / "blocksworld-utility.lp"])
+    Model.load(
+        [
+            pddl / "blocksworld-domain.pddl",
+            pddl / "blocksworld-problem.pddl",
+            pddl / "blocksworld-utility.lp",
+        ]
+    )
     # In an ASP model, object/1 is a name of the model's own.
     Model.from_string(TROLLEY + "object(ball).\n")
 
 
 # -- no user text becomes rule text ---------------------------------------------------------
 
-HOSTILE = ["a). evil :- b(", "pull). #show occurs/2. x(", "pull.\nmember(x,y)", "a :- b",
-           "#script (python) import os #end", "f(X)", "a;b", "pull, refrain", "p :- q.",
-           '"unterminated', "pull %* comment", "(a)) :- (b"]
+HOSTILE = [
+    "a). evil :- b(",
+    "pull). #show occurs/2. x(",
+    "pull.\nmember(x,y)",
+    "a :- b",
+    "#script (python) import os #end",
+    "f(X)",
+    "a;b",
+    "pull, refrain",
+    "p :- q.",
+    '"unterminated',
+    "pull %* comment",
+    "(a)) :- (b",
+]
 
 
-@pytest.mark.parametrize("text", HOSTILE + ["", "   "])
+@pytest.mark.parametrize("text", [*HOSTILE, "", "   "])
 def test_hostile_actions_are_not_terms(text):
     with pytest.raises(InputError):
         parse_action(text)
@@ -262,12 +293,13 @@ def test_the_encodings_predicates_are_kept_per_content_of_the_encodings(tmp_path
             assert first[name] == namespace._ground_alone(name)
         namespace._all_mentioned.cache_clear()
         grounded = []
-        monkeypatch.setattr(namespace, "_ground_alone",
-                            lambda name: grounded.append(name) or frozenset())
-        assert namespace._all_mentioned() == first and grounded == []   # read back
+        monkeypatch.setattr(
+            namespace, "_ground_alone", lambda name: grounded.append(name) or frozenset()
+        )
+        assert namespace._all_mentioned() == first and grounded == []  # read back
         cache.write_text("{not json")
         namespace._all_mentioned.cache_clear()
         namespace._all_mentioned()
-        assert len(grounded) == len(first)                               # recomputed
+        assert len(grounded) == len(first)  # recomputed
     finally:
         namespace._all_mentioned.cache_clear()

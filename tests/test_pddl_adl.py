@@ -13,8 +13,8 @@ import sys
 from pathlib import Path
 
 import pytest
-
 from conftest import ROOT
+
 from ethasp import InputError, Model, Plan, find_plan, judge, query, validate
 from ethasp.principles.restriction import plan_with_principles
 from ethasp.vocabulary import Action
@@ -27,8 +27,13 @@ IPC_FOLDER = Path(os.environ["ETHASP_IPC"]) if os.environ.get("ETHASP_IPC") else
 
 def ethasp(*args: str, cwd=ROOT) -> subprocess.CompletedProcess:
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    return subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", *args],
-                          capture_output=True, text=True, cwd=cwd, env=env)
+    return subprocess.run(
+        [sys.executable, "-m", "ethasp.interfaces.cli", *args],
+        capture_output=True,
+        text=True,
+        cwd=cwd,
+        env=env,
+    )
 
 
 def load(tmp_path: Path, domain: str, problem: str, *annotations: str) -> Model:
@@ -116,9 +121,16 @@ SHOP_PROBLEM = """
 """
 
 
-@pytest.mark.parametrize("init,steps", [("(raining) (open-door)", 7), ("(open-door)", 6),
-                                        ("(raining)", 8), ("(closed b1)", 5),
-                                        ("(closed b1) (closed b2)", None)])
+@pytest.mark.parametrize(
+    "init,steps",
+    [
+        ("(raining) (open-door)", 7),
+        ("(open-door)", 6),
+        ("(raining)", 8),
+        ("(closed b1)", 5),
+        ("(closed b1) (closed b2)", None),
+    ],
+)
 def test_disjunction_implication_and_quantifiers_in_preconditions(tmp_path, init, steps):
     assert length(load(tmp_path, SHOP, SHOP_PROBLEM.format(init=init))) == steps
 
@@ -136,7 +148,7 @@ def test_quantified_and_disjunctive_goals(tmp_path):
     assert length(load(tmp_path, SHOP, problem)) == 2
     goal = "(exists (?b - box) (and (closed ?b) (imply (full ?b) (inside))))"
     problem = SHOP_PROBLEM.format(init="").replace("(:goal (out))", f"(:goal {goal})")
-    assert length(load(tmp_path, SHOP, problem)) == 4   # fill, close, take-key, enter
+    assert length(load(tmp_path, SHOP, problem)) == 4  # fill, close, take-key, enter
 
 
 # -- derived predicates --------------------------------------------------------------------
@@ -196,17 +208,23 @@ def test_derived_predicates_cannot_be_set_or_named(tmp_path):
 
 
 def test_unstratified_derived_predicates_are_refused(tmp_path):
-    domain = ROOMS.replace("(:derived (dark) (forall (?r - room) (imply (reach ?r) (not (lit ?r)))))",
-                           "(:derived (dark) (not (dark)))")
+    domain = ROOMS.replace(
+        "(:derived (dark) (forall (?r - room) (imply (reach ?r) (not (lit ?r)))))",
+        "(:derived (dark) (not (dark)))",
+    )
     with pytest.raises(InputError, match="must be stratified"):
         load(tmp_path, domain, ROOMS_PROBLEM)
 
 
 # -- leniency: requirements, constants, either types, action costs --------------------------
 
+
 def test_undeclared_requirements_warn_one_line_per_file(tmp_path):
-    domain = ROOMS.replace(""":requirements :strips :typing :derived-predicates :disjunctive-preconditions
-                 :existential-preconditions :universal-preconditions :equality""", ":requirements")
+    domain = ROOMS.replace(
+        """:requirements :strips :typing :derived-predicates :disjunctive-preconditions
+                 :existential-preconditions :universal-preconditions :equality""",
+        ":requirements",
+    )
     (tmp_path / "d.pddl").write_text(domain)
     (tmp_path / "p.pddl").write_text(ROOMS_PROBLEM)
     run = ethasp("plan", "d.pddl", "p.pddl", cwd=tmp_path)
@@ -214,15 +232,25 @@ def test_undeclared_requirements_warn_one_line_per_file(tmp_path):
     lines = run.stderr.strip().splitlines()
     assert len(lines) == 2, lines
     assert lines[0].startswith("d.pddl: warning: requirements ") and "(read anyway)" in lines[0]
-    for requirement in (":derived-predicates", ":equality", ":existential-preconditions",
-                        ":negative-preconditions", ":typing", ":universal-preconditions"):
+    for requirement in (
+        ":derived-predicates",
+        ":equality",
+        ":existential-preconditions",
+        ":negative-preconditions",
+        ":typing",
+        ":universal-preconditions",
+    ):
         assert requirement in lines[0]
-    assert lines[1] == ("p.pddl: warning: requirements :negative-preconditions, :typing used "
-                        "but not declared (read anyway)")
+    assert lines[1] == (
+        "p.pddl: warning: requirements :negative-preconditions, :typing used "
+        "but not declared (read anyway)"
+    )
 
 
 def test_miconic_reads_with_a_warning():
-    files = [str(DATA / "elevator-strips-simple-typed" / name) for name in ("domain.pddl", "p1.pddl")]
+    files = [
+        str(DATA / "elevator-strips-simple-typed" / name) for name in ("domain.pddl", "p1.pddl")
+    ]
     run = ethasp("plan", *files, "--json")
     assert run.returncode == 0, run.stderr
     assert len(json.loads(run.stdout)["plan"]) == 4
@@ -298,17 +326,27 @@ def test_action_costs_are_ignored_with_a_warning(tmp_path):
     assert run.returncode == 0 and "plan of 2 steps: (cheap) (dear)" in run.stdout, run.stderr
     assert run.stderr.strip().splitlines() == [
         "d.pddl: warning: action costs are ignored (plans are shortest in number of actions)",
-        "p.pddl: warning: the metric is ignored (plans are shortest in number of actions)"]
+        "p.pddl: warning: the metric is ignored (plans are shortest in number of actions)",
+    ]
 
 
-@pytest.mark.parametrize("domain,problem,needle", [
-    (SHOP.replace("(full ?b))\n  (:action close", "(fill ?b))\n  (:action close"), SHOP_PROBLEM,
-     "unknown predicate fill"),
-    (SHOP.replace(":effect (out)", ":effect (out ?b)"),
-     SHOP_PROBLEM, "predicate out takes 0 arguments, found 1"),
-    (SHOP, SHOP_PROBLEM.replace("(out)", "(closed ?x)"), "unknown variable ?x"),
-    (SHOP, SHOP_PROBLEM.replace("(:init {init})", "(:init (full b9))"), "unknown constant b9"),
-])
+@pytest.mark.parametrize(
+    "domain,problem,needle",
+    [
+        (
+            SHOP.replace("(full ?b))\n  (:action close", "(fill ?b))\n  (:action close"),
+            SHOP_PROBLEM,
+            "unknown predicate fill",
+        ),
+        (
+            SHOP.replace(":effect (out)", ":effect (out ?b)"),
+            SHOP_PROBLEM,
+            "predicate out takes 0 arguments, found 1",
+        ),
+        (SHOP, SHOP_PROBLEM.replace("(out)", "(closed ?x)"), "unknown variable ?x"),
+        (SHOP, SHOP_PROBLEM.replace("(:init {init})", "(:init (full b9))"), "unknown constant b9"),
+    ],
+)
 def test_bad_adl_input_is_one_line(tmp_path, domain, problem, needle):
     with pytest.raises(InputError) as error:
         load(tmp_path, domain, problem.replace("{init}", ""))
@@ -345,8 +383,10 @@ def test_caused_and_do_no_harm_count_effects_that_fire(tmp_path):
     assert not query(model, shoo_first, "Caused(scared)").value
     hplan = plan_with_principles(model, ["do-no-harm"])
     assert hplan.status == "found" and hplan.plan == shoo_first
-    verdicts = {j.principle: j.permissible for j in judge(model, Plan.parse("(vacuum living)"),
-                                                          ["do-no-harm"]).judgements}
+    verdicts = {
+        j.principle: j.permissible
+        for j in judge(model, Plan.parse("(vacuum living)"), ["do-no-harm"]).judgements
+    }
     assert verdicts == {"do-no-harm": False}
 
 
@@ -354,11 +394,16 @@ def test_caused_and_do_no_harm_count_effects_that_fire(tmp_path):
 
 # Optimal plan lengths (Fast Downward's astar(lmcut()) agrees).
 OPTIMAL = {
-    ("blocks-strips-typed", "p1"): 6, ("blocks-strips-typed", "p2"): 10,
-    ("depots-strips-automatic", "p1"): 10, ("depots-strips-automatic", "p2"): 15,
-    ("elevator-strips-simple-typed", "p1"): 4, ("elevator-strips-simple-typed", "p2"): 3,
-    ("gripper-round-1-strips", "p1"): 11, ("gripper-round-1-strips", "p2"): 17,
-    ("logistics-strips-typed", "p1"): 20, ("logistics-strips-typed", "p2"): 19,
+    ("blocks-strips-typed", "p1"): 6,
+    ("blocks-strips-typed", "p2"): 10,
+    ("depots-strips-automatic", "p1"): 10,
+    ("depots-strips-automatic", "p2"): 15,
+    ("elevator-strips-simple-typed", "p1"): 4,
+    ("elevator-strips-simple-typed", "p2"): 3,
+    ("gripper-round-1-strips", "p1"): 11,
+    ("gripper-round-1-strips", "p2"): 17,
+    ("logistics-strips-typed", "p1"): 20,
+    ("logistics-strips-typed", "p2"): 19,
 }
 
 
@@ -377,20 +422,24 @@ def test_ipc_first_instances_plan_with_optimal_length(domain):
 
 
 @pytest.mark.slow
-@pytest.mark.skipif(IPC_FOLDER is None or not IPC_FOLDER.is_dir(),
-                    reason="ETHASP_IPC names no folder of IPC domains")
+@pytest.mark.skipif(
+    IPC_FOLDER is None or not IPC_FOLDER.is_dir(),
+    reason="ETHASP_IPC names no folder of IPC domains",
+)
 def test_every_ipc_instance_of_the_folder_is_read():
     domains = sorted(path for path in IPC_FOLDER.iterdir() if (path / "domain.pddl").is_file())
     assert domains
     for folder in domains:
         for problem in sorted(folder.glob("p*.pddl")):
-            model = Model.load([folder / "domain.pddl", problem])   # read, translated, checked
+            model = Model.load([folder / "domain.pddl", problem])  # read, translated, checked
             assert model.sources[0].text.count("\naction(") > 0, problem
 
 
 @pytest.mark.slow
-@pytest.mark.skipif(IPC_FOLDER is None or not IPC_FOLDER.is_dir(),
-                    reason="ETHASP_IPC names no folder of IPC domains")
+@pytest.mark.skipif(
+    IPC_FOLDER is None or not IPC_FOLDER.is_dir(),
+    reason="ETHASP_IPC names no folder of IPC domains",
+)
 @pytest.mark.parametrize("domain", sorted({d for d, _ in OPTIMAL}))
 def test_second_ipc_instances_plan_with_optimal_length(domain):
     if not (IPC_FOLDER / domain).is_dir():

@@ -16,21 +16,26 @@ import sys
 from pathlib import Path
 
 import pytest
-
 from conftest import ROOT
+
 from ethasp import InputError, Model, find_plan, validate
 from ethasp.vocabulary import Action
 
 
 def ethasp(*args: str, cwd: Path) -> subprocess.CompletedProcess:
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    return subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", *args],
-                          capture_output=True, text=True, cwd=cwd, env=env)
+    return subprocess.run(
+        [sys.executable, "-m", "ethasp.interfaces.cli", *args],
+        capture_output=True,
+        text=True,
+        cwd=cwd,
+        env=env,
+    )
 
 
 def write(tmp_path: Path, domain: str | bytes, problem: str | bytes) -> list[Path]:
     paths = [tmp_path / "domain.pddl", tmp_path / "problem.pddl"]
-    for path, text in zip(paths, (domain, problem)):
+    for path, text in zip(paths, (domain, problem), strict=True):
         if isinstance(text, bytes):
             path.write_bytes(text)
         else:
@@ -89,15 +94,23 @@ def test_a_carelessly_written_domain_is_read_and_planned(tmp_path):
     plan = plan_of(Model.load(paths))
     assert plan is not None and len(plan) == 5
     # Shortest plans differ in where end_shift comes (after the lift): any one.
-    assert sorted(plan) == sorted(["move(bot,hall,shelf)", "lift(bot,c1,shelf)",
-                                   "move(bot,shelf,dock)", "end_shift", "put(bot,c1)"]), plan
+    assert sorted(plan) == sorted(
+        [
+            "move(bot,hall,shelf)",
+            "lift(bot,c1,shelf)",
+            "move(bot,shelf,dock)",
+            "end_shift",
+            "put(bot,c1)",
+        ]
+    ), plan
     assert plan.index("lift(bot,c1,shelf)") < plan.index("end_shift")
     run = ethasp("plan", "domain.pddl", "problem.pddl", cwd=tmp_path)
     assert run.returncode == 0 and run.stdout.startswith("plan of 5 steps: (move bot hall shelf)")
     assert run.stderr.splitlines() == [
         "domain.pddl: warning: requirements :equality, :negative-preconditions, "
         ":typing, :universal-preconditions used but not declared (read anyway)",
-        "problem.pddl: warning: requirement :typing used but not declared (read anyway)"]
+        "problem.pddl: warning: requirement :typing used but not declared (read anyway)",
+    ]
 
 
 TYPO = """
@@ -129,13 +142,15 @@ def test_undeclared_types_and_functions_are_read_with_a_warning(tmp_path):
     assert run.stderr.splitlines() == [
         "domain.pddl: warning: type crate used but not declared (read as having no objects)",
         "problem.pddl: warning: numeric facts of the undeclared functions total-cost, weight "
-        "are ignored"]
+        "are ignored",
+    ]
 
 
 def test_an_empty_goal_holds_initially(tmp_path):
     for goal in ("(and)", "()"):
-        model = Model.load(write(tmp_path, TYPO.replace("crate", "box"),
-                                 TYPO_PROBLEM.replace("(and)", goal)))
+        model = Model.load(
+            write(tmp_path, TYPO.replace("crate", "box"), TYPO_PROBLEM.replace("(and)", goal))
+        )
         assert plan_of(model) == []
 
 
@@ -146,19 +161,32 @@ def test_latin1_comments_and_a_byte_order_mark_are_read(tmp_path):
     assert plan_of(model) == ["sweep"]
 
 
-@pytest.mark.parametrize("problem,needle", [
-    (TYPO_PROBLEM.replace("b1 - box", "b1 not - box"),
-     "problem.pddl:3: the name not cannot be used: it is a keyword of ASP"),
-    (TYPO_PROBLEM.replace("(= (weight b1) 3)", "(= b1 b1)"),
-     "problem.pddl:4: an equality of objects in the initial state"),
-    (TYPO_PROBLEM.replace("(= (weight b1) 3)", "(= () 3)"),
-     "problem.pddl:4:32: syntax error: expected (f ...)"),
-    (TYPO_PROBLEM.replace("b1 - box", "b1 1st - box"),
-     "problem.pddl:3:16: syntax error: expected a name, found '1st' (ethasp reads names that "
-     "start with a letter"),
-    (TYPO_PROBLEM.replace("; ", "").replace("b1 - box", "b\u00e9 - box").encode("latin-1"),
-     "syntax error: expected a name, found 'b\u00e9'"),
-])
+@pytest.mark.parametrize(
+    "problem,needle",
+    [
+        (
+            TYPO_PROBLEM.replace("b1 - box", "b1 not - box"),
+            "problem.pddl:3: the name not cannot be used: it is a keyword of ASP",
+        ),
+        (
+            TYPO_PROBLEM.replace("(= (weight b1) 3)", "(= b1 b1)"),
+            "problem.pddl:4: an equality of objects in the initial state",
+        ),
+        (
+            TYPO_PROBLEM.replace("(= (weight b1) 3)", "(= () 3)"),
+            "problem.pddl:4:32: syntax error: expected (f ...)",
+        ),
+        (
+            TYPO_PROBLEM.replace("b1 - box", "b1 1st - box"),
+            "problem.pddl:3:16: syntax error: expected a name, found '1st' "
+            "(ethasp reads names that start with a letter",
+        ),
+        (
+            TYPO_PROBLEM.replace("; ", "").replace("b1 - box", "b\u00e9 - box").encode("latin-1"),
+            "syntax error: expected a name, found 'b\u00e9'",
+        ),
+    ],
+)
 def test_what_cannot_be_read_is_one_line(tmp_path, problem, needle):
     with pytest.raises(InputError) as error:
         Model.load(write(tmp_path, TYPO.replace("crate", "box"), problem))
@@ -193,26 +221,38 @@ GENERATED_PROBLEM = """
 def test_generated_pddl_with_equality_declared_is_read(tmp_path):
     model = Model.load(write(tmp_path, GENERATED, GENERATED_PROBLEM))
     assert plan_of(model) == ["hop(s1,s2)", "hop(s2,s3)"]
-    assert "hop(s1,s1)" not in {str(a.name.symbol) for a in model.facts([Action]).query(Action).all()}
+    assert "hop(s1,s1)" not in {
+        str(a.name.symbol) for a in model.facts([Action]).query(Action).all()
+    }
 
 
 def test_validate_shows_the_atoms_that_hold_in_the_final_state(tmp_path):
     """A PDDL state is the set of its true atoms (closed world): the final state
     of a valid plan is shown so, not with every false atom of the task."""
     write(tmp_path, GENERATED, GENERATED_PROBLEM)
-    run = ethasp("validate", "domain.pddl", "problem.pddl", "--plan", "(hop s1 s2) (hop s2 s3)",
-                 cwd=tmp_path)
+    run = ethasp(
+        "validate", "domain.pddl", "problem.pddl", "--plan", "(hop s1 s2) (hop s2 s3)", cwd=tmp_path
+    )
     assert run.returncode == 0, run.stderr
-    assert run.stdout.strip() == ("valid plan of 2 steps; final state: (at s3) (link s1 s1) "
-                                  "(link s1 s2) (link s2 s3)")
+    assert run.stdout.strip() == (
+        "valid plan of 2 steps; final state: (at s3) (link s1 s1) (link s1 s2) (link s2 s3)"
+    )
 
 
 def test_judge_shows_a_pddl_final_state_as_the_atoms_that_hold():
     """As validate does: PDDL's closed world, the atoms that hold."""
     folder = ROOT / "asp" / "pddl"
-    run = ethasp("judge", str(folder / "trolley-domain.pddl"), str(folder / "trolley-problem.pddl"),
-                 str(folder / "trolley-utility.lp"), "--plan", "(pull)",
-                 "--principle", "deontology", cwd=ROOT)
+    run = ethasp(
+        "judge",
+        str(folder / "trolley-domain.pddl"),
+        str(folder / "trolley-problem.pddl"),
+        str(folder / "trolley-utility.lp"),
+        "--plan",
+        "(pull)",
+        "--principle",
+        "deontology",
+        cwd=ROOT,
+    )
     assert run.returncode == 0, run.stderr
     final = next(line for line in run.stdout.splitlines() if line.startswith("final state:"))
     assert "(" in final and " -(" not in final and not final.startswith("final state: -"), final

@@ -7,12 +7,12 @@ from __future__ import annotations
 import io
 
 import pytest
+from conftest import MODELS
 
 from ethasp import Model
 from ethasp.interfaces import cli, progress
 from ethasp.planning.budget import DEFAULT_TIME_LIMIT, Budget, Progress
 from ethasp.principles.restriction import plan_with_principles
-from conftest import MODELS
 
 
 class Terminal(io.StringIO):
@@ -21,8 +21,10 @@ class Terminal(io.StringIO):
 
 
 def test_progress_records_read_as_one_line():
-    assert Progress("best reachable state", 8, 4, 7, 3.14).line() == \
-        "best reachable state: horizon 8, best 4, bound 7 (3.1 s)"
+    assert (
+        Progress("best reachable state", 8, 4, 7, 3.14).line()
+        == "best reachable state: horizon 8, best 4, bound 7 (3.1 s)"
+    )
     assert Progress("plan search", elapsed=0.5).line() == "plan search (0.5 s)"
 
 
@@ -30,14 +32,14 @@ def test_the_live_line_waits_then_shows_and_clears(monkeypatch):
     stream = Terminal()
     line = progress.ProgressLine(stream)
     line(Progress("plan search", horizon=3))
-    assert stream.getvalue() == ""               # nothing in the first seconds
+    assert stream.getvalue() == ""  # nothing in the first seconds
     monkeypatch.setattr(progress, "DELAY", 0.0)
     line = progress.ProgressLine(stream)
     line(Progress("plan search", horizon=3))
     assert stream.getvalue().startswith("\rethasp: plan search: horizon 3")
     line.clear()
     assert stream.getvalue().endswith("\r")
-    quiet = progress.ProgressLine(io.StringIO())   # not a terminal: nothing
+    quiet = progress.ProgressLine(io.StringIO())  # not a terminal: nothing
     quiet(Progress("plan search", horizon=3))
     assert quiet.width == 0
 
@@ -45,8 +47,9 @@ def test_the_live_line_waits_then_shows_and_clears(monkeypatch):
 def test_searches_report_to_the_budget():
     seen: list[Progress] = []
     budget = Budget(None, seen.append)
-    result = plan_with_principles(Model.load([MODELS / "rescue.lp"]), ["utilitarianism"],
-                                  budget=budget)
+    result = plan_with_principles(
+        Model.load([MODELS / "rescue.lp"]), ["utilitarianism"], budget=budget
+    )
     assert result.status == "found"
     assert any(record.task == "best reachable state" for record in seen)
     assert all(record.elapsed >= 0 for record in seen)
@@ -54,8 +57,12 @@ def test_searches_report_to_the_budget():
 
 def test_commands_have_a_default_time_limit():
     parser = cli.build_parser()
-    for command in (["plan", "m.lp"], ["judge", "m.lp", "--plan", "a"],
-                    ["ask", "m.lp", "--question", "why a"], ["dialogue", "m.lp"]):
+    for command in (
+        ["plan", "m.lp"],
+        ["judge", "m.lp", "--plan", "a"],
+        ["ask", "m.lp", "--question", "why a"],
+        ["dialogue", "m.lp"],
+    ):
         assert parser.parse_args(command).time_limit == DEFAULT_TIME_LIMIT
     assert parser.parse_args(["plan", "m.lp", "--time-limit", "0"]).time_limit is None
     assert "0 for no limit" in parser._subparsers._group_actions[0].choices["plan"].format_help()
@@ -64,8 +71,9 @@ def test_commands_have_a_default_time_limit():
 def test_a_cancelled_budget_answers_bounded():
     budget = Budget()
     budget.cancel()
-    result = plan_with_principles(Model.load([MODELS / "rescue.lp"]), ["utilitarianism"],
-                                  budget=budget)
+    result = plan_with_principles(
+        Model.load([MODELS / "rescue.lp"]), ["utilitarianism"], budget=budget
+    )
     assert result.status == "bounded" and "cancelled" in result.proof
 
 

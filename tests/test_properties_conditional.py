@@ -9,13 +9,13 @@ from __future__ import annotations
 import random
 
 import pytest
+from conftest import answer_sets
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from oracle import plan_through, random_model
 
-from conftest import answer_sets
 from ethasp import Model, Plan, find_plan, validate
 from ethasp.principles.restriction import plan_with_principles
-from oracle import plan_through, random_model
 
 SEEDS = st.integers(min_value=0, max_value=10**9)
 HORIZON = 40
@@ -25,9 +25,15 @@ def spec_of(seed: int):
     """Models with conditional effects, half of them with derived variables,
     half of them with goals that need longer plans, half of them with
     exogenous events."""
-    return random_model(seed, max_variables=5, max_actions=5, conditional=True,
-                        derived=seed % 2 == 0, far_goal=seed % 4 < 2,
-                        events=(seed // 4) % 2 == 0)
+    return random_model(
+        seed,
+        max_variables=5,
+        max_actions=5,
+        conditional=True,
+        derived=seed % 2 == 0,
+        far_goal=seed % 4 < 2,
+        events=(seed // 4) % 2 == 0,
+    )
 
 
 @pytest.mark.slow
@@ -70,17 +76,22 @@ def test_caused_counts_only_effects_that_fire(seed, walk):
     if plan is None:
         return
     occurs = "".join(f"occurs({a},{t}). " for t, a in enumerate(plan, start=1))
-    answer = answer_sets(["planning/model.lp", "planning/trace.lp",
-                          "planning/trace_events.lp"],
-                         spec.to_asp() + occurs + "#show caused/2.")
+    answer = answer_sets(
+        ["planning/model.lp", "planning/trace.lp", "planning/trace_events.lp"],
+        spec.to_asp() + occurs + "#show caused/2.",
+    )
     assert len(answer) == 1
     caused = {atom for atom in answer[0] if atom.startswith("caused(")}
     expected = {f"caused({v},{str(b).lower()})" for v, b in spec.caused(plan)}
     assert caused == expected, (plan, spec)
 
 
-PRINCIPLES = [["deontology"], ["do-no-harm"], ["utilitarianism"],
-              ["deontology", "do-no-harm", "utilitarianism"]]
+PRINCIPLES = [
+    ["deontology"],
+    ["do-no-harm"],
+    ["utilitarianism"],
+    ["deontology", "do-no-harm", "utilitarianism"],
+]
 
 
 @pytest.mark.slow
@@ -88,8 +99,7 @@ PRINCIPLES = [["deontology"], ["do-no-harm"], ["utilitarianism"],
 @given(SEEDS, st.sampled_from(PRINCIPLES))
 def test_hplans_agree_with_the_oracle(seed, principles):
     spec = spec_of(seed)
-    result = plan_with_principles(Model.from_string(spec.to_asp()), principles,
-                                  max_horizon=HORIZON)
+    result = plan_with_principles(Model.from_string(spec.to_asp()), principles, max_horizon=HORIZON)
     expected = spec.shortest_permissible_length(principles)
     if expected is None:
         assert result.status == "none", (result, spec)

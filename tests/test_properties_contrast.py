@@ -8,10 +8,10 @@ import random
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from oracle import features, random_model
 
 from ethasp import InputError, Model, Plan
 from ethasp.questions.contrast import ask
-from oracle import features, random_model
 
 PRINCIPLES = ["deontology", "utilitarianism", "do-no-harm"]
 
@@ -24,13 +24,16 @@ def meets(plan: list[str], kind: str, a: str, b: str | None) -> bool:
     if kind == "rather-than":
         return a not in plan and b in plan
     # "why a before b": contrast b before a
-    return any(x == b and a in plan[i + 1:] for i, x in enumerate(plan))
+    return any(x == b and a in plan[i + 1 :] for i, x in enumerate(plan))
 
 
 @pytest.mark.slow
 @settings(max_examples=120, deadline=None)
-@given(st.integers(min_value=0, max_value=10**9), st.sampled_from(PRINCIPLES),
-       st.sampled_from(["why", "why-not", "rather-than", "before"]))
+@given(
+    st.integers(min_value=0, max_value=10**9),
+    st.sampled_from(PRINCIPLES),
+    st.sampled_from(["why", "why-not", "rather-than", "before"]),
+)
 def test_contrast_plans_meet_the_constraints(seed, under, kind):
     spec = random_model(seed, **features(seed))
     rng = random.Random(seed)
@@ -39,13 +42,24 @@ def test_contrast_plans_meet_the_constraints(seed, under, kind):
         return
     model = Model.from_string(spec.to_asp())
     from ethasp.planning.search import find_plan
+
     plan = [str(a) for a in find_plan(model).plan]
     a, b = rng.choice(spec.actions), rng.choice(spec.actions)
-    text = {"why": f"why {a}", "why-not": f"why not {a}",
-            "rather-than": f"why {a} rather than {b}", "before": f"why {a} before {b}"}[kind]
+    text = {
+        "why": f"why {a}",
+        "why-not": f"why not {a}",
+        "rather-than": f"why {a} rather than {b}",
+        "before": f"why {a} before {b}",
+    }[kind]
     try:
-        answer = ask(model, text, plan=Plan.parse(" ".join(plan)), principle="deontology",
-                     under=under, max_horizon=16)
+        answer = ask(
+            model,
+            text,
+            plan=Plan.parse(" ".join(plan)),
+            principle="deontology",
+            under=under,
+            max_horizon=16,
+        )
     except InputError as error:
         # Only when the plan already meets the contrast, or (questions about two
         # actions) does not use the action asked about.

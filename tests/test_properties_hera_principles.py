@@ -8,14 +8,19 @@ import random
 
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from oracle import features, plan_through, random_model
 
 from ethasp import Model, Plan, judge
 from ethasp.principles.restriction import plan_with_principles
-from oracle import features, plan_through, random_model
 
 SEEDS = st.integers(min_value=0, max_value=10**9)
-RESTRICTED = ["hera-deontology", "goal-deontology", "avoid-any-harm", "avoid-avoidable-harm",
-              "hera-utilitarianism"]
+RESTRICTED = [
+    "hera-deontology",
+    "goal-deontology",
+    "avoid-any-harm",
+    "avoid-avoidable-harm",
+    "hera-utilitarianism",
+]
 HORIZON = 40
 
 
@@ -26,20 +31,25 @@ def test_verdicts_agree_with_the_oracle(seed, walk):
     plan = plan_through(spec, random.Random(seed), walk)
     if plan is None:
         return
-    report = judge(Model.from_string(spec.to_asp()), Plan.parse(" ".join(plan)), RESTRICTED,
-                   reasons_limit=0)
+    report = judge(
+        Model.from_string(spec.to_asp()), Plan.parse(" ".join(plan)), RESTRICTED, reasons_limit=0
+    )
     for judgement in report.judgements:
         assert judgement.status == "proven", judgement
-        assert judgement.permissible == spec.permissible(plan, judgement.principle), \
-            (judgement.principle, plan, spec)
+        assert judgement.permissible == spec.permissible(plan, judgement.principle), (
+            judgement.principle,
+            plan,
+            spec,
+        )
 
 
 @settings(max_examples=100, deadline=None)
 @given(SEEDS, st.sampled_from(RESTRICTED))
 def test_hplans_agree_with_the_oracle(seed, principle):
     spec = random_model(seed, **features(seed))
-    result = plan_with_principles(Model.from_string(spec.to_asp()), [principle],
-                                  max_horizon=HORIZON)
+    result = plan_with_principles(
+        Model.from_string(spec.to_asp()), [principle], max_horizon=HORIZON
+    )
     expected = spec.shortest_permissible_length([principle])
     if expected is None:
         assert result.status == "none", (result, spec)

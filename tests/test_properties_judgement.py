@@ -7,9 +7,9 @@ import random
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from oracle import features, holds, plan_through, random_formula, random_model
 
 from ethasp import Model, Plan, judge, query
-from oracle import features, holds, plan_through, random_formula, random_model
 
 PRINCIPLES = ["deontology", "do-no-harm", "utilitarianism"]
 
@@ -39,8 +39,13 @@ def text(formula: tuple) -> str:
     if kind == "caused":
         return f"Caused({fact(formula[1], formula[2])})"
     if kind == "geq":
-        return ("GEq(" + " & ".join(fact(*f) for f in formula[1]) + ", "
-                + " & ".join(fact(*f) for f in formula[2]) + ")")
+        return (
+            "GEq("
+            + " & ".join(fact(*f) for f in formula[1])
+            + ", "
+            + " & ".join(fact(*f) for f in formula[2])
+            + ")"
+        )
     if kind == "not":
         return f"not ({text(formula[1])})"
     operator = {"and": "and", "or": "or", "imp": "->"}[kind]
@@ -65,12 +70,21 @@ def test_verdicts_agree_with_the_definitions(seed, walk):
     else:  # decided by the first better state found, at its shortest distance
         better = frozenset(v for v in spec.variables if v in utilitarian.compared.literals)
         assert spec.state_utility(better) == utilitarian.compared.utility > report.utility
-        if spec.events:     # searched by horizons 0, 1, 2, 4, ...: within that many steps
+        if spec.events:  # searched by horizons 0, 1, 2, 4, ...: within that many steps
             assert spec.distances()[better] <= utilitarian.compared.distance
         else:
             assert spec.distances()[better] == utilitarian.compared.distance
-    best = judge(Model.from_string(spec.to_asp()), Plan.parse(" ".join(plan)),
-                 ["utilitarianism"], best=True, reasons_limit=0).judgements[0].best_reachable
+    best = (
+        judge(
+            Model.from_string(spec.to_asp()),
+            Plan.parse(" ".join(plan)),
+            ["utilitarianism"],
+            best=True,
+            reasons_limit=0,
+        )
+        .judgements[0]
+        .best_reachable
+    )
     assert best.status == "proven" and best.utility == spec.best_reachable_utility()
 
 

@@ -19,14 +19,14 @@ import random
 
 import clingo
 import pytest
+from conftest import ENCODINGS
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from pddl_oracle import PddlTask, asp_atom, random_task
 
-from conftest import ENCODINGS
 from ethasp import InputError, Model, Plan, find_plan, validate
 from ethasp.planning.pddl import PddlFile, translate
 from ethasp.vocabulary import Action
-from pddl_oracle import PddlTask, asp_atom, random_task
 
 SEEDS = st.integers(min_value=0, max_value=10**9)
 HORIZON = 12
@@ -34,8 +34,9 @@ HORIZON = 12
 
 def program(task: PddlTask) -> str:
     with contextlib.redirect_stderr(io.StringIO()):
-        return translate(PddlFile("d.pddl", task.domain_text()),
-                         PddlFile("p.pddl", task.problem_text()))
+        return translate(
+            PddlFile("d.pddl", task.domain_text()), PddlFile("p.pddl", task.problem_text())
+        )
 
 
 def model_of(task: PddlTask) -> Model:
@@ -88,15 +89,19 @@ def conjuncts(f, positive: bool = True) -> list:
 def failing(task: PddlTask, pre, binding) -> tuple[bool, set[str]]:
     """Whether a plain equality conjunct fails, and the plain static conjuncts
     that fail initially (as literals ``v`` / ``-v``)."""
-    changed = {literal[1] for _, _, _, effect in task.actions
-               for literal in effect_literals(effect)}
+    changed = {
+        literal[1] for _, _, _, effect in task.actions for literal in effect_literals(effect)
+    }
     static = set(task.predicates) - changed - {name for name, _, _ in task.derived}
     equality, failed = False, set()
     for atom, positive in conjuncts(pre):
         if atom[0] == "=" and task.holds(atom, task.init, binding) != positive:
             equality = True
-        elif atom[0] == "atom" and atom[1] in static \
-                and task.holds(atom, task.init, binding) != positive:
+        elif (
+            atom[0] == "atom"
+            and atom[1] in static
+            and task.holds(atom, task.init, binding) != positive
+        ):
             name = asp_atom((atom[1], task.ground_terms(atom[2], binding)))
             failed.add(name if positive else f"-{name}")
     return equality, failed
@@ -107,7 +112,7 @@ def effect_literals(e) -> list:
         return [e]
     if e[0] == "and":
         return [literal for g in e[1] for literal in effect_literals(g)]
-    return effect_literals(e[2])      # forall, when
+    return effect_literals(e[2])  # forall, when
 
 
 @pytest.mark.slow
@@ -119,8 +124,11 @@ def test_the_actions_are_those_whose_static_preconditions_hold(seed):
     task = random_task(seed)
     model = model_of(task)
     actions = {str(a.name.symbol) for a in model.facts([Action]).query(Action).all()}
-    expected = {term for term, (pre, _), binding in task.ground_actions()
-                if failing(task, pre, binding) == (False, set())}
+    expected = {
+        term
+        for term, (pre, _), binding in task.ground_actions()
+        if failing(task, pre, binding) == (False, set())
+    }
     assert actions == expected, context(task)
 
 
@@ -143,11 +151,17 @@ def test_validation_agrees_with_the_oracle(seed, choice_seed):
     pruned = sorted(ground - set(actions))
     if not actions and not pruned:
         return
-    sequence = [rng.choice(pruned) if pruned and (rng.random() < 0.2 or not actions)
-                else rng.choice(actions)
-                for _ in range(rng.randint(0, 5))]
-    reasons = {term: failing(task, pre, binding)
-               for term, (pre, _), binding in task.ground_actions() if term in sequence}
+    sequence = [
+        rng.choice(pruned)
+        if pruned and (rng.random() < 0.2 or not actions)
+        else rng.choice(actions)
+        for _ in range(rng.randint(0, 5))
+    ]
+    reasons = {
+        term: failing(task, pre, binding)
+        for term, (pre, _), binding in task.ground_actions()
+        if term in sequence
+    }
     if any(reasons[term][0] for term in sequence if term in pruned):
         # an instance whose equality fails is no instance of its schema
         with pytest.raises(InputError, match="unknown action"):
@@ -183,19 +197,30 @@ def test_relaxed_reachability_and_mutexes_are_sound(seed):
     the goal is unreachable means the oracle has no plan."""
     task = random_task(seed)
     ctl = clingo.Control(logger=lambda code, message: None)
-    for name in ("planning/pddl.lp", "planning/model.lp", "planning/relaxed.lp",
-                 "planning/mutex.lp"):
+    for name in (
+        "planning/pddl.lp",
+        "planning/model.lp",
+        "planning/relaxed.lp",
+        "planning/mutex.lp",
+    ):
         ctl.load(str(ENCODINGS / name))
     ctl.add("base", [], program(task))
     ctl.ground([("base", [])])
     atoms = [atom.symbol for atom in ctl.symbolic_atoms if atom.is_fact]
-    reachable = {(str(a.arguments[0]), a.arguments[1].name) for a in atoms
-                 if a.match("reachable", 2)}
+    reachable = {
+        (str(a.arguments[0]), a.arguments[1].name) for a in atoms if a.match("reachable", 2)
+    }
     variables = {str(a.arguments[0]) for a in atoms if a.match("variable", 1)}
-    derived = {str(a.arguments[0]) for a in atoms if a.match("derived", 1)
-               and a.arguments[0].name in task.predicates}
-    mutexes = [tuple(str(x) if i % 2 == 0 else x.name for i, x in enumerate(a.arguments))
-               for a in atoms if a.match("mutex", 4)]
+    derived = {
+        str(a.arguments[0])
+        for a in atoms
+        if a.match("derived", 1) and a.arguments[0].name in task.predicates
+    }
+    mutexes = [
+        tuple(str(x) if i % 2 == 0 else x.name for i, x in enumerate(a.arguments))
+        for a in atoms
+        if a.match("mutex", 4)
+    ]
     distances = task.distances()
     for state in distances:
         full = {asp_atom(atom) for atom in task.closure(state)}
@@ -203,7 +228,12 @@ def test_relaxed_reachability_and_mutexes_are_sound(seed):
             value = "true" if name in full else "false"
             assert (name, value) in reachable, (name, value, context(task))
         for v, b, w, c in mutexes:
-            assert not ((v in full) == (b == "true") and (w in full) == (c == "true")), \
-                (v, b, w, c, context(task))
+            assert not ((v in full) == (b == "true") and (w in full) == (c == "true")), (
+                v,
+                b,
+                w,
+                c,
+                context(task),
+            )
     if any(a.match("unreachable_goal", 0) for a in atoms):
         assert task.shortest_plan_length(distances) is None, context(task)

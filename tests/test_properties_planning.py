@@ -5,9 +5,9 @@ exogenous events)."""
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from oracle import features, random_model
 
 from ethasp import Model, find_plan, validate
-from oracle import features, random_model
 
 
 @pytest.mark.slow
@@ -33,6 +33,7 @@ def test_validation_agrees_with_the_oracle(seed, choices):
     spec = random_model(seed, **features(seed))
     plan = [spec.actions[i % len(spec.actions)] for i in choices]
     from ethasp import Plan
+
     check = validate(Model.from_string(spec.to_asp()), Plan.parse(" ".join(plan)))
     assert check.valid == spec.is_plan(plan)
     if spec.run(plan) is None:

@@ -16,26 +16,54 @@ tests/question_oracle.py, which simulates events (tests/oracle.py):
 
 from __future__ import annotations
 
+import itertools
 import random
 
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from oracle import plan_through, random_model
+from question_oracle import (
+    after_step,
+    causes,
+    links,
+    meets,
+    removable,
+    serving,
+    shortest_meeting,
+    trajectory,
+    value,
+)
 
 from ethasp import InputError, Model, Plan
 from ethasp.questions.contrast import ask
 from ethasp.questions.steps import explain_steps
-from oracle import plan_through, random_model
-from question_oracle import (after_step, causes, links, meets, removable, serving,
-                             shortest_meeting, trajectory, value)
 
 PRINCIPLES = ["deontology", "utilitarianism", "do-no-harm"]
-FORMS = ["why", "why-not", "rather-than", "before", "after", "at", "not-at", "within",
-         "not-within", "ends", "not-ends", "fact-at", "not-fact-at", "length"]
+FORMS = [
+    "why",
+    "why-not",
+    "rather-than",
+    "before",
+    "after",
+    "at",
+    "not-at",
+    "within",
+    "not-within",
+    "ends",
+    "not-ends",
+    "fact-at",
+    "not-fact-at",
+    "length",
+]
 MAX_HORIZON = 12
 # The features random models draw: none, each alone, and all of them together.
-KINDS = {"plain": {}, "conditional": {"conditional": True}, "derived": {"derived": True},
-         "events": {"events": True},
-         "every feature": {"conditional": True, "derived": True, "events": True}}
+KINDS = {
+    "plain": {},
+    "conditional": {"conditional": True},
+    "derived": {"derived": True},
+    "events": {"events": True},
+    "every feature": {"conditional": True, "derived": True, "events": True},
+}
 
 
 def _b(value: bool) -> str:
@@ -85,8 +113,10 @@ def question(form: str, spec, plan: list[str], rng: random.Random):
         "not-ends": (f"why not {f}", [("ends", f, True)]),
         "fact-at": (f"why {f} at {t}", [("fact_at", f, False, t)]),
         "not-fact-at": (f"why not {f} at {t}", [("fact_at", f, True, t)]),
-        "length": (f"why not in {max(len(plan) - 1, 0)} steps",
-                   [("at_most", max(len(plan) - 1, 0))]),
+        "length": (
+            f"why not in {max(len(plan) - 1, 0)} steps",
+            [("at_most", max(len(plan) - 1, 0))],
+        ),
     }
     text, terms = table[form]
     return text, terms, [_asp(term) for term in terms]
@@ -114,8 +144,12 @@ def presupposition_fails(spec, plan, form, terms, text) -> bool:
 
 
 @settings(max_examples=150, deadline=None)
-@given(st.integers(min_value=0, max_value=10**9), st.sampled_from(PRINCIPLES),
-       st.sampled_from(FORMS), st.sampled_from(sorted(KINDS)))
+@given(
+    st.integers(min_value=0, max_value=10**9),
+    st.sampled_from(PRINCIPLES),
+    st.sampled_from(FORMS),
+    st.sampled_from(sorted(KINDS)),
+)
 def test_every_form_against_brute_force(seed, under, form, kind):
     spec, seed = solvable(seed, **KINDS[kind])
     rng = random.Random(seed)
@@ -123,8 +157,14 @@ def test_every_form_against_brute_force(seed, under, form, kind):
     text, terms, written = question(form, spec, plan, rng)
     model = Model.from_string(spec.to_asp())
     try:
-        answer = ask(model, text, plan=Plan.parse(" ".join(plan)), principle="deontology",
-                     under=under, max_horizon=MAX_HORIZON)
+        answer = ask(
+            model,
+            text,
+            plan=Plan.parse(" ".join(plan)),
+            principle="deontology",
+            under=under,
+            max_horizon=MAX_HORIZON,
+        )
     except InputError as error:
         assert presupposition_fails(spec, plan, form, terms, text), str(error)
         return
@@ -144,8 +184,11 @@ def test_every_form_against_brute_force(seed, under, form, kind):
         assert answer.contrast.judgement.permissible == spec.permissible(contrast, under)
     elif answer.status == "none":
         assert anyhow is None
-        conflict = [term for term, c in zip(terms, written)
-                    if c in {str(x) for x in answer.conflict}]
+        conflict = [
+            term
+            for term, c in zip(terms, written, strict=True)
+            if c in {str(x) for x in answer.conflict}
+        ]
         assert conflict and shortest_meeting(spec, conflict) is None
     else:
         # Bounded: the searches were cut at the maximal horizon without a proof.
@@ -156,7 +199,7 @@ def test_every_form_against_brute_force(seed, under, form, kind):
     if answer.principle_dropped:
         assert permissible is None and anyhow is not None
     elif permissible is None and anyhow is not None and anyhow <= MAX_HORIZON:
-        assert answer.status == "bounded"        # no proof found: not dropped
+        assert answer.status == "bounded"  # no proof found: not dropped
 
 
 def _node(node):
@@ -179,8 +222,16 @@ def test_links_and_removable_steps_against_brute_force(seed, kind):
     found = set()
     for link in explanation.links:
         kind_of = ("condition", str(link.effect)) if link.kind == "condition" else link.kind
-        found.add((_node(link.provider), _node(link.consumer), str(link.variable), link.value,
-                   kind_of, None if link.via is None else str(link.via)))
+        found.add(
+            (
+                _node(link.provider),
+                _node(link.consumer),
+                str(link.variable),
+                link.value,
+                kind_of,
+                None if link.via is None else str(link.via),
+            )
+        )
     expected = links(spec, plan)
     assert found == expected, (found - expected, expected - found)
     assert {step.step for step in explanation.steps if step.removable} == removable(spec, plan)
@@ -198,7 +249,8 @@ def test_links_and_removable_steps_against_brute_force(seed, kind):
         if step.chain:
             chain = [_node(node) for node in step.chain]
             assert chain[0] == step.step and chain[-1] == "goal"
-            assert all(pair in edges for pair in zip(chain, chain[1:])), chain
+            assert all(pair in edges for pair in itertools.pairwise(chain)), chain
     # Events are listed with the links from what they set.
-    assert {(e.step, str(e.event)) for e in explanation.events if e.links} == \
-        {link[0][1:] for link in expected if isinstance(link[0], tuple)}
+    assert {(e.step, str(e.event)) for e in explanation.events if e.links} == {
+        link[0][1:] for link in expected if isinstance(link[0], tuple)
+    }

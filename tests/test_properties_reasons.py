@@ -7,19 +7,35 @@ reasons (their minimal hitting sets) of tests/reasons_oracle.py, and the
 relevance optimum must be a necessary reason of least cost.
 """
 
+from conftest import answer_sets
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
-from conftest import answer_sets
-from reasons_oracle import (assignments, atoms_of, evaluate, necessary_reasons,
-                            sufficient_reasons, to_asp)
+from reasons_oracle import (
+    assignments,
+    atoms_of,
+    evaluate,
+    necessary_reasons,
+    sufficient_reasons,
+    to_asp,
+)
 
 CORE = ["reasons/literals.lp", "reasons/theory.lp", "reasons/evaluate.lp"]
 ENUMERATE = ("0", "--heuristic=Domain", "--enum-mode=domRec")
 
-POOL = ["good(action(a))", "bad(action(a))", "neutral(action(a))",
-        "caused(v,true)", "caused(v,false)", "caused(w,true)", "bad(fact(w,true))",
-        "geq(c,d)", "geq(d,c)", "geq(c,c)", "geq(d,e)", "geq(c,e)"]
+POOL = [
+    "good(action(a))",
+    "bad(action(a))",
+    "neutral(action(a))",
+    "caused(v,true)",
+    "caused(v,false)",
+    "caused(w,true)",
+    "bad(fact(w,true))",
+    "geq(c,d)",
+    "geq(d,c)",
+    "geq(c,c)",
+    "geq(d,e)",
+    "geq(c,e)",
+]
 
 atoms = st.sampled_from(POOL)
 formulas = st.recursive(
@@ -27,8 +43,10 @@ formulas = st.recursive(
     lambda children: st.one_of(
         st.tuples(st.just("neg"), children),
         st.tuples(st.sampled_from(["and", "or", "imp"]), children, children),
-        st.tuples(st.sampled_from(["all", "any"]), st.lists(children, max_size=3))),
-    max_leaves=6)
+        st.tuples(st.sampled_from(["all", "any"]), st.lists(children, max_size=3)),
+    ),
+    max_leaves=6,
+)
 
 
 def situation(formula, pick: int) -> dict[str, bool]:
@@ -50,7 +68,7 @@ def reasons(files, text: str, arguments=ENUMERATE) -> set[frozenset]:
         literals = set()
         for atom in answer:
             if atom.startswith("reason("):
-                inner = atom[len("reason("):-1]
+                inner = atom[len("reason(") : -1]
                 term, value = inner.rsplit(",", 1)
                 literals.add((term, value == "true"))
         found.add(frozenset(literals))
@@ -66,8 +84,9 @@ def interesting(formula) -> bool:
 def test_sufficient_reasons_are_the_prime_implicants_that_hold(formula, pick):
     actual = situation(formula, pick)
     expected = sufficient_reasons(formula, actual)
-    assert reasons(["reasons/shape.lp", "reasons/sufficient.lp"], program(formula, actual)) \
-        == expected
+    assert (
+        reasons(["reasons/shape.lp", "reasons/sufficient.lp"], program(formula, actual)) == expected
+    )
 
 
 @settings(max_examples=120, deadline=None)
@@ -78,12 +97,17 @@ def test_necessary_reasons_are_the_minimal_hitting_sets(formula, pick):
     assert reasons(["reasons/necessary.lp"], program(formula, actual)) == expected
 
 
-WEIGHTS = {"action(a)": st.integers(-2, 2), "fact(v,true)": st.integers(-2, 2),
-           "fact(v,false)": st.integers(-2, 2), "fact(w,true)": st.integers(-2, 2)}
+WEIGHTS = {
+    "action(a)": st.integers(-2, 2),
+    "fact(v,true)": st.integers(-2, 2),
+    "fact(v,false)": st.integers(-2, 2),
+    "fact(w,true)": st.integers(-2, 2),
+}
 
 
 def cost(reason: frozenset, weight: dict[str, int], worth: dict[str, int]) -> tuple:
     """The relevance criteria of relevance.lp, as a tuple to minimise."""
+
     def about(atom: str) -> int:
         if atom.startswith("geq("):
             c, d = atom[4:-1].split(",")
@@ -91,7 +115,7 @@ def cost(reason: frozenset, weight: dict[str, int], worth: dict[str, int]) -> tu
         if atom.startswith("caused("):
             variable, value = atom[7:-1].rsplit(",", 1)
             return abs(weight[f"fact({variable},{value})"])
-        return abs(weight[atom[atom.index("(") + 1:-1]])
+        return abs(weight[atom[atom.index("(") + 1 : -1]])
 
     magnitudes = [about(atom) for atom, _ in reason]
     valuations = sum(1 for atom, _ in reason if atom.split("(")[0] in ("good", "bad", "neutral"))
@@ -99,22 +123,37 @@ def cost(reason: frozenset, weight: dict[str, int], worth: dict[str, int]) -> tu
 
 
 @settings(max_examples=80, deadline=None)
-@given(formulas.filter(interesting), st.integers(0, 10**6),
-       st.fixed_dictionaries(WEIGHTS), st.lists(st.integers(-3, 3), min_size=3, max_size=3))
+@given(
+    formulas.filter(interesting),
+    st.integers(0, 10**6),
+    st.fixed_dictionaries(WEIGHTS),
+    st.lists(st.integers(-3, 3), min_size=3, max_size=3),
+)
 def test_relevance_picks_a_necessary_reason_of_least_cost(formula, pick, weight, worths):
     actual = situation(formula, pick)
     expected = necessary_reasons(formula, actual)
-    worth = dict(zip("cde", worths))
-    text = program(formula, actual) + "\n" + "\n".join(
-        [f"weight({e},{u})." for e, u in weight.items()]
-        + [f"conj_worth({c},{w})." for c, w in worth.items()])
-    found = answer_sets(CORE + ["reasons/necessary.lp", "reasons/relevance.lp"], text,
-                        ("0", "--opt-mode=opt", "--opt-strategy=usc"))
+    worth = dict(zip("cde", worths, strict=True))
+    text = (
+        program(formula, actual)
+        + "\n"
+        + "\n".join(
+            [f"weight({e},{u})." for e, u in weight.items()]
+            + [f"conj_worth({c},{w})." for c, w in worth.items()]
+        )
+    )
+    found = answer_sets(
+        [*CORE, "reasons/necessary.lp", "reasons/relevance.lp"],
+        text,
+        ("0", "--opt-mode=opt", "--opt-strategy=usc"),
+    )
     if not expected:
         assert found == []
         return
-    chosen = reasons(["reasons/necessary.lp", "reasons/relevance.lp"], text,
-                     ("0", "--opt-mode=opt", "--opt-strategy=usc"))
+    chosen = reasons(
+        ["reasons/necessary.lp", "reasons/relevance.lp"],
+        text,
+        ("0", "--opt-mode=opt", "--opt-strategy=usc"),
+    )
     best = min(cost(r, weight, worth) for r in expected)
     # every model printed is an improvement; the last is optimal
     last = frozenset(sorted(chosen, key=lambda r: cost(r, weight, worth))[0])

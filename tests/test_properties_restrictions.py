@@ -13,13 +13,13 @@ import itertools
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from oracle import features, random_model
 
 from ethasp import Model
 from ethasp.principles.restriction import plan_with_principles
 
 # The three principles of the paper (the oracle knows these).
 PRINCIPLES = ("deontology", "utilitarianism", "do-no-harm")
-from oracle import features, random_model
 
 SINGLE = [[name] for name in PRINCIPLES]
 PAIRS = [list(pair) for pair in itertools.combinations(PRINCIPLES, 2)]
@@ -32,8 +32,7 @@ HORIZON = 40
 
 def check_against_oracle(seed: int, principles: list[str]) -> None:
     spec = random_model(seed, **features(seed))
-    result = plan_with_principles(Model.from_string(spec.to_asp()), principles,
-                                  max_horizon=HORIZON)
+    result = plan_with_principles(Model.from_string(spec.to_asp()), principles, max_horizon=HORIZON)
     expected = spec.shortest_permissible_length(principles)
     if expected is None:
         assert result.status == "none", (result, spec)
@@ -56,7 +55,7 @@ def test_hplans_of_one_principle_agree_with_the_oracle(seed, principles):
 
 @pytest.mark.slow
 @settings(max_examples=200, deadline=None)
-@given(SEEDS, st.sampled_from(PAIRS + [list(PRINCIPLES)]))
+@given(SEEDS, st.sampled_from([*PAIRS, list(PRINCIPLES)]))
 def test_hplans_of_several_principles_agree_with_the_oracle(seed, principles):
     check_against_oracle(seed, principles)
 
@@ -66,8 +65,9 @@ def test_hplans_of_several_principles_agree_with_the_oracle(seed, principles):
 @given(SEEDS)
 def test_the_utilitarian_bound_is_the_proven_best_reachable_utility(seed):
     spec = random_model(seed, **features(seed))
-    result = plan_with_principles(Model.from_string(spec.to_asp()), ["utilitarianism"],
-                                  max_horizon=HORIZON)
+    result = plan_with_principles(
+        Model.from_string(spec.to_asp()), ["utilitarianism"], max_horizon=HORIZON
+    )
     assert result.best.status == "proven", result
     assert result.best.utility == spec.best_reachable_utility()
     assert result.to_json()["best_utility"] == result.best.utility

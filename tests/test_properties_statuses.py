@@ -13,15 +13,21 @@ import random
 
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from oracle import features, plan_through, random_model
 
 from ethasp import Model, Plan, find_plan, judge
 from ethasp.principles.restriction import plan_with_principles
-from oracle import features, plan_through, random_model
 
 SEEDS = st.integers(min_value=0, max_value=10**9)
 HORIZONS = st.integers(min_value=0, max_value=4)
-PRINCIPLES = [[], ["deontology"], ["do-no-harm"], ["utilitarianism"], ["avoid-any-harm"],
-              ["deontology", "do-no-harm"]]
+PRINCIPLES = [
+    [],
+    ["deontology"],
+    ["do-no-harm"],
+    ["utilitarianism"],
+    ["avoid-any-harm"],
+    ["deontology", "do-no-harm"],
+]
 
 
 def check(result, spec, principles, horizon) -> None:
@@ -41,13 +47,15 @@ def check(result, spec, principles, horizon) -> None:
 
 @settings(max_examples=150, deadline=None)
 @given(SEEDS, HORIZONS, st.sampled_from(PRINCIPLES), st.booleans())
-def test_plans_are_bounded_only_where_the_horizon_cut_the_search(seed, horizon, principles,
-                                                                   satisficing):
+def test_plans_are_bounded_only_where_the_horizon_cut_the_search(
+    seed, horizon, principles, satisficing
+):
     spec = random_model(seed, **features(seed))
     model = Model.from_string(spec.to_asp())
     if principles:
-        result = plan_with_principles(model, principles, max_horizon=horizon,
-                                      satisficing=satisficing)
+        result = plan_with_principles(
+            model, principles, max_horizon=horizon, satisficing=satisficing
+        )
     else:
         result = find_plan(model, max_horizon=horizon, satisficing=satisficing)
     check(result, spec, principles, horizon)
@@ -56,16 +64,21 @@ def test_plans_are_bounded_only_where_the_horizon_cut_the_search(seed, horizon, 
 @settings(max_examples=100, deadline=None)
 @given(SEEDS, HORIZONS, st.integers(min_value=0, max_value=3))
 def test_utilitarian_judgements_are_bounded_only_where_the_horizon_cut_the_search(
-        seed, horizon, walk):
+    seed, horizon, walk
+):
     spec = random_model(seed, **features(seed))
     plan = plan_through(spec, random.Random(seed), walk)
     if plan is None:
         return
-    judgement = judge(Model.from_string(spec.to_asp()), Plan.parse(" ".join(plan)),
-                      ["utilitarianism"], max_horizon=horizon, reasons_limit=0).judgements[0]
+    judgement = judge(
+        Model.from_string(spec.to_asp()),
+        Plan.parse(" ".join(plan)),
+        ["utilitarianism"],
+        max_horizon=horizon,
+        reasons_limit=0,
+    ).judgements[0]
     if judgement.status == "bounded":
         assert max(spec.configurations().values()) > horizon, (judgement, spec)
-        assert judgement.permissible          # no better state was found
+        assert judgement.permissible  # no better state was found
     else:
-        assert judgement.permissible == spec.permissible(plan, "utilitarianism"), (judgement,
-                                                                                    spec)
+        assert judgement.permissible == spec.permissible(plan, "utilitarianism"), (judgement, spec)

@@ -13,13 +13,13 @@ import random
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from oracle import RandomModel, features, plan_through, random_model
 
 from ethasp import Model, Plan
 from ethasp.planning.budget import Budget
 from ethasp.principles.judgement import judge
 from ethasp.principles.restriction import plan_with_principles
 from ethasp.principles.utilitarianism import best_reachable
-from oracle import RandomModel, features, plan_through, random_model
 
 SEEDS = st.integers(min_value=0, max_value=10**9)
 
@@ -32,22 +32,27 @@ def dense_model(seed: int) -> RandomModel:
     exogenous events: searched in ASP, as exact reachability knows no
     events)."""
     if seed % 4 == 0:
-        return random_model(seed, max_variables=7, max_actions=8, conditional=True,
-                            far_goal=True)
+        return random_model(seed, max_variables=7, max_actions=8, conditional=True, far_goal=True)
     if seed % 4 == 1:
-        return random_model(seed, max_variables=5, max_actions=5, conditional=True,
-                            derived=True, events=True)
+        return random_model(
+            seed, max_variables=5, max_actions=5, conditional=True, derived=True, events=True
+        )
     rng = random.Random(seed)
     variables = [f"v{i}" for i in range(rng.randint(5, 7))]
     actions = [f"a{i}" for i in range(rng.randint(5, 8))]
-    pre = {a: {v: rng.random() < 0.5 for v in rng.sample(variables, rng.randint(0, 2))}
-           for a in actions}
-    eff = {a: {v: rng.random() < 0.5 for v in rng.sample(variables, rng.randint(1, 3))}
-           for a in actions}
+    pre = {
+        a: {v: rng.random() < 0.5 for v in rng.sample(variables, rng.randint(0, 2))}
+        for a in actions
+    }
+    eff = {
+        a: {v: rng.random() < 0.5 for v in rng.sample(variables, rng.randint(1, 3))}
+        for a in actions
+    }
     init = frozenset(v for v in variables if rng.random() < 0.4)
     goal = {v: rng.random() < 0.5 for v in rng.sample(variables, rng.randint(1, 2))}
-    fact_utility = {(v, b): rng.randint(-3, 3) for v in variables for b in (True, False)
-                    if rng.random() < 0.5}
+    fact_utility = {
+        (v, b): rng.randint(-3, 3) for v in variables for b in (True, False) if rng.random() < 0.5
+    }
     action_utility = {a: rng.randint(-2, 2) for a in actions if rng.random() < 0.5}
     return RandomModel(variables, actions, pre, eff, init, goal, action_utility, fact_utility)
 
@@ -61,17 +66,18 @@ def test_utilitarian_verdicts_are_right_and_proven(seed, walk):
     if plan is None:
         return
     model = Model.from_string(spec.to_asp())
-    judgement = judge(model, Plan.parse(" ".join(plan)), ["utilitarianism"],
-                      budget=Budget(120)).judgements[0]
+    judgement = judge(
+        model, Plan.parse(" ".join(plan)), ["utilitarianism"], budget=Budget(120)
+    ).judgements[0]
     assert judgement.status == "proven", judgement
     assert judgement.permissible == spec.permissible(plan, "utilitarianism"), judgement
     if not judgement.permissible:
         better = judgement.compared
         state = frozenset(v for v in spec.variables if v in better.literals)
         assert better.utility == spec.state_utility(state) > spec.state_utility(spec.run(plan))
-        if spec.events:     # searched by horizons 0, 1, 2, 4, ...: within that many steps
+        if spec.events:  # searched by horizons 0, 1, 2, 4, ...: within that many steps
             assert spec.distances()[state] <= better.distance
-        else:               # found at its shortest distance
+        else:  # found at its shortest distance
             assert spec.distances()[state] == better.distance
     best = best_reachable(model.planner, Budget(120))
     assert best.status == "proven" and best.utility == spec.best_reachable_utility()
@@ -83,8 +89,9 @@ def test_utilitarian_verdicts_are_right_and_proven(seed, walk):
 @given(SEEDS)
 def test_shortest_utilitarian_hplans_are_right_and_proven(seed):
     spec = dense_model(seed)
-    result = plan_with_principles(Model.from_string(spec.to_asp()), ["utilitarianism"],
-                                  budget=Budget(120))
+    result = plan_with_principles(
+        Model.from_string(spec.to_asp()), ["utilitarianism"], budget=Budget(120)
+    )
     expected = spec.shortest_permissible_length(["utilitarianism"])
     if expected is None:
         assert result.status == "none", (result, spec)
@@ -97,14 +104,14 @@ def test_shortest_utilitarian_hplans_are_right_and_proven(seed):
 
 @pytest.mark.slow
 @settings(max_examples=30, deadline=None)
-@given(SEEDS, st.sampled_from([["utilitarianism", "deontology"],
-                               ["utilitarianism", "do-no-harm"]]))
+@given(SEEDS, st.sampled_from([["utilitarianism", "deontology"], ["utilitarianism", "do-no-harm"]]))
 def test_utilitarian_hplans_with_other_principles_are_right(seed, principles):
     spec = dense_model(seed)
-    result = plan_with_principles(Model.from_string(spec.to_asp()), principles,
-                                  max_horizon=24, budget=Budget(60))
+    result = plan_with_principles(
+        Model.from_string(spec.to_asp()), principles, max_horizon=24, budget=Budget(60)
+    )
     expected = spec.shortest_permissible_length(principles)
-    if result.status == "bounded":        # the loop-free threshold may need long paths
+    if result.status == "bounded":  # the loop-free threshold may need long paths
         assert expected is None or expected > result.horizon
         return
     if expected is None:
@@ -128,8 +135,8 @@ def test_the_fallback_without_diagrams_is_right_when_it_claims(seed, walk):
     spec = random_model(seed, max_variables=5, max_actions=5, **features(seed))
     plan = plan_through(spec, random.Random(seed), walk)
     saved = reachability.DEFAULT_NODE_LIMIT, explicit.CONFIGURATION_LIMIT
-    reachability.DEFAULT_NODE_LIMIT = 1       # the diagrams give up at once,
-    explicit.CONFIGURATION_LIMIT = 1          # and so do the explicit layers (events)
+    reachability.DEFAULT_NODE_LIMIT = 1  # the diagrams give up at once,
+    explicit.CONFIGURATION_LIMIT = 1  # and so do the explicit layers (events)
     try:
         model = Model.from_string(spec.to_asp())
         best = best_reachable(model.planner, Budget(30))
@@ -138,14 +145,16 @@ def test_the_fallback_without_diagrams_is_right_when_it_claims(seed, walk):
         elif best.utility is not None:
             assert best.utility <= spec.best_reachable_utility()
         if plan is not None:
-            judgement = judge(model, Plan.parse(" ".join(plan)), ["utilitarianism"],
-                              budget=Budget(30)).judgements[0]
+            judgement = judge(
+                model, Plan.parse(" ".join(plan)), ["utilitarianism"], budget=Budget(30)
+            ).judgements[0]
             if judgement.status == "proven":
                 assert judgement.permissible == spec.permissible(plan, "utilitarianism")
             else:
-                assert judgement.permissible       # bounded: no better state found
-        result = plan_with_principles(Model.from_string(spec.to_asp()), ["utilitarianism"],
-                                      max_horizon=16, budget=Budget(30))
+                assert judgement.permissible  # bounded: no better state found
+        result = plan_with_principles(
+            Model.from_string(spec.to_asp()), ["utilitarianism"], max_horizon=16, budget=Budget(30)
+        )
         expected = spec.shortest_permissible_length(["utilitarianism"])
         if result.status == "found":
             assert len(result.plan) == expected

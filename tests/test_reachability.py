@@ -9,10 +9,10 @@ import clingo
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from oracle import random_model
 
 from ethasp import Model
 from ethasp.planning.reachability import Reachability, from_atoms
-from oracle import random_model
 
 S = clingo.Function
 
@@ -26,22 +26,33 @@ def ground(spec):
         for key, conditions, sets in effects:
             ceff += [(S(action), S(key), S(v), b) for v, b in sets.items()]
             cpre += [(S(action), S(key), S(v), b) for v, b in conditions.items()]
-    axioms = [(S(d), clingo.Number(k)) for d, bodies in derived.items()
-              for k in range(len(bodies))]
-    axiom_pre = [(S(d), clingo.Number(k), S(v), b) for d, bodies in derived.items()
-                 for k, body in enumerate(bodies) for v, b in body.items()]
+    axioms = [(S(d), clingo.Number(k)) for d, bodies in derived.items() for k in range(len(bodies))]
+    axiom_pre = [
+        (S(d), clingo.Number(k), S(v), b)
+        for d, bodies in derived.items()
+        for k, body in enumerate(bodies)
+        for v, b in body.items()
+    ]
     return from_atoms(
-        [S(v) for v in spec.variables], [S(a) for a in spec.actions],
+        [S(v) for v in spec.variables],
+        [S(a) for a in spec.actions],
         [(S(a), S(v), b) for a in spec.actions for v, b in spec.pre[a].items()],
         [(S(a), S(v), b) for a in spec.actions for v, b in spec.eff[a].items()],
-        ceff, cpre, [S(v) for v in spec.init], [(S(v), b) for v, b in spec.goal.items()],
+        ceff,
+        cpre,
+        [S(v) for v in spec.init],
+        [(S(v), b) for v, b in spec.goal.items()],
         {(S(v), b): u for (v, b), u in spec.fact_utility.items()},
-        axiom_pre, axioms, [S(d) for d in derived])
+        axiom_pre,
+        axioms,
+        [S(d) for d in derived],
+    )
 
 
 def spec_of(seed: int):
-    return random_model(seed, max_variables=6, max_actions=6, conditional=seed % 2 == 0,
-                        derived=seed % 3 == 0)
+    return random_model(
+        seed, max_variables=6, max_actions=6, conditional=seed % 2 == 0, derived=seed % 3 == 0
+    )
 
 
 @pytest.mark.slow
@@ -86,11 +97,15 @@ def test_the_planner_reads_the_ground_model_from_the_encodings():
     ground_model = model.planner.ground_model()
     assert [str(v) for v in ground_model.variables] == ["a", "b"]
     (action,) = ground_model.actions
-    assert {(str(e.variable), e.value, e.condition) for e in action.effects} == \
-        {("a", True, ()), ("b", True, ((S("a"), False),))}
+    assert {(str(e.variable), e.value, e.condition) for e in action.effects} == {
+        ("a", True, ()),
+        ("b", True, ((S("a"), False),)),
+    }
     assert ground_model.axioms == {S("d"): [((S("a"), True),)]}
-    assert {key: u for key, u in ground_model.weights.items() if u} == \
-        {(S("b"), True): 2, (S("a"), True): -1}
+    assert {key: u for key, u in ground_model.weights.items() if u} == {
+        (S("b"), True): 2,
+        (S("a"), True): -1,
+    }
     r = model.planner.reachability()
     assert r.run() and len(r.layers) == 2 and r.first_layer(r.goal()) == 1
 
@@ -106,8 +121,11 @@ def test_a_budget_stops_the_engine_without_a_claim():
 
 
 @settings(max_examples=60, deadline=None)
-@given(st.integers(min_value=0, max_value=10**9), st.sampled_from([1, 2, 16]),
-       st.sampled_from([0, 5_000]))
+@given(
+    st.integers(min_value=0, max_value=10**9),
+    st.sampled_from([1, 2, 16]),
+    st.sampled_from([0, 5_000]),
+)
 def test_every_state_has_a_shortest_path_and_each_layer_its_best(seed, cluster, merge):
     """Paths to every reachable state (actions in clusters of 1, 2 or 16
     written variables, merged again into joint relations or not, so that a
@@ -130,8 +148,7 @@ def test_every_state_has_a_shortest_path_and_each_layer_its_best(seed, cluster, 
         best = r.best_in_layer(k)
         assert best.utility == max(spec.state_utility(s) for s in states)
         within = r.best_of(r.prefix(k))
-        assert within.utility == max(spec.state_utility(s) for s, d in distances.items()
-                                     if d <= k)
+        assert within.utility == max(spec.state_utility(s) for s, d in distances.items() if d <= k)
         for state in _states(r, layer):
             plan = [str(a) for a in r.path_to(state, k)]
             assert len(plan) == k

@@ -5,13 +5,12 @@ import json
 import subprocess
 import sys
 
+import clingo
 import pytest
+from conftest import ENCODINGS, MODELS, ROOT, answer_sets
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-import clingo
-
-from conftest import ENCODINGS, MODELS, ROOT, answer_sets
 from ethasp import Model, Plan
 from ethasp.reasons.reasons import explain
 from ethasp.reasons.words import option_sentence, principle_phrase, reason_clause
@@ -31,8 +30,9 @@ occurs(a1,1). occurs(a2,2). occurs(a3,3).
 
 def optimal_answers(files, program: str) -> list[set[str]]:
     """The optimal answer sets (all of them) of encodings plus a program."""
-    ctl = clingo.Control(["0", "--opt-mode=optN", "--opt-strategy=usc"],
-                         logger=lambda code, message: None)
+    ctl = clingo.Control(
+        ["0", "--opt-mode=optN", "--opt-strategy=usc"], logger=lambda code, message: None
+    )
     for name in files:
         ctl.load(str(ENCODINGS / name))
     ctl.add("base", [], program)
@@ -48,10 +48,13 @@ def optimal_answers(files, program: str) -> list[set[str]]:
 
 
 def reason_sets(principle: str, kind: list[str], program: str, arguments=ENUMERATE):
-    files = BASE + [f"principles/{principle}.lp"] + CORE + kind
+    files = [*BASE, f"principles/{principle}.lp", *CORE, *kind]
     program += f"\nexplain({principle})."
-    answers = (optimal_answers(files, program) if arguments == OPTIMAL
-               else answer_sets(files, program, arguments))
+    answers = (
+        optimal_answers(files, program)
+        if arguments == OPTIMAL
+        else answer_sets(files, program, arguments)
+    )
     return {frozenset(a for a in answer if a.startswith("reason(")) for answer in answers}
 
 
@@ -67,11 +70,15 @@ def trolley(plan: str) -> str:
 
 # -- encodings ---------------------------------------------------------------------
 
+
 def test_paper_example_deontology():
     assert reason_sets("deontology", SUFFICIENT, ABC) == {
-        frozenset({"reason(bad(action(a2)),true)"}), frozenset({"reason(bad(action(a3)),true)"})}
+        frozenset({"reason(bad(action(a2)),true)"}),
+        frozenset({"reason(bad(action(a3)),true)"}),
+    }
     assert reason_sets("deontology", NECESSARY, ABC) == {
-        frozenset({"reason(bad(action(a2)),true)", "reason(bad(action(a3)),true)"})}
+        frozenset({"reason(bad(action(a2)),true)", "reason(bad(action(a3)),true)"})
+    }
 
 
 def test_trolley_do_no_harm_refrain_uses_not_caused_five_will_die():
@@ -83,72 +90,97 @@ def test_trolley_do_no_harm_refrain_uses_not_caused_five_will_die():
 
 
 def test_trolley_do_no_harm_pull_is_caused_one_will_die():
-    assert reason_sets("do_no_harm", SUFFICIENT, trolley("pull")) == {frozenset({
-        "reason(caused(one_will_die,true),true)", "reason(bad(fact(one_will_die,true)),true)"})}
+    assert reason_sets("do_no_harm", SUFFICIENT, trolley("pull")) == {
+        frozenset(
+            {"reason(caused(one_will_die,true),true)", "reason(bad(fact(one_will_die,true)),true)"}
+        )
+    }
     assert reason_sets("do_no_harm", NECESSARY, trolley("pull")) == {
         frozenset({"reason(caused(one_will_die,true),true)"}),
-        frozenset({"reason(bad(fact(one_will_die,true)),true)"})}
+        frozenset({"reason(bad(fact(one_will_die,true)),true)"}),
+    }
     optimal = reason_sets("do_no_harm", RELEVANT, trolley("pull"), OPTIMAL)
     assert optimal == {frozenset({"reason(caused(one_will_die,true),true)"})}
 
 
 def test_trolley_utilitarianism_pull_compares_with_refrain():
-    alternative = ("alternative(s). conj(s,five_will_die,true). conj(s,one_will_die,false). "
-                   "conj(s,done,true).")
+    alternative = (
+        "alternative(s). conj(s,five_will_die,true). conj(s,one_will_die,false). conj(s,done,true)."
+    )
     reasons = reason_sets("utilitarianism", NECESSARY, trolley("pull") + alternative)
     assert reasons == {frozenset({"reason(geq(final,s),true)"})}
-    answers = answer_sets(BASE + ["principles/utilitarianism.lp"] + CORE
-                          + ["reasons/comparison.lp"],
-                          trolley("pull") + alternative + "explain(utilitarianism).")
-    assert {"mention(geq(final,s),left,five_will_die,false)",
-            "mention(geq(final,s),right,one_will_die,false)",
-            "comparison(geq(final,s),better)"} <= answers[0]
+    answers = answer_sets(
+        [*BASE, "principles/utilitarianism.lp", *CORE, "reasons/comparison.lp"],
+        trolley("pull") + alternative + "explain(utilitarianism).",
+    )
+    assert {
+        "mention(geq(final,s),left,five_will_die,false)",
+        "mention(geq(final,s),right,one_will_die,false)",
+        "comparison(geq(final,s),better)",
+    } <= answers[0]
 
 
 def test_theory_rules_out_impossible_literal_sets():
     # Caused(v) and Caused(-v) cannot both hold: not Caused(v) or not Caused(-v) is
     # entailed by nothing, so its only sufficient reason is empty.
-    program = ("formula(q,or(neg(caused(v,true)),neg(caused(v,false)))). explain(q). "
-               "verdict(q,true).")
+    program = (
+        "formula(q,or(neg(caused(v,true)),neg(caused(v,false)))). explain(q). verdict(q,true)."
+    )
     assert {frozenset(r) for r in reason_sets_raw(program, SUFFICIENT)} == {frozenset()}
     assert reason_sets_raw(program, NECESSARY) == []
     # at least one of Good, Bad, Neutral when all three occur
-    program = ("formula(q,any(i)). member(i,good(action(a))). member(i,bad(action(a))). "
-               "member(i,neutral(action(a))). explain(q). verdict(q,true). "
-               "satisfied(bad(action(a))).")
+    program = (
+        "formula(q,any(i)). member(i,good(action(a))). member(i,bad(action(a))). "
+        "member(i,neutral(action(a))). explain(q). verdict(q,true). "
+        "satisfied(bad(action(a)))."
+    )
     assert {frozenset(r) for r in reason_sets_raw(program, SUFFICIENT)} == {frozenset()}
 
 
 def reason_sets_raw(program: str, kind: list[str]):
-    return [{a for a in answer if a.startswith("reason(")}
-            for answer in answer_sets(CORE + kind, program, ENUMERATE)]
+    return [
+        {a for a in answer if a.startswith("reason(")}
+        for answer in answer_sets(CORE + kind, program, ENUMERATE)
+    ]
 
 
 def test_other_state_prefers_goal_states_on_ties():
-    program = ("time(0..1). step(1). horizon(1). other_state(s). "
-               "other_than(s,five_will_die,false). other_than(s,one_will_die,true). "
-               "other_than(s,done,true).")
-    answers = optimal_answers(["planning/model.lp", "planning/relaxed.lp", "planning/transition.lp",
-                               "judgement/best.lp", "judgement/state.lp",
-                               "reasons/other_state.lp", TROLLEY], program)
-    assert answers and all("at_horizon(done,true,1)" in a and "occurs(refrain,1)" in a
-                           for a in answers)
+    program = (
+        "time(0..1). step(1). horizon(1). other_state(s). "
+        "other_than(s,five_will_die,false). other_than(s,one_will_die,true). "
+        "other_than(s,done,true)."
+    )
+    answers = optimal_answers(
+        [
+            "planning/model.lp",
+            "planning/relaxed.lp",
+            "planning/transition.lp",
+            "judgement/best.lp",
+            "judgement/state.lp",
+            "reasons/other_state.lp",
+            TROLLEY,
+        ],
+        program,
+    )
+    assert answers and all(
+        "at_horizon(done,true,1)" in a and "occurs(refrain,1)" in a for a in answers
+    )
 
 
 # -- API and words -------------------------------------------------------------------
 
 PAPER_TEXTS = {
     ("deontology", "pull"): "The man can pull the lever. Doing so is permissible because "
-                            "pulling a lever is not inherently bad.",
+    "pulling a lever is not inherently bad.",
     ("utilitarianism", "pull"): "The man can pull the lever. Doing so is permissible because "
-                                "five saved lives is better than one saved life.",
+    "five saved lives is better than one saved life.",
     ("do-no-harm", "pull"): "The man can pull the lever. Doing so is impermissible because "
-                            "this way the death of the one person is caused by the man's action.",
+    "this way the death of the one person is caused by the man's action.",
     ("do-no-harm", "refrain"): "The man can refrain from action. Doing so is permissible "
-                               "because this way the death of the five persons is not caused "
-                               "by the man's action.",
+    "because this way the death of the five persons is not caused "
+    "by the man's action.",
     ("utilitarianism", "refrain"): "The man can refrain from action. Doing so is impermissible "
-                                   "because one saved life is worse than five saved lives.",
+    "because one saved life is worse than five saved lives.",
 }
 
 
@@ -174,16 +206,21 @@ def test_api_reasons_of_the_trolley(trolley_model):
     assert ["not Caused(five_will_die)"] in refrain.necessary_reasons
     useful = explain(trolley_model, Plan.parse("pull"), "utilitarianism")
     assert useful.chosen_reason == [
-        "GEq(done & -five_will_die & one_will_die, done & five_will_die & -one_will_die)"]
+        "GEq(done & -five_will_die & one_will_die, done & five_will_die & -one_will_die)"
+    ]
     assert useful.alternative == ["-one_will_die", "done", "five_will_die"]
 
 
 def test_building_blocks_for_contrastive_texts(trolley_model):
     refrain = explain(trolley_model, Plan.parse("refrain"), "do-no-harm")
-    assert option_sentence(refrain.labels, refrain.plan, "could") == \
-        "The man could refrain from action."
-    assert reason_clause(refrain.literals, refrain.labels, refrain.comparisons, pronoun=True) == \
-        "this way the death of the five persons is not caused by his action"
+    assert (
+        option_sentence(refrain.labels, refrain.plan, "could")
+        == "The man could refrain from action."
+    )
+    assert (
+        reason_clause(refrain.literals, refrain.labels, refrain.comparisons, pronoun=True)
+        == "this way the death of the five persons is not caused by his action"
+    )
     assert principle_phrase(refrain.principle) == "the do-no-harm principle"
 
 
@@ -193,14 +230,21 @@ def test_paper_example_through_the_api():
     assert sorted(result.sufficient_reasons) == [["Bad(a2)"], ["Bad(a3)"]]
     assert result.necessary_reasons == [["Bad(a2)", "Bad(a3)"]]
     # without labels the words come from the terms; literals of one kind share a clause
-    assert result.text == ("The agent can a1, then a2, then a3. Doing so is impermissible "
-                           "because action a2 and action a3 are inherently bad.")
+    assert result.text == (
+        "The agent can a1, then a2, then a3. Doing so is impermissible "
+        "because action a2 and action a3 are inherently bad."
+    )
 
 
 def test_limit_truncates_lazily():
     # 12 caused bad facts: 2^12 necessary reasons, 12 sufficient ones
-    text = "\n".join(f"variable(x({i})). action(a({i})). eff(a({i}),x({i}),true). "
-                     f"utility(x({i}),true,-1)." for i in range(12)) + "\ngoal(x(0),true)."
+    text = (
+        "\n".join(
+            f"variable(x({i})). action(a({i})). eff(a({i}),x({i}),true). utility(x({i}),true,-1)."
+            for i in range(12)
+        )
+        + "\ngoal(x(0),true)."
+    )
     plan = Plan.parse(" ".join(f"a({i})" for i in range(12)))
     result = explain(Model.from_string(text), plan, "do-no-harm", limit=3)
     assert result.truncated
@@ -220,6 +264,7 @@ def test_empty_plan_is_permissible_in_any_case():
 
 def test_bad_input(trolley_model):
     from ethasp import InputError
+
     with pytest.raises(InputError, match="not a plan"):
         explain(trolley_model, Plan.parse(""), "do-no-harm")
     with pytest.raises(InputError, match="unknown action jump"):
@@ -234,9 +279,14 @@ def test_bad_input(trolley_model):
 
 # -- command line -------------------------------------------------------------------
 
+
 def ethasp_cli(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", *args], capture_output=True,
-                          text=True, cwd=ROOT)
+    return subprocess.run(
+        [sys.executable, "-m", "ethasp.interfaces.cli", *args],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
 
 
 def test_cli_judge_json_has_reasons_and_explanation():
@@ -252,8 +302,9 @@ def test_cli_judge_json_has_reasons_and_explanation():
 
 
 def test_cli_judge_text_shows_the_explanation_first_and_limits():
-    run = ethasp_cli("judge", "trolley", "--plan", "refrain", "--principle", "do-no-harm",
-                     "--reasons-limit", "1")
+    run = ethasp_cli(
+        "judge", "trolley", "--plan", "refrain", "--principle", "do-no-harm", "--reasons-limit", "1"
+    )
     assert run.returncode == 0, run.stderr
     lines = run.stdout.splitlines()
     assert lines[0] == "do-no-harm: " + PAPER_TEXTS[("do-no-harm", "refrain")]
@@ -271,8 +322,10 @@ def test_cli_bad_reasons_limit():
 def test_comparison_words_fall_back_to_counterparts():
     model = Model.load([MODELS / "heist.lp"])
     result = explain(model, Plan.parse("scout steal give_jewels"), "utilitarianism")
-    assert result.text.endswith("impermissible because the owner's loss of the jewels is "
-                                "worse than the owner keeping the jewels.")
+    assert result.text.endswith(
+        "impermissible because the owner's loss of the jewels is "
+        "worse than the owner keeping the jewels."
+    )
 
 
 def test_utilitarian_explanations_compare_with_a_state_that_differs_in_what_matters():
@@ -284,27 +337,63 @@ def test_utilitarian_explanations_compare_with_a_state_that_differs_in_what_matt
     # Another best state differs only in where the robot stands (worth nothing):
     # the explanation compares with a state that differs in a valued fact.
     assert why.permissible and why.text.endswith(
-        "is permissible because the intact door is better than the broken door.")
+        "is permissible because the intact door is better than the broken door."
+    )
 
 
 # -- "truncated": only when a reason beyond the limit exists ----------------------------
 
-@pytest.mark.parametrize("principle, limit, truncated", [
-    ("deontology", 1, False),     # exactly one sufficient and one necessary reason
-    ("do-no-harm", 2, False),     # exactly two necessary reasons
-    ("do-no-harm", 1, True),
-])
+
+@pytest.mark.parametrize(
+    "principle, limit, truncated",
+    [
+        ("deontology", 1, False),  # exactly one sufficient and one necessary reason
+        ("do-no-harm", 2, False),  # exactly two necessary reasons
+        ("do-no-harm", 1, True),
+    ],
+)
 def test_reasons_are_truncated_only_when_more_exist(principle, limit, truncated):
     model = Model.load([TROLLEY])
     result = explain(model, Plan.parse("pull"), principle, limit=limit)
     assert result.truncated is truncated
-    run = subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", "judge", str(TROLLEY),
-                          "--plan", "pull", "--principle", principle, "--reasons-limit",
-                          str(limit), "--json"], capture_output=True, text=True, cwd=ROOT)
+    run = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "ethasp.interfaces.cli",
+            "judge",
+            str(TROLLEY),
+            "--plan",
+            "pull",
+            "--principle",
+            principle,
+            "--reasons-limit",
+            str(limit),
+            "--json",
+        ],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
     assert json.loads(run.stdout)["judgements"][0]["reasons_truncated"] is truncated
-    text = subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", "judge", str(TROLLEY),
-                           "--plan", "pull", "--principle", principle, "--reasons-limit",
-                           str(limit)], capture_output=True, text=True, cwd=ROOT).stdout
+    text = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "ethasp.interfaces.cli",
+            "judge",
+            str(TROLLEY),
+            "--plan",
+            "pull",
+            "--principle",
+            principle,
+            "--reasons-limit",
+            str(limit),
+        ],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    ).stdout
     assert ("limit reached" in text) is truncated
     if principle == "do-no-harm" and limit == 1:
         # two necessary reasons, one sufficient: only the first kind is cut
@@ -313,8 +402,10 @@ def test_reasons_are_truncated_only_when_more_exist(principle, limit, truncated)
 
 
 @settings(max_examples=40, deadline=None)
-@given(st.integers(min_value=0, max_value=10**9),
-       st.sampled_from(["deontology", "do-no-harm", "utilitarianism"]))
+@given(
+    st.integers(min_value=0, max_value=10**9),
+    st.sampled_from(["deontology", "do-no-harm", "utilitarianism"]),
+)
 def test_truncated_says_whether_a_reason_beyond_the_limit_exists(seed, principle):
     """With the limit at the number of reasons of each kind, nothing is
     truncated; one less, and something is."""

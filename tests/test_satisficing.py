@@ -8,15 +8,15 @@ import sys
 from pathlib import Path
 
 import pytest
+from conftest import MODELS, ROOT, answer_sets
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from oracle import features, random_model
 
-from conftest import MODELS, ROOT, answer_sets
 from ethasp import InputError, Model, find_plan, plan_with_principles, validate
 from ethasp.principles.judgement import judge
 from ethasp.questions.contrast import ask
 from ethasp.questions.dialogue import Dialogue
-from oracle import features, random_model
 
 RESCUE = str(MODELS / "rescue.lp")
 DATA = Path(__file__).resolve().parent / "data" / "ipc"
@@ -26,19 +26,27 @@ IPC_FOLDER = Path(os.environ["ETHASP_IPC"]) if os.environ.get("ETHASP_IPC") else
 
 
 def ethasp(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", *args],
-                          capture_output=True, text=True, cwd=ROOT)
+    return subprocess.run(
+        [sys.executable, "-m", "ethasp.interfaces.cli", *args],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
 
 
 # -- the encoding ----------------------------------------------------------------
+
 
 def plans(horizon: int, model: str, heuristic: bool) -> set[tuple[str, ...]]:
     files = ["planning/plan.lp"] + (["planning/satisficing.lp"] if heuristic else [])
     arguments = ("0", "-c", f"horizon={horizon}") + (("--heuristic=Domain",) if heuristic else ())
     result = set()
     for answer in answer_sets(files, model, arguments=arguments):
-        steps = sorted((int(a.split(",")[-1].rstrip(")")), a[len("occurs("):a.rindex(",")])
-                       for a in answer if a.startswith("occurs("))
+        steps = sorted(
+            (int(a.split(",")[-1].rstrip(")")), a[len("occurs(") : a.rindex(",")])
+            for a in answer
+            if a.startswith("occurs(")
+        )
         result.add(tuple(name for _, name in steps))
     return result
 
@@ -51,12 +59,14 @@ def test_the_heuristic_removes_no_plan():
 
 # -- the API ---------------------------------------------------------------------
 
+
 @pytest.mark.slow
 @settings(max_examples=80, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9), st.booleans())
 def test_any_plan_is_a_plan_and_none_is_proven(seed, conditional):
-    spec = random_model(seed, far_goal=seed % 2 == 0,
-                        **dict(features(seed), conditional=conditional))
+    spec = random_model(
+        seed, far_goal=seed % 2 == 0, **dict(features(seed), conditional=conditional)
+    )
     model = Model.from_string(spec.to_asp())
     result = find_plan(model, max_horizon=20, satisficing=True)
     expected = spec.shortest_plan_length()
@@ -96,8 +106,7 @@ def test_satisficing_plans_under_principles_are_permissible(principle):
 
 @pytest.mark.slow
 @settings(max_examples=40, deadline=None)
-@given(st.integers(min_value=0, max_value=10**9),
-       st.sampled_from(["deontology", "do-no-harm"]))
+@given(st.integers(min_value=0, max_value=10**9), st.sampled_from(["deontology", "do-no-harm"]))
 def test_satisficing_hplans_against_the_oracle(seed, principle):
     spec = random_model(seed, **features(seed))
     model = Model.from_string(spec.to_asp())
@@ -113,8 +122,7 @@ def test_satisficing_hplans_against_the_oracle(seed, principle):
 
 def test_ask_and_dialogue_with_satisficing():
     model = Model.load([MODELS / "trolley.lp"])
-    answer = ask(model, "why refrain rather than pull", principle="do-no-harm",
-                 satisficing=True)
+    answer = ask(model, "why refrain rather than pull", principle="do-no-harm", satisficing=True)
     assert answer.contrast is not None and answer.to_json()["optimal"] is False
     dialogue = Dialogue.start(model, "do-no-harm", satisficing=True)
     answer = dialogue.ask("why refrain rather than pull")
@@ -122,6 +130,7 @@ def test_ask_and_dialogue_with_satisficing():
 
 
 # -- the command line ------------------------------------------------------------
+
 
 def test_cli_plan_satisficing_json_and_text():
     run = ethasp("plan", RESCUE, "--satisficing", "--json")
@@ -141,8 +150,16 @@ def test_cli_satisficing_with_principle_ask_and_refusal():
     data = json.loads(run.stdout)
     assert data["status"] == "found" and data["optimal"] is False
     assert all(j["permissible"] for j in data["judgements"])
-    run = ethasp("ask", str(MODELS / "trolley.lp"), "--principle", "do-no-harm",
-                 "--question", "why refrain rather than pull", "--satisficing", "--json")
+    run = ethasp(
+        "ask",
+        str(MODELS / "trolley.lp"),
+        "--principle",
+        "do-no-harm",
+        "--question",
+        "why refrain rather than pull",
+        "--satisficing",
+        "--json",
+    )
     assert run.returncode == 0, run.stderr
     assert json.loads(run.stdout)["optimal"] is False
     run = ethasp("plan", RESCUE, "--satisficing", "--all")
@@ -150,16 +167,30 @@ def test_cli_satisficing_with_principle_ask_and_refusal():
 
 
 def test_cli_dialogue_takes_satisficing(tmp_path):
-    run = subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", "dialogue",
-                          str(MODELS / "trolley.lp"), "--principle", "do-no-harm",
-                          "--satisficing", "--save", str(tmp_path / "d.json")],
-                         input="why refrain rather than pull\nquit\n", capture_output=True,
-                         text=True, cwd=ROOT)
+    run = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "ethasp.interfaces.cli",
+            "dialogue",
+            str(MODELS / "trolley.lp"),
+            "--principle",
+            "do-no-harm",
+            "--satisficing",
+            "--save",
+            str(tmp_path / "d.json"),
+        ],
+        input="why refrain rather than pull\nquit\n",
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
     assert run.returncode == 0, run.stderr
     assert "pull" in run.stdout
 
 
 # -- IPC instances ---------------------------------------------------------------
+
 
 @pytest.mark.slow
 @pytest.mark.parametrize("domain", sorted(path.name for path in DATA.iterdir() if path.is_dir()))
@@ -170,14 +201,24 @@ def test_ipc_first_instances_satisficing(domain):
     assert result.status == "found" and validate(model, result.plan).valid
 
 
-@pytest.mark.skipif(IPC_FOLDER is None or not IPC_FOLDER.is_dir(),
-                    reason="ETHASP_IPC names no folder of IPC domains")
-@pytest.mark.parametrize("instance, length", [
-    ("gripper-round-1-strips/p5", 35), ("logistics-strips-typed/p4", 27),
-    ("blocks-strips-typed/p6", 16), ("elevator-strips-simple-typed/p8", 7)])
+@pytest.mark.skipif(
+    IPC_FOLDER is None or not IPC_FOLDER.is_dir(),
+    reason="ETHASP_IPC names no folder of IPC domains",
+)
+@pytest.mark.parametrize(
+    "instance, length",
+    [
+        ("gripper-round-1-strips/p5", 35),
+        ("logistics-strips-typed/p4", 27),
+        ("blocks-strips-typed/p6", 16),
+        ("elevator-strips-simple-typed/p8", 7),
+    ],
+)
 def test_ipc_instances_with_long_plans_are_solved_optimally(instance, length):
     folder, problem = instance.split("/")
-    model = Model.load([IPC_FOLDER / folder / "domain.pddl", IPC_FOLDER / folder / f"{problem}.pddl"])
+    model = Model.load(
+        [IPC_FOLDER / folder / "domain.pddl", IPC_FOLDER / folder / f"{problem}.pddl"]
+    )
     result = find_plan(model)
     assert result.status == "found" and result.optimal and len(result.plan) == length
     assert validate(model, result.plan).valid

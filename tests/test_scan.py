@@ -10,10 +10,31 @@ from hypothesis import strategies as st
 from ethasp.errors import InputError
 from ethasp.planning.terms import _quick_scan, _scan_exactly
 
-PIECES = ["p(1).", "q(X) :- p(X).", "% a (comment\n", "%* block ( *%", '"a ( string"',
-          '#include "a.lp".', "(", ")", "1+2*3", "-5", "2147483647", "2147483648", "0x10",
-          "#script (python) x = 1 #end.", "\n", " ", "..", "r(1..3).", "é", "\x01",
-          '#include "b.lp". % #include "c.lp"\n', "f(g(h(1))).", ":- not p(1)."]
+PIECES = [
+    "p(1).",
+    "q(X) :- p(X).",
+    "% a (comment\n",
+    "%* block ( *%",
+    '"a ( string"',
+    '#include "a.lp".',
+    "(",
+    ")",
+    "1+2*3",
+    "-5",
+    "2147483647",
+    "2147483648",
+    "0x10",
+    "#script (python) x = 1 #end.",
+    "\n",
+    " ",
+    "..",
+    "r(1..3).",
+    "é",
+    "\x01",
+    '#include "b.lp". % #include "c.lp"\n',
+    "f(g(h(1))).",
+    ":- not p(1).",
+]
 
 
 @settings(max_examples=300, deadline=None)
@@ -26,7 +47,7 @@ def test_quick_scan_clears_only_what_the_exact_scan_clears(pieces):
     try:
         exact = _scan_exactly(text, "t.lp")
     except InputError as error:
-        raise AssertionError(f"quick scan cleared {text!r}, exact scan: {error}")
+        raise AssertionError(f"quick scan cleared {text!r}, exact scan: {error}") from None
     assert quick.includes == exact.includes
 
 

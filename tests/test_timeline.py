@@ -9,12 +9,12 @@ import xml.etree.ElementTree as ET
 
 import clingo
 import pytest
-
 from conftest import MODELS, ROOT, only_answer
+
 from ethasp import InputError, Model, Plan
 from ethasp.interfaces.pictures import Pictures
 from ethasp.interfaces.svg import contrast_svg, parting_step, plan_svg
-from ethasp.planning.timeline import Fact, MAX_STEPS, Valuation, timeline
+from ethasp.planning.timeline import MAX_STEPS, Fact, Valuation, timeline
 from ethasp.questions.contrast import ask
 
 STEPS = ["planning/model.lp", "planning/trace.lp", "planning/steps.lp"]
@@ -33,17 +33,35 @@ utility(y,true,-2). utility(x,true,3). utility(c,-1).
 
 def test_steps_encoding_changes_kept_effects_and_causing():
     atoms = only_answer(STEPS, TOGGLE + "occurs(a,1). occurs(b,2). occurs(c,3).")
-    assert {"set(1,x,true)", "set(1,y,true)", "set(2,x,true)", "set(2,y,false)",
-            "set(3,z,true)"} <= atoms
+    assert {
+        "set(1,x,true)",
+        "set(1,y,true)",
+        "set(2,x,true)",
+        "set(2,y,false)",
+        "set(3,z,true)",
+    } <= atoms
     assert {a for a in atoms if a.startswith("changed(")} == {
-        "changed(1,x,true)", "changed(1,y,true)", "changed(2,y,false)"}
+        "changed(1,x,true)",
+        "changed(1,y,true)",
+        "changed(2,y,false)",
+    }
     # Caused(v) needs v in the final state and some action with it as effect.
     assert {a for a in atoms if a.startswith("caused(")} == {
-        "caused(x,true)", "caused(y,false)", "caused(z,true)"}
+        "caused(x,true)",
+        "caused(y,false)",
+        "caused(z,true)",
+    }
     assert {a for a in atoms if a.startswith("causing(")} == {
-        "causing(1,x,true)", "causing(2,x,true)", "causing(2,y,false)", "causing(3,z,true)"}
+        "causing(1,x,true)",
+        "causing(2,x,true)",
+        "causing(2,y,false)",
+        "causing(3,z,true)",
+    }
     assert {a for a in atoms if a.startswith("initially(")} == {
-        "initially(x,false)", "initially(y,false)", "initially(z,true)"}
+        "initially(x,false)",
+        "initially(y,false)",
+        "initially(z,true)",
+    }
 
 
 def test_steps_encoding_of_the_empty_plan():
@@ -67,7 +85,7 @@ def test_timeline_reads_the_answer_set(toggle):
     first, second, third = line.columns
     assert first.changes == [x, y] and first.kept == []
     assert second.changes == [Fact(y.variable, False)] and second.kept == [x]
-    assert third.changes == [] and third.kept == [z]     # z is true from the start
+    assert third.changes == [] and third.kept == [z]  # z is true from the start
     assert second.causing == {x, Fact(y.variable, False)}
     assert line.initial == [Fact(x.variable, False), Fact(y.variable, False)]
     assert line.utility == 3 and line.caused == {x, Fact(y.variable, False), z}
@@ -90,11 +108,18 @@ def test_valuation_has_the_labels_and_the_goal(trolley):
     glance = Valuation.of_model(trolley).to_json(trolley.naming)
     assert glance["agent"] == {"name": "the man", "possessive": "his"}
     pull = next(a for a in glance["actions"] if a["term"] == "pull")
-    assert pull == {"term": "pull", "shown": "pull", "utility": 0, "moral": "neutral",
-                    "label": "pull the lever"}
+    assert pull == {
+        "term": "pull",
+        "shown": "pull",
+        "utility": 0,
+        "moral": "neutral",
+        "label": "pull the lever",
+    }
     five = next(v for v in glance["variables"] if v["term"] == "five_will_die")
     assert five["initial"] is True
-    assert five["true"]["moral"] == "bad" and five["true"]["label"] == "the death of the five persons"
+    assert (
+        five["true"]["moral"] == "bad" and five["true"]["label"] == "the death of the five persons"
+    )
     assert five["false"]["utility"] == 5 and five["false"]["moral"] == "good"
     assert glance["goal"][0]["literal"] == "done"
 
@@ -120,7 +145,7 @@ def test_plan_picture(trolley):
     actions = [g for g in root.iter(f"{SVG}g") if g.get("class") == "action"]
     assert [(g.get("data-step"), g.get("data-action")) for g in actions] == [("1", "pull")]
     fills = {rect.get("fill") for rect in root.iter(f"{SVG}rect")}
-    assert {"#dcf3e4", "#fbe1df", "#f2f2f2"} <= fills   # good, bad, neutral
+    assert {"#dcf3e4", "#fbe1df", "#f2f2f2"} <= fills  # good, bad, neutral
 
 
 def test_contrast_picture_marks_where_the_plans_part(trolley):
@@ -129,7 +154,7 @@ def test_contrast_picture_marks_where_the_plans_part(trolley):
     root = _svg(contrast_svg(refrain, pull, trolley.naming, title="why refrain rather than pull"))
     texts = _texts(root)
     assert "the plans part at step 1" in texts
-    assert texts.count("\u2260") == 4   # final facts that differ, in both lanes
+    assert texts.count("\u2260") == 4  # final facts that differ, in both lanes
     none = _svg(contrast_svg(refrain, None, trolley.naming, missing="none (none: proven)"))
     assert "none (none: proven)" in _texts(none)
 
@@ -160,16 +185,24 @@ def test_answer_picture(trolley):
 
 
 def test_pddl_pictures_show_pddl_names():
-    model = Model.load([MODELS / "pddl" / "trolley-domain.pddl",
-                        MODELS / "pddl" / "trolley-problem.pddl",
-                        MODELS / "pddl" / "trolley-utility.lp"])
+    model = Model.load(
+        [
+            MODELS / "pddl" / "trolley-domain.pddl",
+            MODELS / "pddl" / "trolley-problem.pddl",
+            MODELS / "pddl" / "trolley-utility.lp",
+        ]
+    )
     plan = Pictures(model).plan(Plan.parse(str(next(iter(Valuation.of_model(model).actions)))))
     assert "(" in " ".join(_texts(_svg(plan)))
 
 
 def ethasp(*args, cwd=ROOT):
-    return subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", *args],
-                          capture_output=True, text=True, cwd=cwd)
+    return subprocess.run(
+        [sys.executable, "-m", "ethasp.interfaces.cli", *args],
+        capture_output=True,
+        text=True,
+        cwd=cwd,
+    )
 
 
 def test_cli_svg_on_judge_plan_and_ask(tmp_path):
@@ -182,12 +215,22 @@ def test_cli_svg_on_judge_plan_and_ask(tmp_path):
     planned = tmp_path / "plan.svg"
     run = ethasp("plan", trolley, "--principle", "do-no-harm", "--svg", str(planned))
     assert run.returncode == 0, run.stderr
-    assert "plan of 1 step permissible under do-no-harm: refrain" in _texts(_svg(planned.read_text()))
+    assert "plan of 1 step permissible under do-no-harm: refrain" in _texts(
+        _svg(planned.read_text())
+    )
     run = ethasp("plan", "rescue", "--svg", str(planned))
     assert run.returncode == 0 and "step 4" in _texts(_svg(planned.read_text()))
     asked = tmp_path / "ask.svg"
-    run = ethasp("ask", trolley, "--principle", "do-no-harm", "--question",
-                 "why refrain rather than pull", "--svg", str(asked))
+    run = ethasp(
+        "ask",
+        trolley,
+        "--principle",
+        "do-no-harm",
+        "--question",
+        "why refrain rather than pull",
+        "--svg",
+        str(asked),
+    )
     assert run.returncode == 0, run.stderr
     assert "the plans part at step 1" in _texts(_svg(asked.read_text()))
 
@@ -205,6 +248,7 @@ def test_cli_version():
     run = ethasp("--version")
     assert run.returncode == 0 and run.stdout.startswith("ethasp ")
     from importlib.metadata import version
+
     assert run.stdout.split()[1] == version("ethasp")
 
 
@@ -213,10 +257,13 @@ def test_long_names_are_wrapped_in_their_boxes_not_cut():
     whole over up to four lines, its tooltip too; the picture keeps its
     viewBox, so that the page can scale it to its box."""
     pddl = MODELS / "pddl"
-    care = Model.load([pddl / "care-domain.pddl", pddl / "care-problem.pddl",
-                       pddl / "care-utility.lp"])
-    plan = Plan.parse("(pick-up pills-bob kitchen) (move kitchen hall) (move hall living-room) "
-                      "(give-other-medicine pills-bob ann bob living-room pills-ann)")
+    care = Model.load(
+        [pddl / "care-domain.pddl", pddl / "care-problem.pddl", pddl / "care-utility.lp"]
+    )
+    plan = Plan.parse(
+        "(pick-up pills-bob kitchen) (move kitchen hall) (move hall living-room) "
+        "(give-other-medicine pills-bob ann bob living-room pills-ann)"
+    )
     text = plan_svg(timeline(care, plan), care.naming)
     root = _svg(text)
     assert root.get("viewBox") == f"0 0 {root.get('width')} {root.get('height')}"
@@ -225,13 +272,18 @@ def test_long_names_are_wrapped_in_their_boxes_not_cut():
         title = group.find(f"{SVG}title")
         if title is None:
             continue
-        name = re.sub(r"^step \d+: ", "", title.text).split(": ")[0]   # its tooltip
-        lines = [node.text for node in group.iter(f"{SVG}text")
-                 if node.get("font-style") == "normal" and node.text != "caused"
-                 and not node.text.lstrip("+\u2212").isdigit()]
-        assert " ".join(lines) == name, (name, lines)      # broken at spaces here
+        name = re.sub(r"^step \d+: ", "", title.text).split(": ")[0]  # its tooltip
+        lines = [
+            node.text
+            for node in group.iter(f"{SVG}text")
+            if node.get("font-style") == "normal"
+            and node.text != "caused"
+            and not node.text.lstrip("+\u2212").isdigit()
+        ]
+        assert " ".join(lines) == name, (name, lines)  # broken at spaces here
         assert "\u2026" not in "".join(lines)
         boxes += 1
     assert boxes > 10
-    assert any(title.text.startswith("(not (robot-at kitchen))")
-               for title in root.iter(f"{SVG}title"))
+    assert any(
+        title.text.startswith("(not (robot-at kitchen))") for title in root.iter(f"{SVG}title")
+    )

@@ -9,8 +9,8 @@ import subprocess
 import sys
 
 import pytest
-
 from conftest import MODELS, ROOT
+
 from ethasp import Model
 from ethasp.interfaces.version import checkout_version, package_version
 from ethasp.interfaces.web.app import create_app
@@ -27,8 +27,12 @@ def test_the_version_is_pyprojects():
 
 
 def test_version_on_the_command_line():
-    run = subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", "--version"],
-                         capture_output=True, text=True, cwd=ROOT)
+    run = subprocess.run(
+        [sys.executable, "-m", "ethasp.interfaces.cli", "--version"],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
     assert run.returncode == 0 and run.stdout == f"ethasp {VERSION}\n", run.stderr
 
 
@@ -45,7 +49,7 @@ def test_version_in_the_footer_of_the_page():
 
 def test_only_ethasps_own_pyproject_counts(tmp_path):
     path = tmp_path / "pyproject.toml"
-    assert checkout_version(path) is None                    # none there
+    assert checkout_version(path) is None  # none there
     path.write_text('[project]\nname = "ethasp"\nversion = "9.8.7"\n\n[tool.x]\nversion = "1"\n')
     assert checkout_version(path) == "9.8.7"
     path.write_text('[project]\nname = "other"\nversion = "9.8.7"\n')

@@ -12,8 +12,8 @@ import time
 import urllib.request
 
 import pytest
-
 from conftest import MODELS, ROOT
+
 from ethasp import InputError, Model, Plan
 from ethasp.interfaces.web import workspace as workspace_module
 from ethasp.interfaces.web.app import MAX_BODY, create_app
@@ -28,10 +28,13 @@ CONDUCTOR = (
     "principle because this way the death of the five persons is not caused by his action. "
     "Alternatively, the man could pull the lever. Doing so is impermissible under the "
     "do-no-harm principle because this way the death of the one person is caused by his "
-    "action.")
-UTILITARIAN_CONTRAST = ("Alternatively, the man could pull the lever. Doing so is permissible "
-                        "under the utilitarianism principle because five saved lives is "
-                        "better than one saved life.")
+    "action."
+)
+UTILITARIAN_CONTRAST = (
+    "Alternatively, the man could pull the lever. Doing so is permissible "
+    "under the utilitarianism principle because five saved lives is "
+    "better than one saved life."
+)
 
 
 @pytest.fixture(scope="module")
@@ -39,8 +42,8 @@ def trolley():
     return Model.load([TROLLEY])
 
 
-def make_client(model, principle="do-no-harm", limits=Limits(), loopback=True):
-    workspace = Workspace(model, [TROLLEY], principle, Options(), limits)
+def make_client(model, principle="do-no-harm", limits=None, loopback=True):
+    workspace = Workspace(model, [TROLLEY], principle, Options(), limits or Limits())
     return create_app(workspace, loopback=loopback).test_client()
 
 
@@ -81,7 +84,8 @@ def ask(client, key, question):
     return finish(client, client.post(f"/api/sessions/{key}/ask", json={"question": question}))
 
 
-# -- the page and the model -------------------------------------------------------------------
+# -- the page and the model ------------------------------------------------------------------------
+
 
 def test_page_and_its_assets_are_bundled(client):
     page = client.get("/")
@@ -101,13 +105,19 @@ def test_model_at_a_glance(client):
     assert {"deontology", "do-no-harm", "utilitarianism"} <= set(data["principles"])
     assert [a["term"] for a in data["model"]["actions"]] == ["pull", "refrain"]
     one = next(v for v in data["model"]["variables"] if v["term"] == "one_will_die")
-    assert one["true"] == {"literal": "one_will_die", "shown": "one_will_die", "utility": -1,
-                           "moral": "bad", "label": "the death of the one person"}
+    assert one["true"] == {
+        "literal": "one_will_die",
+        "shown": "one_will_die",
+        "utility": -1,
+        "moral": "bad",
+        "label": "the death of the one person",
+    }
     assert data["limits"]["question"] == Limits().question
     assert re.fullmatch(r"[0-9a-f]{16}", data["key"])
 
 
 # -- the conductor example -------------------------------------------------------------------------
+
 
 def test_conductor_example_end_to_end(client):
     key = start(client)
@@ -127,8 +137,10 @@ def test_conductor_example_end_to_end(client):
     answer = step["answer"]
     assert answer["explanation"] == CONDUCTOR
     assert answer["principle_dropped"] is True and answer["conflict"] == []
-    assert answer["reason_difference"] == {"original_only": ["not Caused(five_will_die)"],
-                                           "contrast_only": ["Caused(one_will_die)"]}
+    assert answer["reason_difference"] == {
+        "original_only": ["not Caused(five_will_die)"],
+        "contrast_only": ["Caused(one_will_die)"],
+    }
     assert answer["contrast"]["shown"] == [{"term": "pull", "shown": "pull"}]
     assert step["own_constraints"] == ["unused(refrain)", "used(pull)"]
     assert after["current"]["plan"] == ["pull"]
@@ -152,13 +164,16 @@ def test_conductor_example_end_to_end(client):
     assert answer["principle_dropped"] is False and UTILITARIAN_CONTRAST in answer["explanation"]
 
 
-@pytest.mark.parametrize("plan,question,contrast", [
-    ("pull", "why pull", ["refrain"]),                       # clicked "why this?"
-    ("pull", "why not refrain", ["refrain"]),                # "why not this?"
-    ("pull", "why pull rather than refrain", ["refrain"]),   # "why this rather than ...?"
-    ("pull", "why pull before refrain", ["refrain", "pull"]),  # "why this before ...?"
-    ("pull", "Why not refrain?", ["refrain"]),               # typed, any case, a final ?
-])
+@pytest.mark.parametrize(
+    "plan,question,contrast",
+    [
+        ("pull", "why pull", ["refrain"]),  # clicked "why this?"
+        ("pull", "why not refrain", ["refrain"]),  # "why not this?"
+        ("pull", "why pull rather than refrain", ["refrain"]),  # "why this rather than ...?"
+        ("pull", "why pull before refrain", ["refrain", "pull"]),  # "why this before ...?"
+        ("pull", "Why not refrain?", ["refrain"]),  # typed, any case, a final ?
+    ],
+)
 def test_every_question_form(client, plan, question, contrast):
     key = start(client, "deontology", plan)
     assert state(client, key)["current"]["plan"] == [plan]
@@ -175,12 +190,15 @@ def test_a_minimal_conflict_is_shown(client):
     ask(client, key, "why pull rather than refrain")
     answer = state(client, key)["steps"][1]["answer"]
     assert answer["contrast"] is None and answer["status"] == "none"
-    assert set(answer["conflict"]) in ({"used(pull)", "unused(pull)"},
-                                       {"unused(refrain)", "used(refrain)"})
+    assert set(answer["conflict"]) in (
+        {"used(pull)", "unused(pull)"},
+        {"unused(refrain)", "used(refrain)"},
+    )
     assert b"none (none:" in client.get(f"/api/sessions/{key}/steps/2.svg").data
 
 
-# -- errors: the command line's one-line messages ----------------------------------------------------
+# -- errors: the command line's one-line messages --------------------------------------------------
+
 
 def message_of(call):
     with pytest.raises(InputError) as error:
@@ -194,16 +212,19 @@ def test_errors_have_the_command_line_messages(client, trolley):
     assert reply.status_code == 400
     assert reply.json == {"error": message_of(lambda: Question.parse("how pull"))}
     job = ask(client, key, "why not jump")
-    assert job["state"] == "failed" and job["error"] == ("question 'why not jump': unknown action jump "
-                                                 "(nor a state variable)")
+    assert job["state"] == "failed" and job["error"] == (
+        "question 'why not jump': unknown action jump (nor a state variable)"
+    )
     job = ask(client, key, "why not refrain")
     assert job["state"] == "failed" and "already meets its contrast" in job["error"]
     reply = client.post(f"/api/sessions/{key}/principle", json={"principle": "kindness"})
     assert reply.status_code == 400
     assert reply.json["error"] == message_of(lambda: Dialogue.start(trolley, "kindness"))
     reply = client.post(f"/api/sessions/{key}/undo", json={})
-    assert reply.status_code == 400 and reply.json["error"] == "nothing to undo: no question asked yet"
-    assert state(client, key)["steps"] == []   # failed moves change nothing
+    assert (
+        reply.status_code == 400 and reply.json["error"] == "nothing to undo: no question asked yet"
+    )
+    assert state(client, key)["steps"] == []  # failed moves change nothing
 
     reply = client.post("/api/sessions", json={"plan": "jump"})
     job = finish(client, reply)
@@ -233,15 +254,17 @@ def test_length_limits(trolley):
     assert reply.status_code == 400 and "plan: too long" in reply.json["error"]
     reply = client.post(f"/api/sessions/{key}/principle", json={"principle": "x" * 1000})
     assert reply.status_code == 400 and "principle: too long" in reply.json["error"]
-    reply = client.post(f"/api/sessions/{key}/load",
-                        json={"dialogue": "x" * (MAX_BODY + 10), "name": "big.json"})
+    reply = client.post(
+        f"/api/sessions/{key}/load", json={"dialogue": "x" * (MAX_BODY + 10), "name": "big.json"}
+    )
     assert reply.status_code == 413 and "too large" in reply.json["error"]
     assert ask(client, key, "why refrain rather than pull")["state"] == "done"
     reply = client.post(f"/api/sessions/{key}/ask", json={"question": "why pull"})
     assert reply.status_code == 400 and "at most 1 questions" in reply.json["error"]
 
 
-# -- save, load, reload -------------------------------------------------------------------------------
+# -- save, load, reload ----------------------------------------------------------------------------
+
 
 def test_save_and_load_the_files_of_ethasp_dialogue(client, trolley, tmp_path):
     key = start(client)
@@ -258,8 +281,13 @@ def test_save_and_load_the_files_of_ethasp_dialogue(client, trolley, tmp_path):
     assert again.steps[0].answer.explanation == CONDUCTOR and again.under == "utilitarianism"
 
     other = start(client)
-    job = finish(client, client.post(f"/api/sessions/{other}/load",
-                                     json={"dialogue": saved.data.decode(), "name": "saved.json"}))
+    job = finish(
+        client,
+        client.post(
+            f"/api/sessions/{other}/load",
+            json={"dialogue": saved.data.decode(), "name": "saved.json"},
+        ),
+    )
     assert job["state"] == "done" and job["note"] == "loaded saved.json (1 questions)"
     loaded = state(client, other)
     assert loaded["under"] == "utilitarianism"
@@ -269,8 +297,12 @@ def test_save_and_load_the_files_of_ethasp_dialogue(client, trolley, tmp_path):
     written = Dialogue.start(trolley, "deontology", Plan.parse("pull"), model_files=[TROLLEY])
     written.ask("why pull")
     written.save(path)
-    job = finish(client, client.post(f"/api/sessions/{other}/load",
-                                     json={"dialogue": path.read_text(), "name": "d.json"}))
+    job = finish(
+        client,
+        client.post(
+            f"/api/sessions/{other}/load", json={"dialogue": path.read_text(), "name": "d.json"}
+        ),
+    )
     assert job["state"] == "done"
     assert [s["question"] for s in state(client, other)["steps"]] == ["why pull"]
 
@@ -280,22 +312,37 @@ def test_load_errors_and_the_served_model_only(client, monkeypatch):
     reply = client.post(f"/api/sessions/{key}/load", json={"dialogue": "{oops", "name": "x.json"})
     assert reply.status_code == 400
     assert reply.json["error"].startswith("x.json: not a saved dialogue (")
-    job = finish(client, client.post(f"/api/sessions/{key}/load",
-                                     json={"dialogue": "{}", "name": "x.json"}))
+    job = finish(
+        client, client.post(f"/api/sessions/{key}/load", json={"dialogue": "{}", "name": "x.json"})
+    )
     assert job["state"] == "failed" and "not a saved ethasp dialogue" in job["error"]
     # A saved dialogue naming other model files is replayed with the served
     # model: no file it names is read.
-    data = {"format": "ethasp-dialogue", "version": 1, "model": ["/etc/passwd"],
-            "principle": "do-no-harm", "plan": ["refrain"], "under": "do-no-harm",
-            "steps": [{"question": {"kind": "rather-than", "action": "refrain",
-                                    "other": "pull"}, "under": "do-no-harm"}]}
+    data = {
+        "format": "ethasp-dialogue",
+        "version": 1,
+        "model": ["/etc/passwd"],
+        "principle": "do-no-harm",
+        "plan": ["refrain"],
+        "under": "do-no-harm",
+        "steps": [
+            {
+                "question": {"kind": "rather-than", "action": "refrain", "other": "pull"},
+                "under": "do-no-harm",
+            }
+        ],
+    }
 
     def refuse(*args, **kwargs):
         raise AssertionError("a model was loaded from a request")
 
     monkeypatch.setattr(Model, "load", refuse)
-    job = finish(client, client.post(f"/api/sessions/{key}/load",
-                                     json={"dialogue": json.dumps(data), "name": "x.json"}))
+    job = finish(
+        client,
+        client.post(
+            f"/api/sessions/{key}/load", json={"dialogue": json.dumps(data), "name": "x.json"}
+        ),
+    )
     assert job["state"] == "done" and "replayed with the served model trolley.lp" in job["note"]
     assert state(client, key)["steps"][0]["answer"]["explanation"] == CONDUCTOR
 
@@ -310,14 +357,17 @@ def test_state_survives_a_reload_and_a_restart(trolley):
     # After a restart the session is gone; the page sends its copy of the dialogue.
     restarted = make_client(trolley)
     assert restarted.get(f"/api/sessions/{key}").status_code == 404
-    reply = restarted.post("/api/sessions", json={"dialogue": json.dumps(before["dialogue"]),
-                                                  "name": "the page's saved dialogue"})
+    reply = restarted.post(
+        "/api/sessions",
+        json={"dialogue": json.dumps(before["dialogue"]), "name": "the page's saved dialogue"},
+    )
     assert finish(restarted, reply)["state"] == "done"
     after = state(restarted, reply.json["session"])
     assert after["steps"] == before["steps"] and after["current"] == before["current"]
 
 
-# -- long requests: progress, busy, cancel -----------------------------------------------------------------
+# -- long requests: progress, busy, cancel ---------------------------------------------------------
+
 
 def test_a_running_search_shows_progress_blocks_moves_and_can_be_cancelled(client, monkeypatch):
     key = start(client)
@@ -326,22 +376,29 @@ def test_a_running_search_shows_progress_blocks_moves_and_can_be_cancelled(clien
     def slow(call, budget, *args, **kwargs):
         budget.report("contrast plan search", horizon=3)
         waiting.set()
-        for _ in range(400):           # until cancelled (bounded)
+        for _ in range(400):  # until cancelled (bounded)
             if budget.cancelled:
                 return call(*args, **kwargs)
             time.sleep(0.025)
         return call(*args, **kwargs)
 
     monkeypatch.setattr(workspace_module, "searching", slow)
-    reply = client.post(f"/api/sessions/{key}/ask", json={"question": "why refrain rather than pull"})
+    reply = client.post(
+        f"/api/sessions/{key}/ask", json={"question": "why refrain rather than pull"}
+    )
     assert reply.status_code == 202
     assert waiting.wait(10)
     job = client.get(f"/api/sessions/{key}/job").json["job"]
-    assert job["state"] == "running" and job["description"] == "answering 'why refrain rather than pull'"
+    assert (
+        job["state"] == "running"
+        and job["description"] == "answering 'why refrain rather than pull'"
+    )
     assert job["progress"].startswith("contrast plan search: horizon 3 (")
-    for path, body in ((f"/api/sessions/{key}/ask", {"question": "why pull"}),
-                       (f"/api/sessions/{key}/undo", {}),
-                       (f"/api/sessions/{key}/principle", {"principle": "deontology"})):
+    for path, body in (
+        (f"/api/sessions/{key}/ask", {"question": "why pull"}),
+        (f"/api/sessions/{key}/undo", {}),
+        (f"/api/sessions/{key}/principle", {"principle": "deontology"}),
+    ):
         reply = client.post(path, json=body)
         assert reply.status_code == 409 and reply.json["error"].startswith("busy")
     cancelled = client.post(f"/api/sessions/{key}/cancel", json={}).json["job"]
@@ -352,14 +409,15 @@ def test_a_running_search_shows_progress_blocks_moves_and_can_be_cancelled(clien
     monkeypatch.undo()
     for _ in range(200):
         reply = client.post(f"/api/sessions/{key}/ask", json={"question": "why refrain"})
-        if reply.status_code != 503:   # the cancelled search may still be ending
+        if reply.status_code != 503:  # the cancelled search may still be ending
             break
         time.sleep(0.05)
     assert finish(client, reply)["state"] == "done"
     assert state(client, key)["steps"][0]["question"] == "why refrain"
 
 
-# -- guards -----------------------------------------------------------------------------------------------
+# -- guards ----------------------------------------------------------------------------------------
+
 
 def test_guards_against_other_sites(trolley, client):
     assert client.get("/", headers={"Host": "attacker.example"}).status_code == 403
@@ -390,13 +448,28 @@ def test_server_binds_loopback_by_default(trolley):
 
 
 def test_cli_serve_prints_its_url_and_serves_the_model(tmp_path):
-    process = subprocess.Popen([sys.executable, "-m", "ethasp.interfaces.cli", "serve", "trolley",
-                                "--principle", "do-no-harm", "--port", "0"],
-                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                               cwd=tmp_path)
+    process = subprocess.Popen(
+        [
+            sys.executable,
+            "-m",
+            "ethasp.interfaces.cli",
+            "serve",
+            "trolley",
+            "--principle",
+            "do-no-harm",
+            "--port",
+            "0",
+        ],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        cwd=tmp_path,
+    )
     try:
         line = process.stdout.readline()
-        match = re.fullmatch(r"ethasp: serving \S*trolley\.lp at (http://127\.0\.0\.1:\d+/)\n", line)
+        match = re.fullmatch(
+            r"ethasp: serving \S*trolley\.lp at (http://127\.0\.0\.1:\d+/)\n", line
+        )
         assert match, line + process.stderr.read()
         with urllib.request.urlopen(match.group(1) + "api/model", timeout=30) as reply:
             assert json.load(reply)["principle"] == "do-no-harm"
@@ -406,22 +479,43 @@ def test_cli_serve_prints_its_url_and_serves_the_model(tmp_path):
 
 
 def test_cli_serve_errors_are_one_line(tmp_path):
-    run = subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", "serve", "trolley",
-                          "--principle", "kindness", "--port", "0"],
-                         capture_output=True, text=True, cwd=ROOT)
+    run = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "ethasp.interfaces.cli",
+            "serve",
+            "trolley",
+            "--principle",
+            "kindness",
+            "--port",
+            "0",
+        ],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
     assert run.returncode == 2 and run.stderr.startswith("ethasp: error: unknown principle")
-    run = subprocess.run([sys.executable, "-m", "ethasp.interfaces.cli", "serve", "trolley",
-                          "--port", "70000"], capture_output=True, text=True, cwd=ROOT)
+    run = subprocess.run(
+        [sys.executable, "-m", "ethasp.interfaces.cli", "serve", "trolley", "--port", "70000"],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
     assert run.returncode == 2 and "must be 0 to 65535" in run.stderr
 
 
 def test_a_pddl_model_is_shown_and_asked_in_pddl_form():
-    files = [str(MODELS / "pddl" / name) for name in
-             ("trolley-domain.pddl", "trolley-problem.pddl", "trolley-utility.lp")]
+    files = [
+        str(MODELS / "pddl" / name)
+        for name in ("trolley-domain.pddl", "trolley-problem.pddl", "trolley-utility.lp")
+    ]
     client = create_app(Workspace(Model.load(files), files, "do-no-harm")).test_client()
     glance = client.get("/api/model").json["model"]
-    assert [(a["term"], a["shown"]) for a in glance["actions"]] == [("pull", "(pull)"),
-                                                                   ("refrain", "(refrain)")]
+    assert [(a["term"], a["shown"]) for a in glance["actions"]] == [
+        ("pull", "(pull)"),
+        ("refrain", "(refrain)"),
+    ]
     key = start(client)
     assert state(client, key)["current"]["shown"] == [{"term": "refrain", "shown": "(refrain)"}]
     # The page builds clicked questions from the shown names.
@@ -431,7 +525,8 @@ def test_a_pddl_model_is_shown_and_asked_in_pddl_form():
     assert b"(pull)" in client.get(f"/api/sessions/{key}/steps/1.svg").data
 
 
-# -- the whole question language on the page ---------------------------------------------
+# -- the whole question language on the page -------------------------------------------------------
+
 
 def test_model_offers_the_principles_that_can_restrict(client):
     data = client.get("/api/model").json
@@ -447,14 +542,17 @@ def test_model_offers_the_principles_that_can_restrict(client):
     assert reply.status_code == 400 and "cannot restrict plan search" in reply.json["error"]
 
 
-@pytest.mark.parametrize("plan,question,constraints", [
-    ("refrain pull", "why pull at 2", ["not_at(pull,2)"]),
-    ("refrain pull", "why refrain within 1..1", ["not_within(refrain,1,1)"]),
-    ("refrain pull", "why pull after refrain", ["before(pull,refrain)"]),
-    ("pull", "why one_will_die", ["ends(one_will_die,false)"]),
-    ("pull", "why not five_will_die at 1", ["fact_at(five_will_die,true,1)"]),
-    ("refrain pull", "why not in 1 step", ["at_most(1)"]),
-])
+@pytest.mark.parametrize(
+    "plan,question,constraints",
+    [
+        ("refrain pull", "why pull at 2", ["not_at(pull,2)"]),
+        ("refrain pull", "why refrain within 1..1", ["not_within(refrain,1,1)"]),
+        ("refrain pull", "why pull after refrain", ["before(pull,refrain)"]),
+        ("pull", "why one_will_die", ["ends(one_will_die,false)"]),
+        ("pull", "why not five_will_die at 1", ["fact_at(five_will_die,true,1)"]),
+        ("refrain pull", "why not in 1 step", ["at_most(1)"]),
+    ],
+)
 def test_the_new_forms_on_the_page(client, plan, question, constraints):
     key = start(client, "deontology", plan)
     job = ask(client, key, question)
@@ -466,8 +564,9 @@ def test_the_new_forms_on_the_page(client, plan, question, constraints):
 def test_why_step_and_the_plan_step_by_step(client):
     key = start(client, "deontology", "refrain pull")
     data = client.get(f"/api/sessions/{key}/explain?step=2").json
-    assert data["step"] == 2 and data["step_text"].startswith("Step 2, pull the lever, brings "
-                                                              "about the goal (the decision).")
+    assert data["step"] == 2 and data["step_text"].startswith(
+        "Step 2, pull the lever, brings about the goal (the decision)."
+    )
     assert [s["removable"] for s in data["steps"]] == [True, True]
     assert data["lines"][0].startswith("Step 1, refrain from action, is not needed")
     assert client.get(f"/api/sessions/{key}/explain?step=3").status_code == 400
@@ -480,14 +579,14 @@ def test_why_step_and_the_plan_step_by_step(client):
 
 
 def test_what_the_current_plan_is_and_a_question_no_plan_can_meet(client):
-    key = start(client)                                   # do-no-harm: refrain
+    key = start(client)  # do-no-harm: refrain
     current = state(client, key)["current"]
     assert current["from_question"] == 0 and current["made_without_principle"] is False
-    ask(client, key, "why refrain rather than pull")       # the principle is dropped
+    ask(client, key, "why refrain rather than pull")  # the principle is dropped
     data = state(client, key)
     assert data["current"]["from_question"] == 1
     assert data["current"]["made_without_principle"] is True and not data["unmeetable"]
-    ask(client, key, "why pull rather than refrain")       # no plan meets both
+    ask(client, key, "why pull rather than refrain")  # no plan meets both
     data = state(client, key)
     assert data["unmeetable"] and data["current"]["from_question"] == 1
     assert data["current"]["plan"] == ["pull"]

@@ -22,7 +22,6 @@ import threading
 from pathlib import Path
 
 import pytest
-
 from conftest import MODELS, ROOT
 
 pytestmark = pytest.mark.slow  # a real browser, end to end
@@ -40,8 +39,14 @@ from ethasp.interfaces.version import package_version  # noqa: E402
 from ethasp.interfaces.web.server import Server  # noqa: E402
 from ethasp.interfaces.web.workspace import Workspace  # noqa: E402
 
-BROWSER = next((shutil.which(name) for name in ("chromium", "chromium-browser", "google-chrome")
-                if shutil.which(name)), None)
+BROWSER = next(
+    (
+        shutil.which(name)
+        for name in ("chromium", "chromium-browser", "google-chrome")
+        if shutil.which(name)
+    ),
+    None,
+)
 DRIVER = shutil.which("chromedriver")
 MISSING = "headless Chromium is not installed (apt-get install chromium chromium-driver)"
 if BROWSER is None or DRIVER is None:
@@ -51,9 +56,19 @@ if BROWSER is None or DRIVER is None:
 
 OUTPUT = Path(os.environ.get("ETHASP_TEST_OUTPUT", ROOT / "tests" / "output"))
 README_SCREENSHOT = ROOT / "docs" / "page.png"
-FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-         "--disable-background-networking", "--disable-component-update", "--disable-sync",
-         "--disable-dev-shm-usage", "--hide-scrollbars", "--window-size=1400,1000"]
+FLAGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--disable-dev-shm-usage",
+    "--hide-scrollbars",
+    "--window-size=1400,1000",
+]
 WAIT = 120  # seconds the page may take for a step (a slow, shared machine)
 
 CONDUCTOR = (
@@ -61,16 +76,20 @@ CONDUCTOR = (
     "principle because this way the death of the five persons is not caused by his action. "
     "Alternatively, the man could pull the lever. Doing so is impermissible under the "
     "do-no-harm principle because this way the death of the one person is caused by his "
-    "action.")
-UTILITARIAN_CONTRAST = ("Alternatively, the man could pull the lever. Doing so is permissible "
-                        "under the utilitarianism principle because five saved lives is "
-                        "better than one saved life.")
+    "action."
+)
+UTILITARIAN_CONTRAST = (
+    "Alternatively, the man could pull the lever. Doing so is permissible "
+    "under the utilitarianism principle because five saved lives is "
+    "better than one saved life."
+)
 
 
 @pytest.fixture(scope="module")
 def server():
-    workspace = Workspace(Model.load([MODELS / "trolley.lp"]), [str(MODELS / "trolley.lp")],
-                          "do-no-harm")
+    workspace = Workspace(
+        Model.load([MODELS / "trolley.lp"]), [str(MODELS / "trolley.lp")], "do-no-harm"
+    )
     running = Server(workspace, None, 0)
     thread = threading.Thread(target=running.serve_forever, daemon=True)
     thread.start()
@@ -127,7 +146,8 @@ const boxes = document.querySelectorAll(
 const scrolls = (node, axis) => ["auto", "scroll"].includes(
   getComputedStyle(node)[axis === "x" ? "overflowX" : "overflowY"]);
 const name = (node) => node.id ? "#" + node.id : node.tagName.toLowerCase() +
-  (node.className && node.className.baseVal === undefined ? "." + node.className.split(" ").join(".") : "") +
+  (node.className && node.className.baseVal === undefined
+    ? "." + node.className.split(" ").join(".") : "") +
   " '" + (node.textContent || "").trim().slice(0, 40) + "'";
 const problems = [];
 for (const box of boxes) {
@@ -149,8 +169,10 @@ for (const box of boxes) {
     if (clipped) continue;
     const rect = child.getBoundingClientRect();
     if (rect.width === 0 && rect.height === 0) continue;
-    const sideways = !scrolls(box, "x") && (rect.left < outer.left - 1 || rect.right > outer.right + 1);
-    const below = !scrolls(box, "y") && (rect.top < outer.top - 1 || rect.bottom > outer.bottom + 1);
+    const sideways = !scrolls(box, "x")
+      && (rect.left < outer.left - 1 || rect.right > outer.right + 1);
+    const below = !scrolls(box, "y")
+      && (rect.top < outer.top - 1 || rect.bottom > outer.bottom + 1);
     if (sideways || below) {
       problems.push(`${name(child)} runs out of ${name(box)} ` +
         `(${Math.round(rect.left)}..${Math.round(rect.right)} x ${Math.round(rect.top)}..` +
@@ -176,11 +198,14 @@ def open_everything(driver) -> None:
 
 def in_view(driver, element) -> bool:
     """Is the element wholly in the window, below the sticky header?"""
-    return driver.execute_script("""
+    return driver.execute_script(
+        """
         const rect = arguments[0].getBoundingClientRect();
         const header = document.querySelector("header").getBoundingClientRect();
         return rect.height > 0 && rect.top >= header.bottom - 1 &&
-               rect.bottom <= window.innerHeight + 1;""", element)
+               rect.bottom <= window.innerHeight + 1;""",
+        element,
+    )
 
 
 def screenshot(driver, name: str) -> Path:
@@ -201,42 +226,72 @@ def test_conductor_example_in_the_browser(server, browser):
     driver.set_window_size(1280, 1000)
     driver.get(server.url)
     # The page starts a dialogue under do-no-harm: the plan refrain.
-    wait_for(driver, lambda d: "do-no-harm" in text(d, "current-summary")
-             and d.find_elements(By.CSS_SELECTOR, "#judgements .card"), "the first plan")
+    wait_for(
+        driver,
+        lambda d: (
+            "do-no-harm" in text(d, "current-summary")
+            and d.find_elements(By.CSS_SELECTOR, "#judgements .card")
+        ),
+        "the first plan",
+    )
     assert text(driver, "model-name") == "trolley.lp"
     footer = driver.find_element(By.CSS_SELECTOR, "footer #version").text
     assert footer == f"ethasp {package_version()}"
     glance = text(driver, "model")
     assert "pull the lever" in glance and "the death of the five persons" in glance
     assert "Agent: the man" in glance
-    assert [e.text for e in driver.find_elements(By.CSS_SELECTOR, "#current-actions button")] == \
-        ["refrain"]
-    cards = {card.get_attribute("data-principle"): card.text
-             for card in driver.find_elements(By.CSS_SELECTOR, "#judgements .card")}
+    assert [e.text for e in driver.find_elements(By.CSS_SELECTOR, "#current-actions button")] == [
+        "refrain"
+    ]
+    cards = {
+        card.get_attribute("data-principle"): card.text
+        for card in driver.find_elements(By.CSS_SELECTOR, "#judgements .card")
+    }
     assert set(cards) == {"deontology", "do-no-harm", "utilitarianism"}
     assert "permissible" in cards["do-no-harm"] and "impermissible" in cards["utilitarianism"]
-    assert ("Doing so is permissible because this way the death of the five persons is not "
-            "caused by the man's action.") in cards["do-no-harm"]
+    assert (
+        "Doing so is permissible because this way the death of the five persons is not "
+        "caused by the man's action."
+    ) in cards["do-no-harm"]
     assert "not Caused(five_will_die)" in cards["do-no-harm"]
 
     # Click the action in the plan's picture and ask "why this rather than pull?".
-    wait_for(driver, lambda d: d.find_elements(By.CSS_SELECTOR, "#current-picture g.action"),
-             "the plan's picture")
+    wait_for(
+        driver,
+        lambda d: d.find_elements(By.CSS_SELECTOR, "#current-picture g.action"),
+        "the plan's picture",
+    )
     click(driver, driver.find_element(By.CSS_SELECTOR, "#current-picture g.action"))
     wait_for(driver, lambda d: d.find_element(By.ID, "action-menu").is_displayed(), "the menu")
     Select(driver.find_element(By.ID, "rather-other")).select_by_visible_text("pull")
     click(driver, driver.find_element(By.ID, "why-rather"))
-    wait_for(driver, lambda d: idle(d) and d.find_element(By.ID, "answer-panel").is_displayed()
-             and CONDUCTOR in text(d, "answer-text"), "the conductor's answer")
-    assert driver.find_element(By.ID, "question").get_attribute("value") == \
-        "why refrain rather than pull"
+    wait_for(
+        driver,
+        lambda d: (
+            idle(d)
+            and d.find_element(By.ID, "answer-panel").is_displayed()
+            and CONDUCTOR in text(d, "answer-text")
+        ),
+        "the conductor's answer",
+    )
+    assert (
+        driver.find_element(By.ID, "question").get_attribute("value")
+        == "why refrain rather than pull"
+    )
     assert "Principle dropped" in text(driver, "answer-notes")
-    highlighted = {e.text for e in driver.find_elements(By.CSS_SELECTOR, "#answer-panel .literal.diff")}
+    highlighted = {
+        e.text for e in driver.find_elements(By.CSS_SELECTOR, "#answer-panel .literal.diff")
+    }
     assert highlighted == {"not Caused(five_will_die)", "Caused(one_will_die)"}
     assert "Plan asked about" in text(driver, "side-original")
-    assert "Contrast plan" in text(driver, "side-contrast") and "impermissible" in text(driver, "side-contrast")
-    wait_for(driver, lambda d: "the plans part at step 1" in text(d, "answer-picture"),
-             "the contrast picture")
+    assert "Contrast plan" in text(driver, "side-contrast") and "impermissible" in text(
+        driver, "side-contrast"
+    )
+    wait_for(
+        driver,
+        lambda d: "the plans part at step 1" in text(d, "answer-picture"),
+        "the contrast picture",
+    )
     assert "why refrain rather than pull" in text(driver, "history")
     open_everything(driver)
     assert layout_problems(driver) == []
@@ -244,16 +299,29 @@ def test_conductor_example_in_the_browser(server, browser):
 
     # Switch to utilitarianism, take the question back and ask it again.
     Select(driver.find_element(By.ID, "under")).select_by_visible_text("utilitarianism")
-    wait_for(driver, lambda d: "contrast plans must now satisfy utilitarianism" in text(d, "note"),
-             "the switch")
+    wait_for(
+        driver,
+        lambda d: "contrast plans must now satisfy utilitarianism" in text(d, "note"),
+        "the switch",
+    )
     click(driver, driver.find_element(By.ID, "undo"))
-    wait_for(driver, lambda d: idle(d) and "took back" in text(d, "note")
-             and not d.find_element(By.ID, "answer-panel").is_displayed(), "the undo")
+    wait_for(
+        driver,
+        lambda d: (
+            idle(d)
+            and "took back" in text(d, "note")
+            and not d.find_element(By.ID, "answer-panel").is_displayed()
+        ),
+        "the undo",
+    )
     box = driver.find_element(By.ID, "question")
     box.clear()
     box.send_keys("why refrain rather than pull\n")
-    wait_for(driver, lambda d: idle(d) and UTILITARIAN_CONTRAST in text(d, "answer-text"),
-             "the answer under utilitarianism")
+    wait_for(
+        driver,
+        lambda d: idle(d) and UTILITARIAN_CONTRAST in text(d, "answer-text"),
+        "the answer under utilitarianism",
+    )
     assert "Principle dropped" not in text(driver, "answer-notes")
     assert "permissible" in text(driver, "side-contrast")
     assert "under utilitarianism" in text(driver, "history")
@@ -261,10 +329,15 @@ def test_conductor_example_in_the_browser(server, browser):
     # A reload finds the same dialogue.
     driver.refresh()
     wait_for(driver, lambda d: UTILITARIAN_CONTRAST in text(d, "answer-text"), "the reloaded state")
-    assert Select(driver.find_element(By.ID, "under")).first_selected_option.text == "utilitarianism"
+    assert (
+        Select(driver.find_element(By.ID, "under")).first_selected_option.text == "utilitarianism"
+    )
     assert len(driver.find_elements(By.CSS_SELECTOR, "#history li")) == 1
-    wait_for(driver, lambda d: "the plans part at step 1" in text(d, "answer-picture"),
-             "the picture after the reload")
+    wait_for(
+        driver,
+        lambda d: "the plans part at step 1" in text(d, "answer-picture"),
+        "the picture after the reload",
+    )
     path = screenshot(driver, "page.png")
     assert path.stat().st_size > 10_000
     if os.environ.get("ETHASP_UPDATE_SCREENSHOT") == "1":
@@ -272,7 +345,9 @@ def test_conductor_example_in_the_browser(server, browser):
         shutil.copyfile(path, README_SCREENSHOT)
 
     # An action that the current plan (pull) does not use: "why not this?".
-    click(driver, driver.find_element(By.CSS_SELECTOR, '#model-actions button[data-term="refrain"]'))
+    click(
+        driver, driver.find_element(By.CSS_SELECTOR, '#model-actions button[data-term="refrain"]')
+    )
     wait_for(driver, lambda d: d.find_element(By.ID, "action-menu").is_displayed(), "the menu")
     assert "(not in the current plan)" in text(driver, "action-menu")
     assert driver.find_elements(By.ID, "why-not") and not driver.find_elements(By.ID, "why-this")
@@ -282,8 +357,9 @@ def test_conductor_example_in_the_browser(server, browser):
     box.clear()
     box.send_keys("why not jump\n")
     wait_for(driver, lambda d: idle(d) and text(d, "error"), "the error")
-    assert text(driver, "error") == ("error: question 'why not jump': unknown action jump "
-                                     "(nor a state variable)")
+    assert text(driver, "error") == (
+        "error: question 'why not jump': unknown action jump (nor a state variable)"
+    )
     error = driver.find_element(By.ID, "error")
     assert driver.execute_script("return arguments[0].closest('#ask-panel') !== null", error)
     assert in_view(driver, error)
@@ -304,15 +380,16 @@ def slow_server(monkeypatch):
     def slow(call, budget, *args, **kwargs):
         if getattr(call, "__name__", "") == "ask":
             budget.report("contrast plan search", horizon=2)
-            for _ in range(2400):                # until cancelled (at most a minute)
+            for _ in range(2400):  # until cancelled (at most a minute)
                 if budget.cancelled:
                     break
                 threading.Event().wait(0.025)
         return original(call, budget, *args, **kwargs)
 
     monkeypatch.setattr(workspace_module, "searching", slow)
-    workspace = Workspace(Model.load([MODELS / "trolley.lp"]), [str(MODELS / "trolley.lp")],
-                          "do-no-harm")
+    workspace = Workspace(
+        Model.load([MODELS / "trolley.lp"]), [str(MODELS / "trolley.lp")], "do-no-harm"
+    )
     running = Server(workspace, None, 0)
     thread = threading.Thread(target=running.serve_forever, daemon=True)
     thread.start()
@@ -324,13 +401,20 @@ def slow_server(monkeypatch):
 def test_a_long_search_shows_progress_and_can_be_cancelled(slow_server, browser):
     driver = browser
     driver.get(slow_server.url)
-    wait_for(driver, lambda d: "do-no-harm" in text(d, "current-summary") and idle(d),
-             "the first plan")
+    wait_for(
+        driver, lambda d: "do-no-harm" in text(d, "current-summary") and idle(d), "the first plan"
+    )
     box = driver.find_element(By.ID, "question")
     box.clear()
     box.send_keys("why refrain rather than pull\n")
-    wait_for(driver, lambda d: d.find_element(By.ID, "status").is_displayed()
-             and "contrast plan search: horizon 2" in text(d, "status-progress"), "the progress")
+    wait_for(
+        driver,
+        lambda d: (
+            d.find_element(By.ID, "status").is_displayed()
+            and "contrast plan search: horizon 2" in text(d, "status-progress")
+        ),
+        "the progress",
+    )
     assert text(driver, "status-text") == "answering 'why refrain rather than pull'\u2026"
     assert text(driver, "status-time").endswith(" s")
     assert not driver.find_element(By.ID, "ask").is_enabled()
@@ -343,8 +427,10 @@ def test_a_long_search_shows_progress_and_can_be_cancelled(slow_server, browser)
     assert driver.find_element(By.ID, "ask").is_enabled()
 
 
-CARE = [str(MODELS / "pddl" / name)
-        for name in ("care-domain.pddl", "care-problem.pddl", "care-utility.lp")]
+CARE = [
+    str(MODELS / "pddl" / name)
+    for name in ("care-domain.pddl", "care-problem.pddl", "care-utility.lp")
+]
 
 
 @pytest.fixture(scope="module")
@@ -364,23 +450,38 @@ def test_the_layout_of_a_long_pddl_task(care_server, browser):
     driver = browser
     driver.set_window_size(1280, 900)
     driver.get(care_server.url)
-    wait_for(driver, lambda d: idle(d) and len(d.find_elements(By.CSS_SELECTOR, "#judgements .card"))
-             == 3 and d.find_elements(By.CSS_SELECTOR, "#current-picture svg"), "the first plan")
+    wait_for(
+        driver,
+        lambda d: (
+            idle(d)
+            and len(d.find_elements(By.CSS_SELECTOR, "#judgements .card")) == 3
+            and d.find_elements(By.CSS_SELECTOR, "#current-picture svg")
+        ),
+        "the first plan",
+    )
     assert "10 steps: the first plan, judged under do-no-harm" in text(driver, "current-summary")
     # Long sections are folded: the model's 32 actions and 122 variables.
     assert driver.execute_script(
-        "return [...document.querySelectorAll('#model details')].map(d => d.open)") == [False, False]
+        "return [...document.querySelectorAll('#model details')].map(d => d.open)"
+    ) == [False, False]
     # The plan's picture fits its box; its boxes name facts whole (wrapped), with tooltips.
     picture = driver.find_element(By.ID, "current-picture")
-    assert driver.execute_script("""
+    assert driver.execute_script(
+        """
         const svg = arguments[0].querySelector("svg");
         return svg.getBoundingClientRect().width <= arguments[0].clientWidth + 1 &&
-               svg.getBoundingClientRect().width < svg.viewBox.baseVal.width;""", picture)
-    names = [e.get_attribute("textContent") for e in
-             driver.find_elements(By.CSS_SELECTOR, "#current-picture text")]
+               svg.getBoundingClientRect().width < svg.viewBox.baseVal.width;""",
+        picture,
+    )
+    names = [
+        e.get_attribute("textContent")
+        for e in driver.find_elements(By.CSS_SELECTOR, "#current-picture text")
+    ]
     assert not any("\u2026" in name and "(not (robot-at" in name for name in names)
     # The long GEq reason is shortened, and can be shown whole.
-    card = driver.find_element(By.CSS_SELECTOR, '#judgements .card[data-principle="utilitarianism"]')
+    card = driver.find_element(
+        By.CSS_SELECTOR, '#judgements .card[data-principle="utilitarianism"]'
+    )
     chosen = card.find_element(By.CSS_SELECTOR, ".literal")
     assert chosen.text.startswith("not GEq((") and len(chosen.text) < 200
     assert layout_problems(driver) == []
@@ -400,8 +501,15 @@ def test_the_layout_of_a_long_pddl_task(care_server, browser):
     box = driver.find_element(By.ID, "question")
     box.clear()
     box.send_keys("why not (pick-up pills-bob kitchen)\n")
-    wait_for(driver, lambda d: idle(d) and d.find_element(By.ID, "answer-panel").is_displayed()
-             and d.find_elements(By.CSS_SELECTOR, "#answer-picture svg"), "the answer")
+    wait_for(
+        driver,
+        lambda d: (
+            idle(d)
+            and d.find_element(By.ID, "answer-panel").is_displayed()
+            and d.find_elements(By.CSS_SELECTOR, "#answer-picture svg")
+        ),
+        "the answer",
+    )
     assert "(pick-up pills-bob kitchen)" in text(driver, "side-contrast")
     open_everything(driver)
     assert layout_problems(driver) == []
@@ -410,7 +518,8 @@ def test_the_layout_of_a_long_pddl_task(care_server, browser):
     assert zoom.text == "Fit to width"
     assert driver.execute_script(
         "const p = arguments[0]; return p.scrollWidth > p.clientWidth + 100",
-        driver.find_element(By.ID, "answer-picture"))
+        driver.find_element(By.ID, "answer-picture"),
+    )
     assert layout_problems(driver) == []
     click(driver, zoom)
     driver.execute_script("window.scrollTo(0, document.documentElement.scrollHeight)")
@@ -426,8 +535,10 @@ def test_the_layout_of_a_long_pddl_task(care_server, browser):
         document.getElementById("ask-form").requestSubmit();""")
     wait_for(driver, lambda d: idle(d) and text(d, "error"), "the error")
     error = driver.find_element(By.ID, "error")
-    assert error.text == ("error: question 'why not (fly kitchen)': unknown action (fly kitchen) "
-                          "(nor a state variable)")
+    assert error.text == (
+        "error: question 'why not (fly kitchen)': unknown action (fly kitchen) "
+        "(nor a state variable)"
+    )
     assert driver.execute_script("return arguments[0].closest('#ask-panel') !== null", error)
     wait_for(driver, lambda d: in_view(d, error), "the error in view")
     assert layout_problems(driver) == []
@@ -437,42 +548,65 @@ def test_the_layout_of_a_long_pddl_task(care_server, browser):
     note = driver.find_element(By.ID, "note")
     assert driver.execute_script("return arguments[0].closest('#history-panel') !== null", note)
     assert in_view(driver, note)
+
+
 def test_steps_and_a_question_no_plan_can_meet_in_the_browser(server, browser):
     driver = browser
     driver.get(server.url)
     driver.execute_script("localStorage.clear()")
     driver.refresh()
-    wait_for(driver, lambda d: idle(d) and "the first plan" in text(d, "current-summary"),
-             "a new dialogue")
+    wait_for(
+        driver,
+        lambda d: idle(d) and "the first plan" in text(d, "current-summary"),
+        "a new dialogue",
+    )
     # The plan step by step, and "why step 1" typed.
     click(driver, driver.find_element(By.ID, "explain-plan"))
-    wait_for(driver, lambda d: d.find_element(By.ID, "explain-panel").is_displayed()
-             and "Step 1, refrain from action" in text(d, "explain-lines"), "the steps")
+    wait_for(
+        driver,
+        lambda d: (
+            d.find_element(By.ID, "explain-panel").is_displayed()
+            and "Step 1, refrain from action" in text(d, "explain-lines")
+        ),
+        "the steps",
+    )
     assert "Every step is needed" in text(driver, "explain-removable")
-    wait_for(driver, lambda d: d.find_elements(By.CSS_SELECTOR, "#explain-picture svg"),
-             "the picture with arrows")
+    wait_for(
+        driver,
+        lambda d: d.find_elements(By.CSS_SELECTOR, "#explain-picture svg"),
+        "the picture with arrows",
+    )
     box = driver.find_element(By.ID, "question")
     box.clear()
     box.send_keys("why step 1\n")
-    wait_for(driver, lambda d: text(d, "explain-step").startswith("Step 1, refrain from action"),
-             "why step 1")
+    wait_for(
+        driver,
+        lambda d: text(d, "explain-step").startswith("Step 1, refrain from action"),
+        "why step 1",
+    )
     # The principle dropped on a proof: the summary says how the plan was made.
     box.clear()
     box.send_keys("why refrain rather than pull\n")
     wait_for(driver, lambda d: idle(d) and CONDUCTOR in text(d, "answer-text"), "the answer")
     assert "made without do-no-harm" in text(driver, "current-summary")
-    assert not driver.find_element(By.ID, "explain-panel").is_displayed()   # a new plan
+    assert not driver.find_element(By.ID, "explain-panel").is_displayed()  # a new plan
     # A question no plan can meet: say so, and offer to drop it.
     box = driver.find_element(By.ID, "question")
     box.clear()
     box.send_keys("why pull rather than refrain\n")
-    wait_for(driver, lambda d: idle(d) and d.find_elements(By.ID, "drop-question"),
-             "the conflict and its button")
+    wait_for(
+        driver,
+        lambda d: idle(d) and d.find_elements(By.ID, "drop-question"),
+        "the conflict and its button",
+    )
     assert "No contrast plan (proven)" in text(driver, "answer-notes")
     assert "question 2 has no contrast plan" in text(driver, "current-summary")
     click(driver, driver.find_element(By.ID, "drop-question"))
-    wait_for(driver, lambda d: idle(d) and "dropped: why pull rather than refrain" in
-             text(d, "note"), "the question dropped")
+    wait_for(
+        driver,
+        lambda d: idle(d) and "dropped: why pull rather than refrain" in text(d, "note"),
+        "the question dropped",
+    )
     assert len(driver.find_elements(By.CSS_SELECTOR, "#history li")) == 1
     severe = [entry["message"] for entry in driver.get_log("browser") if entry["level"] == "SEVERE"]
     assert severe == [], severe

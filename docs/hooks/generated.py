@@ -35,8 +35,7 @@ PACKAGE = ROOT / "ethasp"
 PAPER = ["deontology", "utilitarianism", "do_no_harm"]
 # Encoding folders in the order a reader meets them.
 FOLDERS = ["planning", "judgement", "reasons", "questions"]
-PACKAGES = ["", "planning", "principles", "reasons", "questions", "interfaces",
-            "interfaces/web"]
+PACKAGES = ["", "planning", "principles", "reasons", "questions", "interfaces", "interfaces/web"]
 
 
 def header(path: Path) -> list[str]:
@@ -52,7 +51,7 @@ def header(path: Path) -> list[str]:
 def paragraphs(lines: list[str]) -> list[str]:
     """The header's paragraphs, each joined into one line of text."""
     found, current = [], []
-    for line in lines + [""]:
+    for line in [*lines, ""]:
         if line.strip():
             current.append(line.strip())
         elif current:
@@ -73,9 +72,9 @@ def first_sentence(path: Path) -> str:
     """The header's first sentence (sentences end with a full stop and two
     spaces, or at the end of a line)."""
     lines = header(path)
-    text = "\n".join(lines[:lines.index("")] if "" in lines else lines)
+    text = "\n".join(lines[: lines.index("")] if "" in lines else lines)
     match = re.search(r"[.:](?: {2,}|\n|$)", text)
-    sentence = text[:match.start() + 1] if match else text
+    sentence = text[: match.start() + 1] if match else text
     sentence = " ".join(sentence.split()).rstrip(":")
     return sentence if sentence.endswith((".", "?", "!")) else sentence + "."
 
@@ -96,7 +95,7 @@ def inline(text: str) -> str:
     (:mod:`name`) become code spans, everything else is shown as written."""
     parts, end = [], 0
     for match in CODE.finditer(text):
-        parts.append(escape(text[end:match.start()]))
+        parts.append(escape(text[end : match.start()]))
         parts.append(f"`{match.group(1)}`")
         end = match.end()
     parts.append(escape(text[end:]))
@@ -109,16 +108,23 @@ def principle_names() -> list[str]:
 
 
 def principles_table() -> str:
-    rows = ["| `--principle` | permissible iff (`encodings/principles/`) "
-            "| plan generation, the HModel (`encodings/restrictions/`) |",
-            "| --- | --- | --- |"]
+    rows = [
+        "| `--principle` | permissible iff (`encodings/principles/`) "
+        "| plan generation, the HModel (`encodings/restrictions/`) |",
+        "| --- | --- | --- |",
+    ]
     for stem in principle_names():
         restriction = RESTRICTIONS / f"{stem}.lp"
-        plans = (escape(summary(restriction)) if restriction.exists()
-                 else "none: judged, explained and asked about, but `ethasp plan --principle` "
-                      "refuses it ([why](#why-five-principles-generate-no-plans))")
-        rows.append(f"| `{stem.replace('_', '-')}` | {escape(summary(PRINCIPLES / f'{stem}.lp'))} "
-                    f"| {plans} |")
+        plans = (
+            escape(summary(restriction))
+            if restriction.exists()
+            else "none: judged, explained and asked about, but `ethasp plan --principle` "
+            "refuses it ([why](#why-five-principles-generate-no-plans))"
+        )
+        rows.append(
+            f"| `{stem.replace('_', '-')}` | {escape(summary(PRINCIPLES / f'{stem}.lp'))} "
+            f"| {plans} |"
+        )
     return "\n".join(rows)
 
 
@@ -128,30 +134,40 @@ def principles_headers() -> str:
         for path in (PRINCIPLES / f"{stem}.lp", RESTRICTIONS / f"{stem}.lp"):
             if path.exists():
                 text = "\n".join("    " + line if line else "" for line in header(path))
-                blocks.append(f'??? note "{path.relative_to(ROOT).as_posix()}"\n\n'
-                              f"    ```text\n{text}\n    ```\n")
+                blocks.append(
+                    f'??? note "{path.relative_to(ROOT).as_posix()}"\n\n'
+                    f"    ```text\n{text}\n    ```\n"
+                )
     return "\n".join(blocks)
 
 
 def encodings_table() -> str:
     rows = ["| encoding | what its header says it is |", "| --- | --- |"]
-    folders = FOLDERS + sorted(p.name for p in ENCODINGS.iterdir()
-                               if p.is_dir() and p.name not in FOLDERS + ["principles",
-                                                                          "restrictions"])
+    folders = FOLDERS + sorted(
+        p.name
+        for p in ENCODINGS.iterdir()
+        if p.is_dir() and p.name not in [*FOLDERS, "principles", "restrictions"]
+    )
     for folder in folders:
         for path in sorted((ENCODINGS / folder).glob("*.lp")):
             rows.append(f"| `{folder}/{path.name}` | {escape(first_sentence(path))} |")
-    rows.append("| `principles/*.lp` | the formula of each ethical principle "
-                "([Principles](principles.md)) |")
-    rows.append("| `restrictions/*.lp` | plan search restricted to the plans a principle "
-                "permits, the HModels ([Principles](principles.md)) |")
+    rows.append(
+        "| `principles/*.lp` | the formula of each ethical principle "
+        "([Principles](principles.md)) |"
+    )
+    rows.append(
+        "| `restrictions/*.lp` | plan search restricted to the plans a principle "
+        "permits, the HModels ([Principles](principles.md)) |"
+    )
     return "\n".join(rows)
 
 
 def modules_table() -> str:
     rows = ["| module | what its docstring says it is |", "| --- | --- |"]
-    found = {p.relative_to(PACKAGE).parent.as_posix().replace(".", "") for p in
-             PACKAGE.rglob("__init__.py")}
+    found = {
+        p.relative_to(PACKAGE).parent.as_posix().replace(".", "")
+        for p in PACKAGE.rglob("__init__.py")
+    }
     packages = [p for p in PACKAGES if p in found] + sorted(found - set(PACKAGES))
     for package in packages:
         for path in sorted((PACKAGE / package).glob("*.py")):
@@ -176,7 +192,7 @@ def on_page_markdown(markdown: str, page, config, files) -> str:
     for placeholder, make in PLACEHOLDERS.items():
         if placeholder in markdown:
             table = make()
-            if table.startswith("|"):   # names in the first column, on one line
+            if table.startswith("|"):  # names in the first column, on one line
                 table = f'<div class="names-table" markdown>\n\n{table}\n\n</div>'
             markdown = markdown.replace(placeholder, table)
     return markdown

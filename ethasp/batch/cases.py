@@ -34,9 +34,9 @@ import io
 import os
 import re
 import shlex
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Iterable, Sequence
 
 from ethasp.errors import InputError
 
@@ -77,7 +77,7 @@ class Case:
             object.__setattr__(self, "name", " + ".join(self.files))
 
     @classmethod
-    def of(cls, value: "Case | str | os.PathLike | Sequence[str | os.PathLike]") -> "Case":
+    def of(cls, value: Case | str | os.PathLike | Sequence[str | os.PathLike]) -> Case:
         """A case from a Case, a file, or a sequence of files (loaded together)."""
         if isinstance(value, Case):
             return value
@@ -90,7 +90,7 @@ class Case:
 class Inputs:
     """What a case reads: its files and the files they include, with their bytes."""
 
-    files: dict[str, bytes] = field(default_factory=dict)   # path as named -> content
+    files: dict[str, bytes] = field(default_factory=dict)  # path as named -> content
     included: dict[str, bytes] = field(default_factory=dict)
     unreadable: list[str] = field(default_factory=list)
 
@@ -98,7 +98,7 @@ class Inputs:
         """A hash of every byte read (the case files in order, then the included ones)."""
         digest = hashlib.sha256()
         for kind, files in (("file", self.files), ("included", self.included)):
-            for name, content in files.items():
+            for content in files.values():  # by content: a moved folder keeps its results
                 digest.update(f"{kind}\0{len(content)}\0".encode())
                 digest.update(content)
         for name in self.unreadable:
@@ -145,6 +145,7 @@ def read_inputs(case: Case) -> Inputs:
 
 # -- folders --------------------------------------------------------------------------------
 
+
 def _pddl_header(path: Path) -> tuple[str | None, str | None, str | None]:
     """(kind, name, the domain a problem names) from a PDDL file's first part."""
     try:
@@ -176,16 +177,24 @@ def _pddl_cases(directory: Path, pddl: list[Path], asp: list[Path]) -> list[Case
         elif kind == "problem":
             problems.append((path, domain))
         else:
-            cases.append(Case((str(path),), problem=f"{path}: not a PDDL domain or problem "
-                                                    "(it should start with (define (domain "
-                                                    "...) or (define (problem ...))"))
+            cases.append(
+                Case(
+                    (str(path),),
+                    problem=f"{path}: not a PDDL domain or problem "
+                    "(it should start with (define (domain "
+                    "...) or (define (problem ...))",
+                )
+            )
     pairs: list[tuple[Path, Path, str]] = []
     for problem, wanted in problems:
         key = _key(problem.stem, "problem")
         named = [path for path, name in domains if name == wanted]
         if len(named) != 1:
-            matching = [path for path, _ in (domains if not named else [(p, None) for p in named])
-                        if _key(path.stem, "domain") == key]
+            matching = [
+                path
+                for path, _ in (domains if not named else [(p, None) for p in named])
+                if _key(path.stem, "domain") == key
+            ]
             if len(matching) == 1:
                 named = matching
             elif len(domains) == 1:
@@ -193,16 +202,26 @@ def _pddl_cases(directory: Path, pddl: list[Path], asp: list[Path]) -> list[Case
             else:
                 named = []
         if not named:
-            cases.append(Case((str(problem),), problem=(
-                f"{problem}: no domain file pairs with this PDDL problem in {directory} (name "
-                "them X-domain.pddl and X-problem.pddl, or list the case in a manifest)")))
+            cases.append(
+                Case(
+                    (str(problem),),
+                    problem=(
+                        f"{problem}: no domain file pairs with this PDDL problem in "
+                        f"{directory} (name them X-domain.pddl and X-problem.pddl, "
+                        "or list the case in a manifest)"
+                    ),
+                )
+            )
             continue
         pairs.append((named[0], problem, key))
     for domain, problem, key in pairs:
         own = [path for path in asp if key and path.stem.lower().startswith(key)]
         if not own:
-            own = [path for path in asp
-                   if not any(k and path.stem.lower().startswith(k) for _, _, k in pairs)]
+            own = [
+                path
+                for path in asp
+                if not any(k and path.stem.lower().startswith(k) for _, _, k in pairs)
+            ]
         cases.append(Case(tuple(str(path) for path in [domain, problem, *sorted(own)])))
     return cases
 
@@ -224,8 +243,9 @@ def _walk(folder: Path, pattern: str | None) -> list[Case]:
             if chosen:
                 by_directory[Path(root)] = chosen
     except OSError as error:
-        raise InputError(f"{error.filename or folder}: cannot be searched "
-                         f"({error.strerror or error})") from None
+        raise InputError(
+            f"{error.filename or folder}: cannot be searched ({error.strerror or error})"
+        ) from None
     cases = []
     for directory, paths in by_directory.items():
         pddl = [p for p in paths if p.suffix.lower() in PDDL_SUFFIXES]
@@ -233,8 +253,9 @@ def _walk(folder: Path, pattern: str | None) -> list[Case]:
         if pddl:
             cases += _pddl_cases(directory, pddl, asp)
             asp = []
-        cases += [Case((str(p),)) for p in paths
-                  if p.suffix.lower() in SITUATION_SUFFIXES or p in asp]
+        cases += [
+            Case((str(p),)) for p in paths if p.suffix.lower() in SITUATION_SUFFIXES or p in asp
+        ]
     return cases
 
 
@@ -243,6 +264,7 @@ def _raise(error: OSError) -> None:
 
 
 # -- manifests ------------------------------------------------------------------------------
+
 
 def is_manifest(path: Path) -> bool:
     """A CSV file, or a YAML file whose top level has ``cases``."""
@@ -275,8 +297,9 @@ def _words(value, where: str, column: str, separator: str | None = None) -> tupl
             except ValueError as error:
                 raise InputError(f"{where}: column {column}: {error}") from None
     else:
-        raise InputError(f"{where}: column {column} must be text or a list, "
-                         f"not {type(value).__name__}")
+        raise InputError(
+            f"{where}: column {column} must be text or a list, not {type(value).__name__}"
+        )
     result = []
     for item in items:
         if not isinstance(item, (str, int, float)) or isinstance(item, bool):
@@ -290,13 +313,20 @@ def _words(value, where: str, column: str, separator: str | None = None) -> tupl
 def _row_case(row: dict, folder: Path, where: str) -> Case:
     unknown = sorted(set(map(str, row)) - set(MANIFEST_COLUMNS) - {"file"})
     if unknown:
-        raise InputError(f"{where}: unknown column {unknown[0]!r} (columns: "
-                         f"{', '.join(MANIFEST_COLUMNS)})")
+        raise InputError(
+            f"{where}: unknown column {unknown[0]!r} (columns: {', '.join(MANIFEST_COLUMNS)})"
+        )
     files = _words(row.get("files", row.get("file")), where, "files")
     if not files:
         raise InputError(f"{where}: no files (the column files names the case's model files)")
-    paths = tuple(name if Path(name).is_absolute() else os.path.join(folder, name)
-                  if str(folder) not in ("", ".") else name for name in files)
+    paths = tuple(
+        name
+        if Path(name).is_absolute()
+        else os.path.join(folder, name)
+        if str(folder) not in ("", ".")
+        else name
+        for name in files
+    )
     plan = row.get("plan")
     if plan is not None and not isinstance(plan, str):
         plan = " ".join(_words(plan, where, "plan"))
@@ -320,8 +350,10 @@ def read_manifest(path: Path) -> list[Case]:
         except csv.Error as error:
             raise InputError(f"{path}: not a CSV manifest ({error})") from None
         if not rows:
-            raise InputError(f"{path}: the manifest lists no case (a header row with the "
-                             "column files, then one row per case)")
+            raise InputError(
+                f"{path}: the manifest lists no case (a header row with the "
+                "column files, then one row per case)"
+            )
         cases = []
         for number, row in enumerate(rows, start=2):
             if None in row:
@@ -338,24 +370,30 @@ def read_manifest(path: Path) -> list[Case]:
     except yaml.YAMLError as error:
         mark = getattr(error, "problem_mark", None)
         where = f"{path}:{mark.line + 1}" if mark is not None else str(path)
-        raise InputError(f"{where}: not a YAML manifest "
-                         f"({' '.join(str(getattr(error, 'problem', error)).split())})") from None
+        raise InputError(
+            f"{where}: not a YAML manifest "
+            f"({' '.join(str(getattr(error, 'problem', error)).split())})"
+        ) from None
     rows = data.get("cases") if isinstance(data, dict) else None
     if not isinstance(rows, list) or not rows:
         raise InputError(f"{path}: a YAML manifest needs a list 'cases' of cases")
     cases = []
     for number, row in enumerate(rows, start=1):
         if not isinstance(row, dict):
-            raise InputError(f"{path}: case {number} must be a mapping with files, name, "
-                             "plan, principles, questions")
+            raise InputError(
+                f"{path}: case {number} must be a mapping with files, name, "
+                "plan, principles, questions"
+            )
         cases.append(_row_case(row, folder, f"{path}: case {number}"))
     return cases
 
 
 # -- all together ---------------------------------------------------------------------------
 
-def discover(items: Iterable["Case | str | os.PathLike | Sequence[str]"],
-             pattern: str | None = None) -> list[Case]:
+
+def discover(
+    items: Iterable[Case | str | os.PathLike | Sequence[str]], pattern: str | None = None
+) -> list[Case]:
     """The cases of model files, folders (searched recursively; ``pattern``, a
     glob, chooses file names), manifests and :class:`Case` objects, each once,
     in the order given.  Consecutive PDDL files on the command line (a domain
@@ -379,7 +417,7 @@ def discover(items: Iterable["Case | str | os.PathLike | Sequence[str]"],
         path = Path(name)
         suffix = path.suffix.lower()
         if pddl_run and suffix in ASP_SUFFIXES and path.is_file():
-            pddl_run.append(name)           # an annotation file of the PDDL case
+            pddl_run.append(name)  # an annotation file of the PDDL case
             continue
         if suffix in PDDL_SUFFIXES and not path.is_dir():
             if sum(1 for n in pddl_run if n.lower().endswith(".pddl")) >= 2:
@@ -396,12 +434,11 @@ def discover(items: Iterable["Case | str | os.PathLike | Sequence[str]"],
         elif is_manifest(path):
             cases += read_manifest(path)
         elif path.exists():
-            cases.append(Case((name,)))     # an unreadable file is its case's error line
+            cases.append(Case((name,)))  # an unreadable file is its case's error line
         else:
             raise InputError(f"{name}: no such file or folder")
     close_run()
     unique: dict[tuple, Case] = {}
     for case in cases:
-        unique.setdefault((case.name, case.files, case.plan, case.principles, case.questions),
-                          case)
+        unique.setdefault((case.name, case.files, case.plan, case.principles, case.questions), case)
     return list(unique.values())

@@ -20,10 +20,11 @@ error line and goes on without it (restart that worker to free the thread).
 
 from __future__ import annotations
 
+import contextlib
 import time
 import uuid
+from collections.abc import Iterable, Iterator
 from dataclasses import replace
-from typing import Iterable, Iterator
 
 import ethasp.batch.task as task
 from ethasp.batch.pool import OVERRUN_GRACE
@@ -38,8 +39,9 @@ def _distributed():
     try:
         import distributed
     except ImportError:
-        raise InputError("--scheduler needs Dask's distributed: pip install 'ethasp[cluster]'"
-                         ) from None
+        raise InputError(
+            "--scheduler needs Dask's distributed: pip install 'ethasp[cluster]'"
+        ) from None
     return distributed
 
 
@@ -52,26 +54,22 @@ class DaskCluster:
         self.settings = settings
         self.grace = grace
         try:
-            self.client = distributed.Client(address, timeout=CONNECT_TIMEOUT,
-                                             set_as_default=False)
+            self.client = distributed.Client(address, timeout=CONNECT_TIMEOUT, set_as_default=False)
         except (OSError, TimeoutError, ValueError) as error:
             detail = " ".join(str(error).split()) or type(error).__name__
-            raise InputError(f"--scheduler {address}: cannot connect to a Dask scheduler "
-                             f"({detail})") from None
-        try:
+            raise InputError(
+                f"--scheduler {address}: cannot connect to a Dask scheduler ({detail})"
+            ) from None
+        with contextlib.suppress(Exception):
             self.client.run(task.warm)
-        except Exception:  # noqa: BLE001 (a worker that cannot warm up fails its cases)
-            pass
 
     def workers(self) -> dict:
         """The scheduler's workers now (address -> information)."""
         return self.client.scheduler_info().get("workers", {})
 
     def close(self) -> None:
-        try:
+        with contextlib.suppress(Exception):
             self.client.close()
-        except Exception:  # noqa: BLE001 (closing after a lost scheduler)
-            pass
 
     def run(self, works: Iterable[Work]) -> Iterator[tuple[Work, list[dict]]]:
         """Submit every work; yield each with its lines as it finishes."""
@@ -88,8 +86,9 @@ class DaskCluster:
         limit = self.settings.time_limit
         overrun = None if not limit else 2 * limit + self.grace
         pending = set(futures)
-        done = distributed.as_completed(futures, loop=self.client.loop, with_results=True,
-                                        raise_errors=False)
+        done = distributed.as_completed(
+            futures, loop=self.client.loop, with_results=True, raise_errors=False
+        )
         looked = time.monotonic()
         try:
             while pending:
@@ -120,17 +119,21 @@ class DaskCluster:
     def _stuck(self, pending, overrun: float) -> list:
         """The futures whose tasks have run longer than ``overrun`` on their worker."""
         try:
-            running = self.client.run_on_scheduler(_running_seconds,
-                                                   [future.key for future in pending])
-        except Exception:  # noqa: BLE001 (the next look may succeed)
+            running = self.client.run_on_scheduler(
+                _running_seconds, [future.key for future in pending]
+            )
+        except Exception:
             return []
         return [future for future in pending if running.get(future.key, 0.0) > overrun]
 
     def _stuck_line(self, work: Work, overrun: float) -> dict:
-        line = error_line(work.case, f"no answer within the time limit of "
-                                     f"{self.settings.time_limit:g} s: still grounding or "
-                                     f"solving after {overrun:g} s (clingo cannot stop "
-                                     "grounding; does the model's grounding end?)")
+        line = error_line(
+            work.case,
+            f"no answer within the time limit of "
+            f"{self.settings.time_limit:g} s: still grounding or "
+            f"solving after {overrun:g} s (clingo cannot stop "
+            "grounding; does the model's grounding end?)",
+        )
         line["seconds"] = round(overrun, 6)
         return line
 
@@ -138,8 +141,11 @@ class DaskCluster:
     def _failure(work: Work, error) -> dict:
         name = type(error).__name__
         if name == "KilledWorker":
-            return error_line(work.case, "its worker processes ended while computing it, "
-                                         "again and again (out of memory, or a crash)")
+            return error_line(
+                work.case,
+                "its worker processes ended while computing it, "
+                "again and again (out of memory, or a crash)",
+            )
         if name == "CancelledError":
             return error_line(work.case, "its task was cancelled on the cluster")
         return error_line(work.case, f"internal error on a worker: {name}: {error}")

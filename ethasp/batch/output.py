@@ -17,8 +17,8 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+from collections.abc import Iterator
 from pathlib import Path
-from typing import Iterator
 
 from ethasp.batch.cases import Case
 from ethasp.batch.task import Settings
@@ -28,12 +28,15 @@ from ethasp.errors import InputError
 HASH_FORMAT = 1
 
 
-def line_hash(case: Case, digest: str, settings: Settings, principle: str | None,
-              question: str | None) -> str:
+def line_hash(
+    case: Case, digest: str, settings: Settings, principle: str | None, question: str | None
+) -> str:
     """The hash of one result line (see the module docstring); ``digest`` is
     :meth:`ethasp.batch.cases.Inputs.digest` of the case's files."""
-    data = json.dumps([HASH_FORMAT, case.name, digest, case.plan, settings.options(),
-                       principle, question], sort_keys=True)
+    data = json.dumps(
+        [HASH_FORMAT, case.name, digest, case.plan, settings.options(), principle, question],
+        sort_keys=True,
+    )
     return hashlib.sha256(data.encode()).hexdigest()[:32]
 
 
@@ -60,8 +63,10 @@ def read_lines(path: Path, repair: bool = False) -> Iterator[dict]:
         except (ValueError, RecursionError):
             line = None
         if not isinstance(line, dict):
-            raise InputError(f"{path}:{number}: not a line of batch results (a JSON object); "
-                             "give another --output file")
+            raise InputError(
+                f"{path}:{number}: not a line of batch results (a JSON object); "
+                "give another --output file"
+            )
         yield line
 
 
@@ -74,29 +79,33 @@ class Output:
             raise InputError(f"--output {self.path}: is a directory, not a file")
         self.stream = None
         try:
-            self.stream = open(self.path, "ab")
+            self.stream = open(self.path, "ab")  # noqa: SIM115 (held until close())
         except OSError as error:
-            raise InputError(f"--output {self.path}: cannot be written "
-                             f"({error.strerror or error})") from None
+            raise InputError(
+                f"--output {self.path}: cannot be written ({error.strerror or error})"
+            ) from None
         self._lock()
         lines = list(read_lines(self.path, repair=True))
         if retry_errors and any("error" in line for line in lines):
             lines = [line for line in lines if "error" not in line]
             self._rewrite(lines)
-        self.present: dict[str, dict] = {line["hash"]: line for line in lines
-                                         if isinstance(line.get("hash"), str)}
+        self.present: dict[str, dict] = {
+            line["hash"]: line for line in lines if isinstance(line.get("hash"), str)
+        }
 
     def _lock(self) -> None:
         try:
             import fcntl
-        except ImportError:         # no advisory locks here
+        except ImportError:  # no advisory locks here
             return
         try:
             fcntl.flock(self.stream.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
         except OSError:
             self.stream.close()
-            raise InputError(f"--output {self.path}: another batch is writing this file "
-                             "(wait for it, or give another --output file)") from None
+            raise InputError(
+                f"--output {self.path}: another batch is writing this file "
+                "(wait for it, or give another --output file)"
+            ) from None
 
     def _rewrite(self, lines: list[dict]) -> None:
         """Keep only ``lines`` (the file is rewritten in place, under the lock)."""

@@ -25,9 +25,9 @@ import signal
 import sys
 import time
 from collections import deque
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, replace
 from multiprocessing.connection import wait
-from typing import Iterable, Iterator
 
 import ethasp.batch.task as task
 from ethasp.batch.task import Settings, Work, error_line
@@ -62,14 +62,14 @@ def _end_with_parent() -> None:
         import ctypes
 
         libc = ctypes.CDLL(None, use_errno=True)
-        libc.prctl(1, signal.SIGKILL)        # PR_SET_PDEATHSIG
+        libc.prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
     except (OSError, AttributeError):
         pass
 
 
 def worker_main(connection, settings: Settings) -> None:
     """A worker process: cases in, result lines out, until the pipe closes."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)      # the batch's process decides
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # the batch's process decides
     _end_with_parent()
     task.warm()
     connection.send(("ready", os.getpid()))
@@ -139,8 +139,12 @@ class LocalPool:
 
     def _start(self) -> _Slot:
         mine, theirs = self.context.Pipe()
-        process = self.context.Process(target=worker_main, args=(theirs, self.settings),
-                                       name="ethasp-batch-worker", daemon=True)
+        process = self.context.Process(
+            target=worker_main,
+            args=(theirs, self.settings),
+            name="ethasp-batch-worker",
+            daemon=True,
+        )
         with _main_importable():
             process.start()
         theirs.close()
@@ -167,10 +171,8 @@ class LocalPool:
     def close(self) -> None:
         """End every worker now (also from another thread, e.g. on Ctrl-C)."""
         for slot in list(self.slots):
-            try:
+            with contextlib.suppress(OSError, ValueError, AttributeError):
                 slot.process.kill()
-            except (OSError, ValueError, AttributeError):
-                pass
         for slot in list(self.slots):
             try:
                 slot.process.join(5.0)
@@ -199,8 +201,11 @@ class LocalPool:
                         slot.connection.send(slot.work)
                 timeout = TICK
                 if overrun is not None:
-                    running = [slot.started + overrun - time.monotonic()
-                               for slot in self.slots if slot.work is not None]
+                    running = [
+                        slot.started + overrun - time.monotonic()
+                        for slot in self.slots
+                        if slot.work is not None
+                    ]
                     if running:
                         timeout = max(0.0, min(min(running) + 0.01, TICK))
                 by_object = {}
@@ -250,24 +255,29 @@ class LocalPool:
                             queue.appendleft(replace(work, attempt=work.attempt + 1))
                         else:
                             line = error_line(
-                                work.case, f"its worker process ended while computing it, "
-                                           f"twice ({cause}): out of memory, or a crash")
+                                work.case,
+                                f"its worker process ended while computing it, "
+                                f"twice ({cause}): out of memory, or a crash",
+                            )
                             line["seconds"] = round(time.monotonic() - started, 6)
                             yield work, [line]
                     if queue and len(self.slots) < self.workers:
                         self._start()
                 if overrun is not None:
                     now = time.monotonic()
-                    for slot in [s for s in self.slots if s.work is not None
-                                 and now - s.started > overrun]:
+                    for slot in [
+                        s for s in self.slots if s.work is not None and now - s.started > overrun
+                    ]:
                         work, seconds = slot.work, round(now - slot.started, 6)
                         self._stop(slot, kill=True)
                         limit = self.settings.time_limit
                         line = error_line(
-                            work.case, f"no answer within the time limit of {limit:g} s: still "
-                                       f"grounding or solving after {overrun:g} s (clingo "
-                                       "cannot stop grounding; does the model's grounding "
-                                       "end?)")
+                            work.case,
+                            f"no answer within the time limit of {limit:g} s: still "
+                            f"grounding or solving after {overrun:g} s (clingo "
+                            "cannot stop grounding; does the model's grounding "
+                            "end?)",
+                        )
                         line["seconds"] = seconds
                         yield work, [line]
                         if queue and len(self.slots) < self.workers:

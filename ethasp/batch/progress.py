@@ -24,7 +24,7 @@ WIDTH = 24
 
 def clock(seconds: float) -> str:
     """``0:41``, ``12:05``, ``3:02:10``."""
-    seconds = int(round(seconds))
+    seconds = round(seconds)
     hours, rest = divmod(seconds, 3600)
     minutes, seconds = divmod(rest, 60)
     return f"{hours}:{minutes:02d}:{seconds:02d}" if hours else f"{minutes}:{seconds:02d}"
@@ -33,9 +33,15 @@ def clock(seconds: float) -> str:
 class BatchProgress:
     """The progress of a batch of ``total`` cases, ``before`` of them done in an earlier run."""
 
-    def __init__(self, total: int, before: int = 0, failed_before: int = 0,
-                 stream: TextIO | None = None, terminal: bool | None = None,
-                 enabled: bool = True):
+    def __init__(
+        self,
+        total: int,
+        before: int = 0,
+        failed_before: int = 0,
+        stream: TextIO | None = None,
+        terminal: bool | None = None,
+        enabled: bool = True,
+    ):
         self.stream = stream or sys.stderr
         self.terminal = self.stream.isatty() if terminal is None else terminal
         self.enabled = enabled
@@ -47,7 +53,8 @@ class BatchProgress:
         self.width = 0
 
     def update(self, done: int, failed: int) -> None:
-        """``done`` cases of the total finished (counting earlier runs), ``failed`` of them failed."""
+        """``done`` cases of the total finished (counting earlier runs),
+        ``failed`` of them failed."""
         changed = (done, failed) != (self.done, self.failed)
         self.done, self.failed = done, failed
         if not self.enabled or not changed:

@@ -12,13 +12,13 @@ from __future__ import annotations
 
 import os
 import time
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
-from typing import Iterable, Iterator, Sequence
 
 from ethasp.batch.cases import Case, discover, read_inputs
 from ethasp.batch.output import Output, line_hash
 from ethasp.batch.pool import OVERRUN_GRACE, LocalPool, default_workers
-from ethasp.batch.task import ASK, CASE, TASKS, Settings, Work, error_line, version
+from ethasp.batch.task import ASK, CASE, TASKS, Settings, Work, version
 from ethasp.errors import InputError
 
 # The order of the first fields of a line (the others follow as computed).
@@ -46,8 +46,15 @@ class Batch:
     ``lines_written``, ``seconds``.
     """
 
-    def __init__(self, cases: list[Case], settings: Settings, output: Output | None,
-                 workers: int, scheduler: str | None, grace: float):
+    def __init__(
+        self,
+        cases: list[Case],
+        settings: Settings,
+        output: Output | None,
+        workers: int,
+        scheduler: str | None,
+        grace: float,
+    ):
         self.cases = cases
         self.settings = settings
         self.output = output
@@ -63,8 +70,9 @@ class Batch:
         for case in cases:
             self.planned.append(self._plan(case, present))
         self.skipped = sum(1 for item in self.planned if not item.missing)
-        self.lines_before = sum(1 for item in self.planned for digest in item.hashes.values()
-                                if digest in present)
+        self.lines_before = sum(
+            1 for item in self.planned for digest in item.hashes.values() if digest in present
+        )
         self.cases_failed = sum(1 for item in self.planned if item.failed_before)
         self.cases_done = self.skipped
 
@@ -77,16 +85,22 @@ class Batch:
         try:
             principles = [p.name for p in select_principles(names)]
         except InputError as error:
-            case = Case(case.files, case.name, case.plan, (), case.questions,
-                        problem=case.problem or str(error))
+            case = Case(
+                case.files,
+                case.name,
+                case.plan,
+                (),
+                case.questions,
+                problem=case.problem or str(error),
+            )
             principles = []
         questions = case.questions if case.questions is not None else settings.questions
         asking = settings.task == ASK or (settings.task is None and bool(questions))
-        keys = [(p, q) for p in principles for q in (questions if asking and questions
-                                                     else [None])]
-        hashes = {key: line_hash(case, digest, settings, *key) for key in [CASE] + keys}
+        keys = [(p, q) for p in principles for q in (questions if asking and questions else [None])]
+        hashes = {key: line_hash(case, digest, settings, *key) for key in [CASE, *keys]}
         failed = hashes[CASE] in present or any(
-            "error" in present[hashes[key]] for key in keys if hashes[key] in present)
+            "error" in present[hashes[key]] for key in keys if hashes[key] in present
+        )
         if hashes[CASE] in present:
             missing = ()
         else:
@@ -112,8 +126,11 @@ class Batch:
 
     def __iter__(self) -> Iterator[dict]:
         started = time.monotonic()
-        works = [Work(item.case, tuple(k for k in item.missing if k != CASE) or (CASE,))
-                 for item in self.planned if item.missing]
+        works = [
+            Work(item.case, tuple(k for k in item.missing if k != CASE) or (CASE,))
+            for item in self.planned
+            if item.missing
+        ]
         by_case = {id(item.case): item for item in self.planned}
         try:
             if not works:
@@ -146,8 +163,9 @@ class Batch:
         line["files"] = list(item.case.files)
         line["hash"] = item.hashes.get(key, item.hashes[CASE])
         ordered = {name: line[name] for name in FIRST if name in line}
-        ordered.update((name, value) for name, value in line.items()
-                       if name not in FIRST and name not in LAST)
+        ordered.update(
+            (name, value) for name, value in line.items() if name not in FIRST and name not in LAST
+        )
         ordered.update((name, line[name]) for name in LAST if name in line)
         return ordered
 
@@ -167,15 +185,26 @@ class Batch:
             self.output.close()
 
 
-def batch(cases: Iterable[Case | str | os.PathLike | Sequence[str]],
-          principles: Sequence[str] | None = None, *,
-          task: str | None = None, questions: Sequence[str] = (), under: str | None = None,
-          output: str | os.PathLike | None = None, workers: int | None = None,
-          scheduler: str | None = None, time_limit: float | None = None,
-          max_horizon: int | None = None, reasons_limit: int | None = None,
-          satisficing: bool = False, allow_scripts: bool = False, glob: str | None = None,
-          retry_errors: bool = False, grace: float = OVERRUN_GRACE,
-          settings: Settings | None = None) -> Batch:
+def batch(
+    cases: Iterable[Case | str | os.PathLike | Sequence[str]],
+    principles: Sequence[str] | None = None,
+    *,
+    task: str | None = None,
+    questions: Sequence[str] = (),
+    under: str | None = None,
+    output: str | os.PathLike | None = None,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    time_limit: float | None = None,
+    max_horizon: int | None = None,
+    reasons_limit: int | None = None,
+    satisficing: bool = False,
+    allow_scripts: bool = False,
+    glob: str | None = None,
+    retry_errors: bool = False,
+    grace: float = OVERRUN_GRACE,
+    settings: Settings | None = None,
+) -> Batch:
     """Compute many cases at once; iterate the result to get each line as it finishes.
 
     ``cases``: model files, folders (searched recursively for file names
@@ -197,8 +226,10 @@ def batch(cases: Iterable[Case | str | os.PathLike | Sequence[str]],
     if workers is not None and workers < 1:
         raise InputError("the number of workers must be at least 1")
     if scheduler is not None and workers is not None:
-        raise InputError("--workers is for the local pool: a Dask cluster computes with the "
-                         "workers started for it")
+        raise InputError(
+            "--workers is for the local pool: a Dask cluster computes with the "
+            "workers started for it"
+        )
     if time_limit is not None and not time_limit >= 0:
         raise InputError("the time limit must be 0 seconds or more")
     if reasons_limit is not None and reasons_limit < 0:
@@ -206,8 +237,9 @@ def batch(cases: Iterable[Case | str | os.PathLike | Sequence[str]],
     from ethasp.principles.principle import select_principles
     from ethasp.questions.question import Question
 
-    names = None if principles is None else tuple(
-        p.name for p in select_principles(list(principles)))
+    names = (
+        None if principles is None else tuple(p.name for p in select_principles(list(principles)))
+    )
     if under is not None:
         under = select_principles([under])[0].name
     for question in questions:
@@ -215,8 +247,17 @@ def batch(cases: Iterable[Case | str | os.PathLike | Sequence[str]],
     if questions and task not in (None, ASK):
         raise InputError(f"questions are asked by the task ask, not {task}")
     if settings is None:
-        settings = Settings(task, names, tuple(questions), under, max_horizon,
-                            time_limit or None, reasons_limit, satisficing, allow_scripts)
+        settings = Settings(
+            task,
+            names,
+            tuple(questions),
+            under,
+            max_horizon,
+            time_limit or None,
+            reasons_limit,
+            satisficing,
+            allow_scripts,
+        )
     found = discover(list(cases), glob)
     if not found:
         raise InputError("no case given")

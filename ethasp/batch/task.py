@@ -70,9 +70,15 @@ class Settings:
 
     def options(self) -> dict:
         """The options as they enter the hash."""
-        return {"task": self.task, "under": self.under, "max_horizon": self.max_horizon,
-                "time_limit": self.time_limit, "reasons_limit": self.reasons_limit,
-                "satisficing": self.satisficing, "allow_scripts": self.allow_scripts}
+        return {
+            "task": self.task,
+            "under": self.under,
+            "max_horizon": self.max_horizon,
+            "time_limit": self.time_limit,
+            "reasons_limit": self.reasons_limit,
+            "satisficing": self.satisficing,
+            "allow_scripts": self.allow_scripts,
+        }
 
 
 @dataclass(frozen=True)
@@ -108,10 +114,22 @@ def one_line(message: str) -> str:
     return " ".join(str(message).split())
 
 
-def error_line(case: Case, message: str, principle: str | None = None,
-               question: str | None = None, task: str | None = None) -> dict:
-    line = {"case": case.name, "principle": principle, "permissible": None, "status": ERROR,
-            "plan": None, "utility": None, "error": one_line(message)}
+def error_line(
+    case: Case,
+    message: str,
+    principle: str | None = None,
+    question: str | None = None,
+    task: str | None = None,
+) -> dict:
+    line = {
+        "case": case.name,
+        "principle": principle,
+        "permissible": None,
+        "status": ERROR,
+        "plan": None,
+        "utility": None,
+        "error": one_line(message),
+    }
     if task is not None:
         line["task"] = task
     if question is not None:
@@ -121,8 +139,8 @@ def error_line(case: Case, message: str, principle: str | None = None,
 
 def warm() -> None:
     """Import what every case uses and read the principles' encodings (once per process)."""
-    import ethasp.principles.restriction  # noqa: F401
-    import ethasp.questions.contrast  # noqa: F401
+    import ethasp.principles.restriction
+    import ethasp.questions.contrast
     import ethasp.reasons.reasons  # noqa: F401
     from ethasp.principles.principle import available_principles
 
@@ -132,8 +150,11 @@ def warm() -> None:
 
 def run(work: Work, settings: Settings) -> list[dict]:
     """The result lines of one case (never raises for bad input: error lines)."""
-    if (settings.crash_case is not None and work.case.name.endswith(settings.crash_case)
-            and work.attempt <= settings.crash_attempts):
+    if (
+        settings.crash_case is not None
+        and work.case.name.endswith(settings.crash_case)
+        and work.attempt <= settings.crash_attempts
+    ):
         import signal
 
         os.kill(os.getpid(), signal.SIGKILL)
@@ -151,9 +172,14 @@ def run(work: Work, settings: Settings) -> list[dict]:
             lines = [error_line(work.case, "the input is nested too deeply to read")]
         except MemoryError:
             lines = [error_line(work.case, "out of memory: the input is too large")]
-        except Exception as error:  # noqa: BLE001 (one case's bug must not end the batch)
-            lines = [error_line(work.case, f"internal error: {type(error).__name__}: "
-                                           f"{_restore(str(error), renamed)} (please report it)")]
+        except Exception as error:
+            lines = [
+                error_line(
+                    work.case,
+                    f"internal error: {type(error).__name__}: "
+                    f"{_restore(str(error), renamed)} (please report it)",
+                )
+            ]
         else:
             for line in lines:
                 if "error" in line:
@@ -172,6 +198,7 @@ def run(work: Work, settings: Settings) -> list[dict]:
 
 
 # -- files ----------------------------------------------------------------------------------
+
 
 def _files(work: Work) -> tuple[list[str], str | None, dict[str, str]]:
     """The paths to load: the case's own, or copies of the bytes sent along
@@ -193,9 +220,11 @@ def _files(work: Work) -> tuple[list[str], str | None, dict[str, str]]:
         copies[name] = copy
         renamed[copy] = name
     # A file that could not be read where the batch started is missing here too.
-    paths = [copies.get(name, os.path.join(folder, "missing", os.path.basename(name)))
-             for name in work.case.files]
-    for name, path in zip(work.case.files, paths):
+    paths = [
+        copies.get(name, os.path.join(folder, "missing", os.path.basename(name)))
+        for name in work.case.files
+    ]
+    for name, path in zip(work.case.files, paths, strict=True):
         renamed.setdefault(path, name)
     return paths, folder, renamed
 
@@ -207,6 +236,7 @@ def _restore(message: str, renamed: dict[str, str]) -> str:
 
 
 # -- the tasks ------------------------------------------------------------------------------
+
 
 def _compute(work: Work, settings: Settings, files: list[str]) -> list[dict]:
     from ethasp.planning.budget import Budget
@@ -224,8 +254,10 @@ def _compute(work: Work, settings: Settings, files: list[str]) -> list[dict]:
     principles = list(dict.fromkeys(principle for principle, _ in work.keys))
     if task == JUDGE:
         if plan is None:
-            raise InputError("no plan to judge: the model comes with no plan of its own "
-                             "(give one in a manifest's column plan, or use --task plan)")
+            raise InputError(
+                "no plan to judge: the model comes with no plan of its own "
+                "(give one in a manifest's column plan, or use --task plan)"
+            )
         return _judge(model, case, plan, principles, settings, budget)
     if task == PLAN:
         return _plan(model, case, principles, settings, budget)
@@ -239,22 +271,36 @@ def _max_horizon(settings: Settings, searching: bool = False) -> int:
 
     if settings.max_horizon is not None:
         return settings.max_horizon
-    return DEFAULT_SATISFICING_HORIZON if searching and settings.satisficing \
-        else DEFAULT_MAX_HORIZON
+    return (
+        DEFAULT_SATISFICING_HORIZON if searching and settings.satisficing else DEFAULT_MAX_HORIZON
+    )
 
 
-def _judge(model, case: Case, plan, principles: list[str], settings: Settings,
-           budget) -> list[dict]:
+def _judge(
+    model, case: Case, plan, principles: list[str], settings: Settings, budget
+) -> list[dict]:
     from ethasp.reasons.reasons import judge
 
-    report = judge(model, plan, principles, _max_horizon(settings),
-                   reasons_limit=settings.reasons_limit or 0, budget=budget)
+    report = judge(
+        model,
+        plan,
+        principles,
+        _max_horizon(settings),
+        reasons_limit=settings.reasons_limit or 0,
+        budget=budget,
+    )
     lines = []
     for judgement in report.judgements:
-        line = {"case": case.name, "task": JUDGE, "principle": judgement.principle,
-                "permissible": judgement.permissible, "status": judgement.status,
-                "plan": report.plan.to_list(), "utility": report.utility,
-                "proof": judgement.proof}
+        line = {
+            "case": case.name,
+            "task": JUDGE,
+            "principle": judgement.principle,
+            "permissible": judgement.permissible,
+            "status": judgement.status,
+            "plan": report.plan.to_list(),
+            "utility": report.utility,
+            "proof": judgement.proof,
+        }
         if not report.goal_reached:
             line["goal_reached"] = False
         explanation = judgement.explanation
@@ -267,26 +313,36 @@ def _judge(model, case: Case, plan, principles: list[str], settings: Settings,
 
 
 def _plan(model, case: Case, principles: list[str], settings: Settings, budget) -> list[dict]:
+    from ethasp.planning.search import FOUND, NONE
     from ethasp.principles.judgement import final_utility
     from ethasp.principles.restriction import plan_with_principles
-    from ethasp.planning.search import FOUND, NONE
 
     lines = []
     for principle in principles:
         try:
-            result = plan_with_principles(model, [principle], settings.max_horizon,
-                                          budget=budget, satisficing=settings.satisficing)
+            result = plan_with_principles(
+                model,
+                [principle],
+                settings.max_horizon,
+                budget=budget,
+                satisficing=settings.satisficing,
+            )
         except InputError as error:
             lines.append(error_line(case, str(error), principle, task=PLAN))
             continue
         found = result.plan is not None and result.status == FOUND
-        line = {"case": case.name, "task": PLAN, "principle": principle,
-                "permissible": True if found else False if result.status == NONE else None,
-                "status": result.status,
-                "plan": result.plan.to_list() if found else None,
-                "utility": final_utility(model, result.plan) if found else None,
-                "horizon": result.horizon, "optimal": result.optimal if found else None,
-                "proof": result.proof}
+        line = {
+            "case": case.name,
+            "task": PLAN,
+            "principle": principle,
+            "permissible": True if found else False if result.status == NONE else None,
+            "status": result.status,
+            "plan": result.plan.to_list() if found else None,
+            "utility": final_utility(model, result.plan) if found else None,
+            "horizon": result.horizon,
+            "optimal": result.optimal if found else None,
+            "proof": result.proof,
+        }
         if result.best is not None:
             line["best_utility"] = result.best.utility
         lines.append(line)
@@ -302,8 +358,14 @@ def _ask(model, case: Case, plan, keys, settings: Settings, budget) -> list[dict
     originals: dict[str, object] = {}
     for principle, question in keys:
         if question is None:
-            lines.append(error_line(case, "no question to ask (give --question, or a "
-                                          "manifest's column questions)", principle, task=ASK))
+            lines.append(
+                error_line(
+                    case,
+                    "no question to ask (give --question, or a manifest's column questions)",
+                    principle,
+                    task=ASK,
+                )
+            )
             continue
         try:
             asked = plan
@@ -311,29 +373,50 @@ def _ask(model, case: Case, plan, keys, settings: Settings, budget) -> list[dict
                 if principle not in originals:
                     try:
                         originals[principle] = original_plan(
-                            model, principle, _max_horizon(settings, True), budget=budget,
-                            satisficing=settings.satisficing)
-                    except InputError as error:     # searched once, for every question
+                            model,
+                            principle,
+                            _max_horizon(settings, True),
+                            budget=budget,
+                            satisficing=settings.satisficing,
+                        )
+                    except InputError as error:  # searched once, for every question
                         originals[principle] = error
                 asked = originals[principle]
                 if isinstance(asked, InputError):
                     raise asked
-            answer = ask(model, question, asked, principle, settings.under,
-                         _max_horizon(settings, True), reasons_limit=settings.reasons_limit
-                         or DEFAULT_LIMIT, budget=budget, satisficing=settings.satisficing)
+            answer = ask(
+                model,
+                question,
+                asked,
+                principle,
+                settings.under,
+                _max_horizon(settings, True),
+                reasons_limit=settings.reasons_limit or DEFAULT_LIMIT,
+                budget=budget,
+                satisficing=settings.satisficing,
+            )
         except InputError as error:
             lines.append(error_line(case, str(error), principle, question, ASK))
             continue
         contrast = answer.contrast
-        lines.append({
-            "case": case.name, "task": ASK, "principle": principle, "question": question,
-            "under": answer.under, "permissible": answer.original.judgement.permissible,
-            "status": answer.status, "plan": asked.to_list(),
-            "utility": final_utility(model, asked),
-            "contrast_plan": contrast.plan.to_list() if contrast else None,
-            "contrast_permissible": contrast.judgement.permissible if contrast else None,
-            "contrast_utility": final_utility(model, contrast.plan) if contrast else None,
-            "principle_dropped": answer.principle_dropped,
-            "conflict": [str(c) for c in answer.conflict],
-            "explanation": answer.explanation, "proof": answer.proof})
+        lines.append(
+            {
+                "case": case.name,
+                "task": ASK,
+                "principle": principle,
+                "question": question,
+                "under": answer.under,
+                "permissible": answer.original.judgement.permissible,
+                "status": answer.status,
+                "plan": asked.to_list(),
+                "utility": final_utility(model, asked),
+                "contrast_plan": contrast.plan.to_list() if contrast else None,
+                "contrast_permissible": contrast.judgement.permissible if contrast else None,
+                "contrast_utility": final_utility(model, contrast.plan) if contrast else None,
+                "principle_dropped": answer.principle_dropped,
+                "conflict": [str(c) for c in answer.conflict],
+                "explanation": answer.explanation,
+                "proof": answer.proof,
+            }
+        )
     return lines

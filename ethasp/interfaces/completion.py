@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 from ethasp.resources import ENCODINGS, MODELS
 
 SHELLS = ("bash", "zsh")
-FILE_OPTIONS = {"svg", "plan_file", "save", "load"}     # dests whose value is a file
+FILE_OPTIONS = {"svg", "plan_file", "save", "load"}  # dests whose value is a file
 PRINCIPLE_OPTIONS = {"principle", "under"}
 GROUPS = ("paper", "hera", "all")
 
@@ -44,15 +44,18 @@ class Command:
     name: str
     help: str
     options: list[Option] = field(default_factory=list)
-    positional: str | list[str] | None = None   # model (files and bundled names), a list
+    positional: str | list[str] | None = None  # model (files and bundled names), a list
 
 
 def principle_names(restricting: bool) -> list[str]:
     """Principle names for completion (see the module's docstring)."""
     from ethasp.principles.principle import available_principles
 
-    names = [p.name for p in available_principles()
-             if not restricting or (ENCODINGS / "restrictions" / f"{p.asp_name}.lp").is_file()]
+    names = [
+        p.name
+        for p in available_principles()
+        if not restricting or (ENCODINGS / "restrictions" / f"{p.asp_name}.lp").is_file()
+    ]
     return names if restricting else names + list(GROUPS)
 
 
@@ -67,13 +70,13 @@ def bundled_models() -> list[str]:
 def commands(parser: argparse.ArgumentParser) -> list[Command]:
     """The commands of the parser, with their options and what completes them."""
     found = []
-    for action in parser._actions:                     # noqa: SLF001 (argparse's API)
-        if not isinstance(action, argparse._SubParsersAction):  # noqa: SLF001
+    for action in parser._actions:
+        if not isinstance(action, argparse._SubParsersAction):
             continue
-        helps = {choice.dest: choice.help or "" for choice in action._choices_actions}  # noqa: SLF001
+        helps = {choice.dest: choice.help or "" for choice in action._choices_actions}
         for name, sub in action.choices.items():
             command = Command(name, helps.get(name, ""))
-            for option in sub._actions:                # noqa: SLF001
+            for option in sub._actions:
                 if not option.option_strings:
                     if option.choices:
                         command.positional = list(option.choices)
@@ -88,8 +91,9 @@ def commands(parser: argparse.ArgumentParser) -> list[Command]:
                     values = principle_names(restricting=name != "judge")
                 elif option.choices:
                     values = list(option.choices)
-                command.options.append(Option(list(option.option_strings), option.help or "",
-                                              takes, values))
+                command.options.append(
+                    Option(list(option.option_strings), option.help or "", takes, values)
+                )
             found.append(command)
     return found
 
@@ -129,27 +133,36 @@ def bash_script(parser: argparse.ArgumentParser) -> str:
                 continue
             names = "|".join(option.names)
             if option.values == "file":
-                cases.append(f'                {names}) compopt -o filenames 2>/dev/null; '
-                             f'COMPREPLY=($(compgen -f -- "$cur")); return ;;')
+                cases.append(
+                    f"                {names}) compopt -o filenames 2>/dev/null; "
+                    f'COMPREPLY=($(compgen -f -- "$cur")); return ;;'
+                )
             elif isinstance(option.values, list):
-                cases.append(f'                {names}) COMPREPLY=($(compgen -W '
-                             f'"{_words(option.values)}" -- "$cur")); return ;;')
+                cases.append(
+                    f"                {names}) COMPREPLY=($(compgen -W "
+                    f'"{_words(option.values)}" -- "$cur")); return ;;'
+                )
             else:
                 cases.append(f"                {names}) return ;;")
         if cases:
-            lines += ['            case "$prev" in'] + cases + ["            esac"]
+            lines += ['            case "$prev" in', *cases, "            esac"]
         options = _words([name for option in command.options for name in option.names])
-        lines += ['            if [[ "$cur" == -* ]]; then',
-                  f'                COMPREPLY=($(compgen -W "{options}" -- "$cur"))',
-                  "                return",
-                  "            fi"]
+        lines += [
+            '            if [[ "$cur" == -* ]]; then',
+            f'                COMPREPLY=($(compgen -W "{options}" -- "$cur"))',
+            "                return",
+            "            fi",
+        ]
         if command.positional == "model":
-            lines += ["            compopt -o filenames 2>/dev/null",
-                      f'            COMPREPLY=($(compgen -f -- "$cur") $(compgen -W "{models}" '
-                      f'-- "$cur"))']
+            lines += [
+                "            compopt -o filenames 2>/dev/null",
+                f'            COMPREPLY=($(compgen -f -- "$cur") $(compgen -W "{models}" '
+                f'-- "$cur"))',
+            ]
         elif isinstance(command.positional, list):
-            lines.append(f'            COMPREPLY=($(compgen -W "{_words(command.positional)}" '
-                         f'-- "$cur"))')
+            lines.append(
+                f'            COMPREPLY=($(compgen -W "{_words(command.positional)}" -- "$cur"))'
+            )
         lines.append("            ;;")
     lines += ["    esac", "}", "complete -F _ethasp ethasp", ""]
     return "\n".join(lines)
@@ -204,11 +217,13 @@ def zsh_script(parser: argparse.ArgumentParser) -> str:
     ]
     for command in all_commands:
         lines.append(f"                '{command.name}:{_zsh_text(command.help)}'")
-    lines += ["            )",
-              "            _describe -t commands 'ethasp command' commands",
-              "            ;;",
-              "        argument)",
-              "            case $words[1] in"]
+    lines += [
+        "            )",
+        "            _describe -t commands 'ethasp command' commands",
+        "            ;;",
+        "        argument)",
+        "            case $words[1] in",
+    ]
     for command in all_commands:
         specs = [spec for option in command.options for spec in _zsh_option(option)]
         if command.positional == "model":
@@ -220,16 +235,18 @@ def zsh_script(parser: argparse.ArgumentParser) -> str:
         lines += [f"                        {spec} \\" for spec in specs[:-1]]
         lines.append(f"                        {specs[-1]}")
         lines.append("                    ;;")
-    lines += ["            esac",
-              "            ;;",
-              "    esac",
-              "}",
-              'if [[ "${funcstack[1]}" == _ethasp ]]; then',
-              '    _ethasp "$@"',
-              "else",
-              "    compdef _ethasp ethasp",
-              "fi",
-              ""]
+    lines += [
+        "            esac",
+        "            ;;",
+        "    esac",
+        "}",
+        'if [[ "${funcstack[1]}" == _ethasp ]]; then',
+        '    _ethasp "$@"',
+        "else",
+        "    compdef _ethasp ethasp",
+        "fi",
+        "",
+    ]
     return "\n".join(lines)
 
 

@@ -23,8 +23,8 @@ from __future__ import annotations
 import glob
 import os
 import sys
+from collections.abc import Iterable, Sequence
 from pathlib import Path
-from typing import Iterable, Sequence
 
 HISTORY_LENGTH = 1000
 COMMANDS = ("why", "principle", "plan", "history", "undo", "save", "load", "help", "quit")
@@ -41,7 +41,7 @@ def history_path(environ: dict | None = None) -> Path | None:
     if not base:
         try:
             home = Path(environ["HOME"]) if environ.get("HOME") else Path.home()
-        except (RuntimeError, KeyError):          # no home directory
+        except (RuntimeError, KeyError):  # no home directory
             return None
         base = str(home / ".local" / "state")
     return Path(base) / "ethasp" / "history"
@@ -68,8 +68,13 @@ class Completer:
     (``pull``, ``move(a,b)``, ``(move a b)``).
     """
 
-    def __init__(self, actions: Iterable[str], facts: Iterable[str],
-                 principles: Iterable[str], commands: Sequence[str] = COMMANDS):
+    def __init__(
+        self,
+        actions: Iterable[str],
+        facts: Iterable[str],
+        principles: Iterable[str],
+        commands: Sequence[str] = COMMANDS,
+    ):
         self.actions = sorted(set(actions))
         self.facts = sorted(set(facts))
         self.principles = sorted(set(principles))
@@ -81,25 +86,26 @@ class Completer:
         the text after its last space (readline's word); a complete word ends
         with a space (Python's readline adds none)."""
         word = before.split(" ")[-1]
-        words = before[:len(before) - len(word)].split()
+        words = before[: len(before) - len(word)].split()
         if not words:
-            return [command + " " for command in self.commands
-                    if command.startswith(word.lower())]
+            return [command + " " for command in self.commands if command.startswith(word.lower())]
         command = words[0].lower()
         if command == "principle":
-            return [p + " " for p in self.principles if p.startswith(word)] \
-                if len(words) == 1 else []
+            return (
+                [p + " " for p in self.principles if p.startswith(word)] if len(words) == 1 else []
+            )
         if command in ("save", "load"):
             return self._files(word) if len(words) == 1 else []
         if command != "why":
             return []
         start = _operand_start(before)
         operand, head = before[start:], before[:start]
-        kept = len(operand) - len(word)       # the operand's words before readline's word
+        kept = len(operand) - len(word)  # the operand's words before readline's word
         found = [name[kept:] + " " for name in self._names(head) if name.startswith(operand)]
         if kept == 0:
-            found += [keyword for keyword in self._keywords(head)
-                      if keyword.startswith(word.lower())]
+            found += [
+                keyword for keyword in self._keywords(head) if keyword.startswith(word.lower())
+            ]
         return found
 
     def _names(self, head: str) -> list[str]:
@@ -122,8 +128,10 @@ class Completer:
             return []
         if text.endswith(" rather"):
             return ["than "]
-        if any(f" {joining} " in f"{text} " for joining in JOINING) or \
-                len(head) - _operand_start(head.rstrip()) == 0:
+        if (
+            any(f" {joining} " in f"{text} " for joining in JOINING)
+            or len(head) - _operand_start(head.rstrip()) == 0
+        ):
             return []
         return [joining.split()[0] + " " for joining in JOINING]
 
@@ -139,12 +147,13 @@ class Completer:
         if state == 0:
             try:
                 import readline
-                before = readline.get_line_buffer()[:readline.get_endidx()]
+
+                before = readline.get_line_buffer()[: readline.get_endidx()]
             except (ImportError, AttributeError):
                 before = text
             try:
                 self._matches = self.candidates(before)
-            except Exception:  # noqa: BLE001 (completion must never end the dialogue)
+            except Exception:
                 self._matches = []
         return self._matches[state] if state < len(self._matches) else None
 
@@ -159,11 +168,12 @@ class LineEditor:
         self._terminal = None
         try:
             import readline
-        except ImportError:           # a Python without readline: plain lines
+        except ImportError:  # a Python without readline: plain lines
             return
         self.readline = readline
         try:
             import termios
+
             self._terminal = termios.tcgetattr(sys.stdin.fileno())
         except (ImportError, OSError, ValueError):
             self._terminal = None
@@ -179,7 +189,7 @@ class LineEditor:
             try:
                 readline.read_history_file(str(path))
                 if readline.get_current_history_length() > HISTORY_LENGTH:
-                    readline.write_history_file(str(path))   # keeps the last lines only
+                    readline.write_history_file(str(path))  # keeps the last lines only
             except (OSError, ValueError):
                 pass
 
@@ -193,7 +203,7 @@ class LineEditor:
                     self.path.touch(mode=0o600)
                 self.readline.append_history_file(1, str(self.path))
             except (OSError, ValueError, AttributeError):
-                pass          # the history is a convenience: never an error
+                pass  # the history is a convenience: never an error
         return line
 
     def restore(self) -> None:
@@ -203,6 +213,7 @@ class LineEditor:
             return
         try:
             import termios
+
             termios.tcsetattr(sys.stdin.fileno(), termios.TCSADRAIN, self._terminal)
         except (ImportError, OSError, ValueError):
             pass

@@ -25,11 +25,14 @@ if TYPE_CHECKING:
 CACHED = 128
 
 
-def verdict(judgement: "Judgement") -> str:
+def verdict(judgement: Judgement) -> str:
     """``permissible (proven)`` or ``impermissible as far as searched (bounded)``."""
     word = "permissible" if judgement.permissible else "impermissible"
-    return f"{word} (proven)" if judgement.status == "proven" else \
-        f"{word} as far as searched (bounded)"
+    return (
+        f"{word} (proven)"
+        if judgement.status == "proven"
+        else f"{word} as far as searched (bounded)"
+    )
 
 
 def write(path: str | Path, svg: str) -> None:
@@ -73,10 +76,11 @@ class Pictures:
 
     def plan(self, plan: Plan, title: str = "", notes: list[str] | None = None) -> str:
         """A plan as a timeline."""
-        return plan_svg(self.timeline(plan), self.model.naming,
-                        title or f"plan: {self._actions(plan)}", notes)
+        return plan_svg(
+            self.timeline(plan), self.model.naming, title or f"plan: {self._actions(plan)}", notes
+        )
 
-    def report(self, report: "JudgementReport", title: str = "", words: bool = True) -> str:
+    def report(self, report: JudgementReport, title: str = "", words: bool = True) -> str:
         """A judged plan: its timeline under its verdicts and (``words``) explanations."""
         notes = []
         for judgement in report.judgements if words else []:
@@ -85,8 +89,7 @@ class Pictures:
                 notes.append(judgement.explanation.text)
         return self.plan(report.plan, title, notes)
 
-    def explained(self, explanation: "StepsExplanation", title: str = "",
-                  words: bool = True) -> str:
+    def explained(self, explanation: StepsExplanation, title: str = "", words: bool = True) -> str:
         """A plan with its causal links as arrows from step to step (to the
         final state for the goal), under its explanation in words."""
         naming = self.model.naming
@@ -98,34 +101,48 @@ class Pictures:
                 label += " (goal)"
             elif link.consumer.kind == "event":
                 label += f" (event {link.consumer.event})"
-            arrows.append(Arrow(link.provider.step, target, label,
-                                link.provider.kind == "event"))
+            arrows.append(Arrow(link.provider.step, target, label, link.provider.kind == "event"))
         notes = explanation.lines() if words else []
-        return plan_svg(self.timeline(explanation.plan), naming,
-                        title or f"plan: {self._actions(explanation.plan)}, step by step",
-                        notes, list(dict.fromkeys(arrows)))
+        return plan_svg(
+            self.timeline(explanation.plan),
+            naming,
+            title or f"plan: {self._actions(explanation.plan)}, step by step",
+            notes,
+            list(dict.fromkeys(arrows)),
+        )
 
-    def _side_title(self, role: str, side: "Side") -> str:
-        return f"{role}: {self._actions(side.plan)} \u2014 {side.principle}: " \
-               f"{verdict(side.judgement)}"
+    def _side_title(self, role: str, side: Side) -> str:
+        return (
+            f"{role}: {self._actions(side.plan)} \u2014 {side.principle}: {verdict(side.judgement)}"
+        )
 
-    def answer(self, answer: "Answer", words: bool = True) -> str:
+    def answer(self, answer: Answer, words: bool = True) -> str:
         """An answer: the contrast plan drawn aligned with the plan asked about,
         under the contrastive explanation (``words``)."""
         questions = "; ".join(str(question) for question in answer.questions)
         notes = [answer.explanation] if words else []
         if answer.principle_dropped and words:
-            notes.append(f"The principle {answer.under} was dropped for the contrast: "
-                         f"{answer.dropped_because}")
+            notes.append(
+                f"The principle {answer.under} was dropped for the contrast: "
+                f"{answer.dropped_because}"
+            )
         if answer.conflict and words:
-            notes.append("Conflicting constraints: " + ", ".join(
-                self.model.naming.constraint(c.term) for c in answer.conflict))
+            notes.append(
+                "Conflicting constraints: "
+                + ", ".join(self.model.naming.constraint(c.term) for c in answer.conflict)
+            )
         contrast = answer.contrast
         return contrast_svg(
             self.timeline(answer.original.plan),
             self.timeline(contrast.plan) if contrast is not None else None,
-            self.model.naming, title=questions, notes=notes,
+            self.model.naming,
+            title=questions,
+            notes=notes,
             original_title=self._side_title("plan asked about", answer.original),
-            contrast_title=(self._side_title("contrast plan", contrast) if contrast is not None
-                            else "contrast plan"),
-            missing=f"none ({answer.status}: {answer.proof})")
+            contrast_title=(
+                self._side_title("contrast plan", contrast)
+                if contrast is not None
+                else "contrast plan"
+            ),
+            missing=f"none ({answer.status}: {answer.proof})",
+        )

@@ -5,15 +5,16 @@ from __future__ import annotations
 import json
 import textwrap
 import threading
+from collections.abc import Callable
 from pathlib import Path
-from typing import Callable, TextIO
+from typing import TextIO
 
-from ethasp.questions.contrast import Answer
-from ethasp.questions.dialogue import Dialogue
 from ethasp.errors import InputError
 from ethasp.interfaces.progress import ProgressLine
 from ethasp.interfaces.shortening import shorten_literal
 from ethasp.principles.restriction import restricting_principles
+from ethasp.questions.contrast import Answer
+from ethasp.questions.dialogue import Dialogue
 from ethasp.questions.question import step_question
 
 HELP = """\
@@ -44,30 +45,40 @@ def answer_text(answer: Answer, naming) -> str:
     """An answer in words, then the plans, verdicts and constraints."""
     lines = [answer.explanation]
     original = answer.original
-    lines.append(f"  plan asked about: {naming.actions(original.plan) or '(empty)'} "
-                 f"({original.principle}: {_verdict(original)})")
+    lines.append(
+        f"  plan asked about: {naming.actions(original.plan) or '(empty)'} "
+        f"({original.principle}: {_verdict(original)})"
+    )
     if answer.contrast is not None:
         contrast = answer.contrast
-        lines.append(f"  contrast plan: {naming.actions(contrast.plan) or '(empty)'} "
-                     f"({contrast.principle}: {_verdict(contrast)})")
+        lines.append(
+            f"  contrast plan: {naming.actions(contrast.plan) or '(empty)'} "
+            f"({contrast.principle}: {_verdict(contrast)})"
+        )
     else:
         lines.append(f"  contrast plan: none ({answer.status}: {answer.proof})")
     if answer.principle_dropped:
-        lines.append(f"  the principle {answer.under} was dropped for the contrast: "
-                     f"{answer.dropped_because}; the contrast plan was made without it and "
-                     f"is judged under it")
+        lines.append(
+            f"  the principle {answer.under} was dropped for the contrast: "
+            f"{answer.dropped_because}; the contrast plan was made without it and "
+            f"is judged under it"
+        )
     if answer.note:
         lines.append(f"  note: {answer.note}")
     constraints = ", ".join(naming.constraint(c.term) for c in answer.constraints)
     lines.append(f"  constraints: {constraints}")
     if answer.conflict:
-        lines.append(f"  conflicting constraints: "
-                     f"{', '.join(naming.constraint(c.term) for c in answer.conflict)}")
+        lines.append(
+            f"  conflicting constraints: "
+            f"{', '.join(naming.constraint(c.term) for c in answer.conflict)}"
+        )
     difference = answer.difference
     if difference["original_only"] or difference["contrast_only"]:
-        lines.append(f"  reasons only for the plan asked about: "
-                     f"{_literals(difference['original_only'])}; "
-                     f"only for the contrast: {_literals(difference['contrast_only'])}")
+        lines.append(
+            f"  reasons only for the plan asked about: "
+            f"{_literals(difference['original_only'])}; "
+            f"only for the contrast: {_literals(difference['contrast_only'])}"
+        )
     return "\n".join(lines)
 
 
@@ -79,9 +90,11 @@ def _literals(literals: list[str]) -> str:
 def unmeetable_text(answer: Answer, naming) -> str:
     """What the dialogue says when no plan can meet the questions imposed."""
     conflict = ", ".join(naming.constraint(c.term) for c in answer.conflict)
-    return ("No plan can meet the questions asked so far together (conflicting constraints: "
-            f"{conflict}); they stay imposed, so every later question would have no contrast "
-            "plan either. Type drop to take back the last question.")
+    return (
+        "No plan can meet the questions asked so far together (conflicting constraints: "
+        f"{conflict}); they stay imposed, so every later question would have no contrast "
+        "plan either. Type drop to take back the last question."
+    )
 
 
 def _verdict(side) -> str:
@@ -92,14 +105,20 @@ def _verdict(side) -> str:
 class Prompt:
     """Runs a dialogue from lines of text; saves it when it ends."""
 
-    def __init__(self, dialogue: Dialogue, save_path: Path | None, output: TextIO,
-                 load: Callable[[str], Dialogue], progress: ProgressLine | None = None):
+    def __init__(
+        self,
+        dialogue: Dialogue,
+        save_path: Path | None,
+        output: TextIO,
+        load: Callable[[str], Dialogue],
+        progress: ProgressLine | None = None,
+    ):
         self.dialogue = dialogue
         self.save_path = save_path
         self.output = output
         self.load = load
         self.progress = progress
-        self._saving = threading.Lock()   # an interrupt saves from another thread
+        self._saving = threading.Lock()  # an interrupt saves from another thread
         self._ended = False
 
     def say(self, text: str) -> None:
@@ -112,8 +131,11 @@ class Prompt:
         judgement = report.judgements[0]
         naming = self.dialogue.model.naming
         text = judgement.explanation.text if judgement.explanation else ""
-        self.say(f"current plan: {naming.actions(report.plan) or '(empty)'} "
-                 f"({judgement.principle}: {'permissible' if judgement.permissible else 'impermissible'})")
+        verdict = "permissible" if judgement.permissible else "impermissible"
+        self.say(
+            f"current plan: {naming.actions(report.plan) or '(empty)'} "
+            f"({judgement.principle}: {verdict})"
+        )
         if text:
             self.say(text)
         self.say(f"next contrasts must satisfy: {self.dialogue.under}")
@@ -127,9 +149,17 @@ class Prompt:
         if command in ("quit", "exit"):
             return False
         if command == "help":
-            self.say(HELP.format(principles=textwrap.fill(
-                ", ".join(restricting_principles()), 74, initial_indent=" " * 21,
-                subsequent_indent=" " * 21, break_on_hyphens=False)))
+            self.say(
+                HELP.format(
+                    principles=textwrap.fill(
+                        ", ".join(restricting_principles()),
+                        74,
+                        initial_indent=" " * 21,
+                        subsequent_indent=" " * 21,
+                        break_on_hyphens=False,
+                    )
+                )
+            )
         elif command == "why" and step_question(line) is not None:
             step = step_question(line)
             explanation = self.dialogue.explain_step(step)
@@ -150,19 +180,26 @@ class Prompt:
             if not self.dialogue.steps:
                 self.say("no question asked yet")
             for number, step in enumerate(self.dialogue.steps, start=1):
-                own = [c for c in step.answer.constraints
-                       if c.question == step.answer.constraints[-1].question]
+                own = [
+                    c
+                    for c in step.answer.constraints
+                    if c.question == step.answer.constraints[-1].question
+                ]
                 naming = self.dialogue.model.naming
-                self.say(f"{number}. {step.question} (under {step.under}): "
-                         f"{', '.join(naming.constraint(c.term) for c in own)}")
+                self.say(
+                    f"{number}. {step.question} (under {step.under}): "
+                    f"{', '.join(naming.constraint(c.term) for c in own)}"
+                )
         elif command == "undo":
             step = self.dialogue.undo()
             self.say(f"took back: {step.question}")
             self.show_current()
         elif command == "drop":
             if self.dialogue.unmeetable is None:
-                raise InputError("drop: the last question does not conflict (no question to "
-                                 "drop); undo takes back any last question")
+                raise InputError(
+                    "drop: the last question does not conflict (no question to "
+                    "drop); undo takes back any last question"
+                )
             step = self.dialogue.undo()
             self.say(f"dropped: {step.question} (its constraints are no longer imposed)")
             self.show_current()
@@ -202,7 +239,7 @@ class Prompt:
             self.say(self.save_now())
             raise
         with self._saving:
-            if self._ended:          # saved on an interrupt meanwhile
+            if self._ended:  # saved on an interrupt meanwhile
                 return 130
             self._ended = True
             if self.save_path is not None:
@@ -214,9 +251,12 @@ class Prompt:
         """Save the dialogue as it stands and end it (on an interrupt, from any
         thread); what happened, in words."""
         with self._saving:
-            if self._ended:          # it ended meanwhile, and saved itself
-                return f"dialogue saved to {self.save_path}" if self.save_path \
+            if self._ended:  # it ended meanwhile, and saved itself
+                return (
+                    f"dialogue saved to {self.save_path}"
+                    if self.save_path
                     else "dialogue not saved (--save -)"
+                )
             self._ended = True
             if self.save_path is None:
                 return "dialogue not saved (--save -)"

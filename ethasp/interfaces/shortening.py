@@ -20,10 +20,10 @@ and quotes only.
 
 from __future__ import annotations
 
-from typing import Sequence
+from collections.abc import Sequence
 
-WIDTH = 100          # characters of a line of reasons, when they are shortened
-ONE_LINE = 160       # the reasons of one kind stay on one line up to this length
+WIDTH = 100  # characters of a line of reasons, when they are shortened
+ONE_LINE = 160  # the reasons of one kind stay on one line up to this length
 ELLIPSIS = "\u2026"
 
 
@@ -54,7 +54,7 @@ def _split(text: str, separator: str) -> list[str]:
 
 
 def _cut(text: str, width: int) -> str:
-    return text if len(text) <= width else text[:max(1, width - 1)] + ELLIPSIS
+    return text if len(text) <= width else text[: max(1, width - 1)] + ELLIPSIS
 
 
 def _side(facts: list[str], shared: int, room: int) -> str:
@@ -64,12 +64,12 @@ def _side(facts: list[str], shared: int, room: int) -> str:
     for index, fact in enumerate(facts):
         rest = len(facts) - index - 1
         tail = len(f" & {ELLIPSIS} [{rest} more; {shared} shared]") if rest else 0
-        if shown and len(" & ".join(shown + [fact])) + tail > room:
+        if shown and len(" & ".join([*shown, fact])) + tail > room:
             break
         shown.append(fact)
     rest = len(facts) - len(shown)
     more = f"{rest} more; " if rest else ""
-    return " & ".join(shown + [f"{ELLIPSIS} [{more}{shared} shared]"])
+    return " & ".join([*shown, f"{ELLIPSIS} [{more}{shared} shared]"])
 
 
 def _geq(literal: str, width: int) -> str | None:
@@ -77,7 +77,7 @@ def _geq(literal: str, width: int) -> str | None:
     sides differ, the facts both share counted, not listed (None if the
     literal is no GEq or its sides share nothing)."""
     negation = "not " if literal.startswith("not ") else ""
-    body = literal[len(negation):]
+    body = literal[len(negation) :]
     if not (body.startswith("GEq(") and body.endswith(")")):
         return None
     sides = _split(body[4:-1], ", ")
@@ -98,7 +98,7 @@ def shorten_literal(literal: str, width: int = WIDTH) -> str:
     if len(literal) <= width:
         return literal
     shorter = _geq(literal, width)
-    if shorter is not None:      # a little over is better than cutting its counts off
+    if shorter is not None:  # a little over is better than cutting its counts off
         return _cut(shorter, width + width // 5)
     return _cut(literal, width)
 
@@ -120,8 +120,9 @@ def shorten_reason(reason: Sequence[str], width: int = WIDTH) -> str:
     return "{" + ", ".join(shown) + "}"
 
 
-def reasons_lines(kind: str, reasons: Sequence[Sequence[str]], truncated: bool,
-                  width: int = WIDTH) -> tuple[list[str], bool]:
+def reasons_lines(
+    kind: str, reasons: Sequence[Sequence[str]], truncated: bool, width: int = WIDTH
+) -> tuple[list[str], bool]:
     """The lines of one kind of reasons (``necessary``, ``sufficient``) and
     whether anything was shortened."""
     more = " (limit reached; more may exist)" if truncated else ""
@@ -132,6 +133,7 @@ def reasons_lines(kind: str, reasons: Sequence[Sequence[str]], truncated: bool,
     count = f"{len(reasons)}{'; limit reached, more may exist' if truncated else ''}"
     lines = [f"  {kind} reasons ({count}):"]
     lines += [f"    {shorten_reason(reason, width - 4)}" for reason in reasons]
-    shortened = any(shorten_reason(reason, width - 4) != "{" + ", ".join(reason) + "}"
-                    for reason in reasons)
+    shortened = any(
+        shorten_reason(reason, width - 4) != "{" + ", ".join(reason) + "}" for reason in reasons
+    )
     return lines, shortened

@@ -18,24 +18,25 @@ external fonts or links), so it can go into papers and reports.
 
 from __future__ import annotations
 
+import itertools
 import re
 import textwrap
 from dataclasses import dataclass
 from xml.sax.saxutils import escape, quoteattr
 
-from ethasp.planning.naming import Naming
+from ethasp.planning.naming import ASP_NAMING, Naming
 from ethasp.planning.timeline import Fact, Timeline, moral
 
 FONT = "DejaVu Sans, Verdana, Arial, sans-serif"
 MARGIN = 20
-COLUMN = 216          # width of a column's boxes
-GAP = 22              # between columns
-HEADER = 22           # the step numbers above the columns
-ACTION = 46           # height of an action box
-FACT = 40             # height of a fact box
-SPACE = 8             # between boxes
-LINE = 18             # height of a line of text
-CHAR = 0.6            # average glyph width as a share of the font size
+COLUMN = 216  # width of a column's boxes
+GAP = 22  # between columns
+HEADER = 22  # the step numbers above the columns
+ACTION = 46  # height of an action box
+FACT = 40  # height of a fact box
+SPACE = 8  # between boxes
+LINE = 18  # height of a line of text
+CHAR = 0.6  # average glyph width as a share of the font size
 
 COLOURS = {  # moral value: (fill, stroke, text)
     "good": ("#dcf3e4", "#1e7b3c", "#14532d"),
@@ -50,7 +51,7 @@ PART = "#7c3aed"
 def _fit(text: str, size: float, width: float) -> str:
     """Text cut to fit ``width`` pixels at font ``size`` (with an ellipsis)."""
     room = max(3, int(width / (size * CHAR)))
-    return text if len(text) <= room else text[:room - 1] + "\u2026"
+    return text if len(text) <= room else text[: room - 1] + "\u2026"
 
 
 def _lines(text: str, size: float, width: float, most: int) -> list[str]:
@@ -67,19 +68,29 @@ def _lines(text: str, size: float, width: float, most: int) -> list[str]:
     while start < len(text):
         starts.append(start)
         fitting = [end for end in breaks if start < end and len(text[start:end].rstrip()) <= room]
-        start = fitting[-1] if fitting else start + room     # a word longer than a line
+        start = fitting[-1] if fitting else start + room  # a word longer than a line
     starts.append(len(text))
-    lines = [text[one:two].rstrip() for one, two in zip(starts, starts[1:])]
+    lines = [text[one:two].rstrip() for one, two in itertools.pairwise(starts)]
     if len(lines) > most:
-        lines = lines[:most - 1] + [_fit(text[starts[most - 1]:], size, width)]
+        lines = [*lines[: most - 1], _fit(text[starts[most - 1] :], size, width)]
     return lines
 
 
-def _text(x: float, y: float, text: str, size: float = 12, colour: str = INK,
-          weight: str = "normal", anchor: str = "start", style: str = "normal") -> str:
-    return (f'<text x="{x:.0f}" y="{y:.0f}" font-size="{size}" fill="{colour}" '
-            f'font-weight="{weight}" font-style="{style}" text-anchor="{anchor}">'
-            f"{escape(text)}</text>")
+def _text(
+    x: float,
+    y: float,
+    text: str,
+    size: float = 12,
+    colour: str = INK,
+    weight: str = "normal",
+    anchor: str = "start",
+    style: str = "normal",
+) -> str:
+    return (
+        f'<text x="{x:.0f}" y="{y:.0f}" font-size="{size}" fill="{colour}" '
+        f'font-weight="{weight}" font-style="{style}" text-anchor="{anchor}">'
+        f"{escape(text)}</text>"
+    )
 
 
 def _utility(utility: int) -> str:
@@ -100,21 +111,36 @@ class _Canvas:
 
     def svg(self, title: str) -> str:
         width, height = self.width + MARGIN, self.height + MARGIN
-        return (f'<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0f}" '
-                f'height="{height:.0f}" viewBox="0 0 {width:.0f} {height:.0f}" '
-                f'font-family="{FONT}" role="img" aria-label={quoteattr(title)}>\n'
-                f"<title>{escape(title)}</title>\n"
-                f'<rect x="0" y="0" width="{width:.0f}" height="{height:.0f}" fill="#ffffff"/>\n'
-                + "\n".join(self.parts) + "\n</svg>\n")
+        return (
+            f'<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0f}" '
+            f'height="{height:.0f}" viewBox="0 0 {width:.0f} {height:.0f}" '
+            f'font-family="{FONT}" role="img" aria-label={quoteattr(title)}>\n'
+            f"<title>{escape(title)}</title>\n"
+            f'<rect x="0" y="0" width="{width:.0f}" height="{height:.0f}" fill="#ffffff"/>\n'
+            + "\n".join(self.parts)
+            + "\n</svg>\n"
+        )
 
 
-NAME_LINES = 4        # lines of an action's or a fact's name in its box
-LABEL_LINES = 2       # lines of its label
+NAME_LINES = 4  # lines of an action's or a fact's name in its box
+LABEL_LINES = 2  # lines of its label
 
 
-def _box(canvas: _Canvas, x: float, y: float, height: float, utility: int, first: str,
-         second: str, tip: str, caused: bool = False, dashed: bool = False,
-         marked: str = "", attributes: str = "", bold: bool = False) -> float:
+def _box(
+    canvas: _Canvas,
+    x: float,
+    y: float,
+    height: float,
+    utility: int,
+    first: str,
+    second: str,
+    tip: str,
+    caused: bool = False,
+    dashed: bool = False,
+    marked: str = "",
+    attributes: str = "",
+    bold: bool = False,
+) -> float:
     """A box with a name (``first``, wrapped) and a label (``second``); it is
     ``height`` tall, more for names or labels of several lines.  Returns the
     height drawn."""
@@ -131,29 +157,50 @@ def _box(canvas: _Canvas, x: float, y: float, height: float, utility: int, first
     height += (len(names) - 1 + max(0, len(labels) - 1)) * (LINE - 3)
     canvas.add(f"<g{attributes}>")
     canvas.add(f"<title>{escape(tip)}</title>")
-    canvas.add(f'<rect x="{x:.0f}" y="{y:.0f}" width="{COLUMN}" height="{height}" rx="6" '
-               f'fill="{fill}" stroke="{border}" stroke-width="{2.5 if caused else 1.2}"{extra}/>')
+    canvas.add(
+        f'<rect x="{x:.0f}" y="{y:.0f}" width="{COLUMN}" height="{height}" rx="6" '
+        f'fill="{fill}" stroke="{border}" stroke-width="{2.5 if caused else 1.2}"{extra}/>'
+    )
     for index, name in enumerate(names):
-        canvas.add(_text(x + 8, y + 17 + index * (LINE - 3), name, size, ink,
-                         "bold" if bold else "normal"))
+        canvas.add(
+            _text(x + 8, y + 17 + index * (LINE - 3), name, size, ink, "bold" if bold else "normal")
+        )
     if value:
         canvas.add(_text(right, y + 17, value, 12, ink, "bold", "end"))
     if caused:
         left = right - value_width - 44
-        canvas.add(f'<rect x="{left:.0f}" y="{y + 6:.0f}" width="44" height="15" rx="7" '
-                   f'fill="{INK}"/>')
+        canvas.add(
+            f'<rect x="{left:.0f}" y="{y + 6:.0f}" width="44" height="15" rx="7" fill="{INK}"/>'
+        )
         canvas.add(_text(left + 22, y + 17, "caused", 10, "#ffffff", "bold", "middle"))
     for index, label in enumerate(labels):
-        canvas.add(_text(x + 8, y + height - 9 - (len(labels) - 1 - index) * (LINE - 3), label,
-                         11, MUTED, style="italic"))
+        canvas.add(
+            _text(
+                x + 8,
+                y + height - 9 - (len(labels) - 1 - index) * (LINE - 3),
+                label,
+                11,
+                MUTED,
+                style="italic",
+            )
+        )
     if marked:
         canvas.add(_text(x + COLUMN + 4, y + 17, marked, 13, PART, "bold"))
     canvas.add("</g>")
     return height
 
 
-def _fact_box(canvas: _Canvas, timeline: Timeline, naming: Naming, x: float, y: float,
-              fact: Fact, caused: bool, dashed: bool = False, marked: str = "") -> float:
+def _fact_box(
+    canvas: _Canvas,
+    timeline: Timeline,
+    naming: Naming,
+    x: float,
+    y: float,
+    fact: Fact,
+    caused: bool,
+    dashed: bool = False,
+    marked: str = "",
+) -> float:
     valuation = timeline.valuation
     utility = valuation.fact_utility(fact)
     label = valuation.fact_label(fact)
@@ -162,8 +209,9 @@ def _fact_box(canvas: _Canvas, timeline: Timeline, naming: Naming, x: float, y: 
         tip += "; caused by the plan"
     if dashed:
         tip += "; set again (no change)"
-    height = _box(canvas, x, y, FACT, utility, fact.shown(naming), label, tip, caused, dashed,
-                  marked)
+    height = _box(
+        canvas, x, y, FACT, utility, fact.shown(naming), label, tip, caused, dashed, marked
+    )
     return y + height + SPACE
 
 
@@ -181,8 +229,14 @@ def _column_x(index: int) -> float:
     return MARGIN + index * (COLUMN + GAP)
 
 
-def _draw_lane(canvas: _Canvas, lane: _Lane, naming: Naming, end_index: int,
-               faded_until: int = 0, other_final: set[Fact] | None = None) -> float:
+def _draw_lane(
+    canvas: _Canvas,
+    lane: _Lane,
+    naming: Naming,
+    end_index: int,
+    faded_until: int = 0,
+    other_final: set[Fact] | None = None,
+) -> float:
     """Draw a timeline; return the lowest y used.  Steps before ``faded_until``
     are faded; final facts not in ``other_final`` (when given) are marked."""
     timeline, top = lane.timeline, lane.top
@@ -190,8 +244,10 @@ def _draw_lane(canvas: _Canvas, lane: _Lane, naming: Naming, end_index: int,
     boxes_top = top + HEADER
     # The time axis behind the step numbers.
     axis_end = _column_x(end_index) + COLUMN
-    canvas.add(f'<line x1="{MARGIN}" y1="{top + 6:.0f}" x2="{axis_end:.0f}" y2="{top + 6:.0f}" '
-               f'stroke="#c8ccd2" stroke-width="2"/>')
+    canvas.add(
+        f'<line x1="{MARGIN}" y1="{top + 6:.0f}" x2="{axis_end:.0f}" y2="{top + 6:.0f}" '
+        f'stroke="#c8ccd2" stroke-width="2"/>'
+    )
     lowest = boxes_top
     # Initial state: the variables the plan changes.
     x = _column_x(0)
@@ -213,19 +269,32 @@ def _draw_lane(canvas: _Canvas, lane: _Lane, naming: Naming, end_index: int,
         utility = valuation.action_utility(column.action)
         shown = naming.action(column.action)
         label = valuation.action_label(column.action)
-        tip = (f"step {column.step}: {shown}: {label or 'no label'}; utility {utility} "
-               f"({moral(utility)})")
-        attributes = (f' class="action" data-lane={quoteattr(lane.name)} '
-                      f'data-step="{column.step}" data-action={quoteattr(str(column.action))} '
-                      f'data-shown={quoteattr(shown)}')
-        height = _box(canvas, x, boxes_top, ACTION, utility, shown, label, tip,
-                      attributes=attributes, bold=True)
+        tip = (
+            f"step {column.step}: {shown}: {label or 'no label'}; utility {utility} "
+            f"({moral(utility)})"
+        )
+        attributes = (
+            f' class="action" data-lane={quoteattr(lane.name)} '
+            f'data-step="{column.step}" data-action={quoteattr(str(column.action))} '
+            f"data-shown={quoteattr(shown)}"
+        )
+        height = _box(
+            canvas,
+            x,
+            boxes_top,
+            ACTION,
+            utility,
+            shown,
+            label,
+            tip,
+            attributes=attributes,
+            bold=True,
+        )
         y = boxes_top + height + SPACE
         for fact in column.changes:
             y = _fact_box(canvas, timeline, naming, x, y, fact, fact in column.causing)
         for fact in column.kept:
-            y = _fact_box(canvas, timeline, naming, x, y, fact, fact in column.causing,
-                          dashed=True)
+            y = _fact_box(canvas, timeline, naming, x, y, fact, fact in column.causing, dashed=True)
         if faded:
             canvas.add("</g>")
         lowest = max(lowest, y)
@@ -236,18 +305,25 @@ def _draw_lane(canvas: _Canvas, lane: _Lane, naming: Naming, end_index: int,
     wanted = {fact.variable for fact in valuation.goal}
     y = boxes_top
     for fact in timeline.final:
-        if (fact.variable in moved or fact.variable in wanted
-                or valuation.fact_utility(fact) != 0):
+        if fact.variable in moved or fact.variable in wanted or valuation.fact_utility(fact) != 0:
             marked = "\u2260" if other_final is not None and fact not in other_final else ""
-            y = _fact_box(canvas, timeline, naming, x, y, fact, fact in timeline.caused,
-                          marked=marked)
+            y = _fact_box(
+                canvas, timeline, naming, x, y, fact, fact in timeline.caused, marked=marked
+            )
     lowest = max(lowest, y)
     canvas.grow(axis_end + (16 if other_final is not None else 0), lowest)
     return lowest
 
 
-def _heading(canvas: _Canvas, y: float, lines: list, width: float, size: float = 12,
-             colour: str = INK, weight: str = "normal") -> float:
+def _heading(
+    canvas: _Canvas,
+    y: float,
+    lines: list,
+    width: float,
+    size: float = 12,
+    colour: str = INK,
+    weight: str = "normal",
+) -> float:
     """Wrapped lines of text from ``y``; return the y below them.  A line given
     as ``(text, True)`` is emphasised (dark and bold)."""
     room = max(40, int(width / (size * CHAR)))
@@ -256,8 +332,11 @@ def _heading(canvas: _Canvas, y: float, lines: list, width: float, size: float =
         text = line[0] if isinstance(line, tuple) else line
         for piece in textwrap.wrap(text, room) or [""]:
             y += size + 6
-            canvas.add(_text(MARGIN, y, piece, size, INK if strong else colour,
-                             "bold" if strong else weight))
+            canvas.add(
+                _text(
+                    MARGIN, y, piece, size, INK if strong else colour, "bold" if strong else weight
+                )
+            )
     return y
 
 
@@ -266,16 +345,20 @@ def _legend(canvas: _Canvas, y: float) -> float:
     y += 14
     for name in ("good", "bad", "neutral"):
         fill, stroke, _ = COLOURS[name]
-        canvas.add(f'<rect x="{x}" y="{y:.0f}" width="16" height="12" rx="3" fill="{fill}" '
-                   f'stroke="{stroke}"/>')
+        canvas.add(
+            f'<rect x="{x}" y="{y:.0f}" width="16" height="12" rx="3" fill="{fill}" '
+            f'stroke="{stroke}"/>'
+        )
         canvas.add(_text(x + 22, y + 11, name, 11, MUTED))
         x += 82
     canvas.add(f'<rect x="{x}" y="{y:.0f}" width="44" height="14" rx="7" fill="{INK}"/>')
     canvas.add(_text(x + 22, y + 11, "caused", 10, "#ffffff", "bold", "middle"))
     canvas.add(_text(x + 52, y + 11, "a fact the plan causes", 11, MUTED))
     x += 220
-    canvas.add(f'<rect x="{x}" y="{y:.0f}" width="16" height="12" rx="3" fill="#ffffff" '
-               f'stroke="#8a8a8a" stroke-dasharray="4 2"/>')
+    canvas.add(
+        f'<rect x="{x}" y="{y:.0f}" width="16" height="12" rx="3" fill="#ffffff" '
+        f'stroke="#8a8a8a" stroke-dasharray="4 2"/>'
+    )
     canvas.add(_text(x + 22, y + 11, "set again, unchanged", 11, MUTED))
     canvas.grow(x + 160, y + 16)
     return y + 16
@@ -299,19 +382,23 @@ class Arrow:
 
 
 ARROW = "#2563eb"
-ARROW_LEVEL = 18      # height between stacked arrows
+ARROW_LEVEL = 18  # height between stacked arrows
 
 
 def _arrow_levels(arrows: list[Arrow], end_index: int) -> list[tuple[Arrow, int, int, int]]:
     """Each arrow with its columns and a level, so that arrows over the same
     columns are stacked (a greedy interval colouring)."""
     placed: list[tuple[Arrow, int, int, int]] = []
-    spans = sorted(((arrow, arrow.source, end_index if arrow.target is None else arrow.target)
-                    for arrow in arrows), key=lambda item: (item[2] - item[1], item[1]))
+    spans = sorted(
+        (
+            (arrow, arrow.source, end_index if arrow.target is None else arrow.target)
+            for arrow in arrows
+        ),
+        key=lambda item: (item[2] - item[1], item[1]),
+    )
     for arrow, start, end in spans:
         level = 0
-        while any(level == other and not (end <= a or start >= b)
-                  for _, a, b, other in placed):
+        while any(level == other and not (end <= a or start >= b) for _, a, b, other in placed):
             level += 1
         placed.append((arrow, start, end, level))
     return placed
@@ -319,28 +406,36 @@ def _arrow_levels(arrows: list[Arrow], end_index: int) -> list[tuple[Arrow, int,
 
 def _draw_arrows(canvas: _Canvas, arrows: list[Arrow], end_index: int, bottom: float) -> None:
     """Arrows as arcs whose feet stand on ``bottom`` (above the step numbers)."""
-    canvas.add(f'<defs><marker id="arrowhead" markerWidth="8" markerHeight="8" refX="7" '
-               f'refY="4" orient="auto"><path d="M0,0 L8,4 L0,8 z" fill="{ARROW}"/></marker>'
-               "</defs>")
+    canvas.add(
+        f'<defs><marker id="arrowhead" markerWidth="8" markerHeight="8" refX="7" '
+        f'refY="4" orient="auto"><path d="M0,0 L8,4 L0,8 z" fill="{ARROW}"/></marker>'
+        "</defs>"
+    )
     for arrow, start, end, level in _arrow_levels(arrows, end_index):
         x1 = _column_x(start) + COLUMN / 2 + 12
         x2 = _column_x(end) + COLUMN / 2 - 12
         apex = bottom - 16 - level * ARROW_LEVEL
         dash = ' stroke-dasharray="5 3"' if arrow.event else ""
-        canvas.add(f"<g><title>{escape(arrow.label)}</title>"
-                   f'<path d="M{x1:.0f},{bottom:.0f} C{x1:.0f},{apex:.0f} {x2:.0f},{apex:.0f} '
-                   f'{x2:.0f},{bottom:.0f}" fill="none" stroke="{ARROW}" stroke-width="1.6"'
-                   f'{dash} marker-end="url(#arrowhead)"/>')
+        canvas.add(
+            f"<g><title>{escape(arrow.label)}</title>"
+            f'<path d="M{x1:.0f},{bottom:.0f} C{x1:.0f},{apex:.0f} {x2:.0f},{apex:.0f} '
+            f'{x2:.0f},{bottom:.0f}" fill="none" stroke="{ARROW}" stroke-width="1.6"'
+            f'{dash} marker-end="url(#arrowhead)"/>'
+        )
         middle = (x1 + x2) / 2
         room = max(x2 - x1 - 8, 60)
-        top = bottom - 0.75 * (bottom - apex)      # the highest point of the curve
-        canvas.add(_text(middle, top - 3, _fit(arrow.label, 10, room), 10, ARROW, "bold",
-                         "middle"))
+        top = bottom - 0.75 * (bottom - apex)  # the highest point of the curve
+        canvas.add(_text(middle, top - 3, _fit(arrow.label, 10, room), 10, ARROW, "bold", "middle"))
         canvas.add("</g>")
 
 
-def plan_svg(timeline: Timeline, naming: Naming = Naming(), title: str = "",
-             notes: list | None = None, arrows: list[Arrow] | None = None) -> str:
+def plan_svg(
+    timeline: Timeline,
+    naming: Naming = ASP_NAMING,
+    title: str = "",
+    notes: list | None = None,
+    arrows: list[Arrow] | None = None,
+) -> str:
     """A plan as a timeline; ``title`` and ``notes`` (e.g. verdicts) above it
     (a note ``(text, True)`` is emphasised); ``arrows`` (causal links) drawn
     as arcs above the steps."""
@@ -364,7 +459,7 @@ def plan_svg(timeline: Timeline, naming: Naming = Naming(), title: str = "",
 def parting_step(first: Timeline, second: Timeline) -> int:
     """The first step at which two plans differ (1-based; one past the shorter
     plan when it is a prefix of the other; 0 when the plans are equal)."""
-    for index, (one, other) in enumerate(zip(first.plan, second.plan), start=1):
+    for index, (one, other) in enumerate(zip(first.plan, second.plan, strict=False), start=1):
         if one != other:
             return index
     if len(first.plan) == len(second.plan):
@@ -372,10 +467,16 @@ def parting_step(first: Timeline, second: Timeline) -> int:
     return min(len(first.plan), len(second.plan)) + 1
 
 
-def contrast_svg(original: Timeline, contrast: Timeline | None, naming: Naming = Naming(),
-                 title: str = "", notes: list | None = None,
-                 original_title: str = "", contrast_title: str = "",
-                 missing: str = "no contrast plan") -> str:
+def contrast_svg(
+    original: Timeline,
+    contrast: Timeline | None,
+    naming: Naming = ASP_NAMING,
+    title: str = "",
+    notes: list | None = None,
+    original_title: str = "",
+    contrast_title: str = "",
+    missing: str = "no contrast plan",
+) -> str:
     """The plan asked about above its contrast plan, their steps aligned.
 
     Steps before the plans part are faded, a line marks where they part, and
@@ -393,28 +494,46 @@ def contrast_svg(original: Timeline, contrast: Timeline | None, naming: Naming =
     first_final = set(original.final)
     second_final = set(contrast.final) if contrast else set()
     lanes_top = y + 8
-    y = _heading(canvas, lanes_top + (LINE if part else 0), [original_title or "plan asked about"],
-                 width, 13, weight="bold")
+    y = _heading(
+        canvas,
+        lanes_top + (LINE if part else 0),
+        [original_title or "plan asked about"],
+        width,
+        13,
+        weight="bold",
+    )
     spans = [(lanes_top, lanes_top + LINE - 2)]
-    lowest = _draw_lane(canvas, _Lane(original, "original", y + 16), naming, end_index,
-                        faded_until=part, other_final=second_final if contrast else None)
+    lowest = _draw_lane(
+        canvas,
+        _Lane(original, "original", y + 16),
+        naming,
+        end_index,
+        faded_until=part,
+        other_final=second_final if contrast else None,
+    )
     spans.append((y + 10, lowest))
-    y = _heading(canvas, lowest + 12, [contrast_title or "contrast plan"], width, 13,
-                 weight="bold")
+    y = _heading(canvas, lowest + 12, [contrast_title or "contrast plan"], width, 13, weight="bold")
     if contrast is None:
         y = _heading(canvas, y, [missing], width, 12, MUTED)
         lowest = y
     else:
-        lowest = _draw_lane(canvas, _Lane(contrast, "contrast", y + 16), naming, end_index,
-                            faded_until=part, other_final=first_final)
+        lowest = _draw_lane(
+            canvas,
+            _Lane(contrast, "contrast", y + 16),
+            naming,
+            end_index,
+            faded_until=part,
+            other_final=first_final,
+        )
         spans.append((y + 10, lowest))
     if part:
         x = _column_x(part) - GAP / 2
         for top, bottom in spans:
-            canvas.add(f'<line x1="{x:.0f}" y1="{top:.0f}" x2="{x:.0f}" y2="{bottom:.0f}" '
-                       f'stroke="{PART}" stroke-width="2" stroke-dasharray="6 4"/>')
-        canvas.add(_text(x + 6, lanes_top + 12, f"the plans part at step {part}", 11, PART,
-                         "bold"))
+            canvas.add(
+                f'<line x1="{x:.0f}" y1="{top:.0f}" x2="{x:.0f}" y2="{bottom:.0f}" '
+                f'stroke="{PART}" stroke-width="2" stroke-dasharray="6 4"/>'
+            )
+        canvas.add(_text(x + 6, lanes_top + 12, f"the plans part at step {part}", 11, PART, "bold"))
     elif contrast is not None:
         canvas.add(_text(MARGIN, lowest + 14, "the two plans are the same", 11, PART, "bold"))
         lowest += 18

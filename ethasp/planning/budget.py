@@ -15,8 +15,8 @@ from __future__ import annotations
 
 import threading
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 # The default time limit of a command line search, in seconds (``ethasp ...
 # --time-limit 0`` for none; the Python API has no limit unless given one).
@@ -48,15 +48,19 @@ class Progress:
         if self.bound is not None:
             parts.append(f"bound {self.bound}")
         detail = ", ".join(parts)
-        return f"{self.task}: {detail} ({self.elapsed:.1f} s)" if detail else \
-            f"{self.task} ({self.elapsed:.1f} s)"
+        return (
+            f"{self.task}: {detail} ({self.elapsed:.1f} s)"
+            if detail
+            else f"{self.task} ({self.elapsed:.1f} s)"
+        )
 
 
 class Budget:
     """A time limit, a progress callback and a cancellation flag for searches."""
 
-    def __init__(self, time_limit: float | None = None,
-                 on_progress: Callable[[Progress], None] | None = None):
+    def __init__(
+        self, time_limit: float | None = None, on_progress: Callable[[Progress], None] | None = None
+    ):
         if time_limit is not None and not time_limit >= 0:
             raise ValueError("a time limit must be 0 seconds or more (None for none)")
         self.started = time.monotonic()
@@ -64,10 +68,10 @@ class Budget:
         self.deadline = None if time_limit is None else self.started + time_limit
         self.on_progress = on_progress
         self._cancelled = threading.Event()
-        self._reason: list[str] = []     # why it was cancelled, if a reason was given
+        self._reason: list[str] = []  # why it was cancelled, if a reason was given
         self._share = False
 
-    def share(self, seconds: float) -> "Budget":
+    def share(self, seconds: float) -> Budget:
         """A part of this budget: at most ``seconds`` more, cancelled with it,
         reporting to the same callback."""
         part = Budget(None, self.on_progress)
@@ -80,7 +84,7 @@ class Budget:
         part._share = True
         return part
 
-    def until(self, condition: Callable[[], bool]) -> "Budget":
+    def until(self, condition: Callable[[], bool]) -> Budget:
         """This budget, also expired as soon as ``condition()`` holds (for a
         search that another one may make pointless; the condition is polled
         while the search runs)."""
@@ -127,8 +131,13 @@ class Budget:
 
     # -- progress -----------------------------------------------------------------
 
-    def report(self, task: str, horizon: int | None = None, best: int | None = None,
-               bound: int | None = None) -> None:
+    def report(
+        self,
+        task: str,
+        horizon: int | None = None,
+        best: int | None = None,
+        bound: int | None = None,
+    ) -> None:
         """Tell the progress callback (if any) how a search goes."""
         if self.on_progress is not None:
             self.on_progress(Progress(task, horizon, best, bound, self.elapsed()))

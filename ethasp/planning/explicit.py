@@ -36,7 +36,7 @@ CONFIGURATION_LIMIT = 400_000
 # Configurations expanded between two checks of the budget.
 CHECK_EVERY = 256
 
-Configuration = tuple[int, int]     # (state bits, time up to the last event)
+Configuration = tuple[int, int]  # (state bits, time up to the last event)
 
 
 @dataclass(frozen=True)
@@ -47,8 +47,9 @@ class GroundEvent:
     name: clingo.Symbol
     steps: tuple[int, ...]
     pre: tuple[tuple[clingo.Symbol, bool], ...]
-    effects: tuple[tuple[clingo.Symbol, tuple[tuple[clingo.Symbol, bool], ...],
-                         clingo.Symbol, bool], ...]
+    effects: tuple[
+        tuple[clingo.Symbol, tuple[tuple[clingo.Symbol, bool], ...], clingo.Symbol, bool], ...
+    ]
 
 
 class Events:
@@ -72,8 +73,10 @@ class Events:
         self.due: dict[int, list] = {}
         for event in events:
             pre = masks(event.pre)
-            effects = [(rank[key], masks(condition), 1 << index[variable], value)
-                       for key, condition, variable, value in event.effects]
+            effects = [
+                (rank[key], masks(condition), 1 << index[variable], value)
+                for key, condition, variable, value in event.effects
+            ]
             for step in event.steps:
                 self.due.setdefault(step, []).append((pre, effects))
         self.last = max(self.due, default=0)
@@ -88,9 +91,9 @@ class Events:
             if state & pos != pos or state & neg:
                 continue
             for key, (cpos, cneg), bit, value in effects:
-                if state & cpos == cpos and not state & cneg:
-                    if bit not in winners or (key, value) > winners[bit]:
-                        winners[bit] = (key, value)
+                held = state & cpos == cpos and not state & cneg
+                if held and (bit not in winners or (key, value) > winners[bit]):
+                    winners[bit] = (key, value)
         for bit, (_, value) in winners.items():
             state = state | bit if value else state & ~bit
         return state

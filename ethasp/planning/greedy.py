@@ -48,8 +48,9 @@ CHECK_EVERY = 64
 BOOST = 1000
 
 
-def greedy_plan(task: Task, budget: Budget | None = None,
-                state_limit: int = STATE_LIMIT) -> tuple[list[clingo.Symbol] | None, str]:
+def greedy_plan(
+    task: Task, budget: Budget | None = None, state_limit: int = STATE_LIMIT
+) -> tuple[list[clingo.Symbol] | None, str]:
     """A plan by lazy greedy best-first search (helpful actions first), or None
     and why the search stopped."""
     position = {id(s): i for i, s in enumerate(task.steps)}
@@ -62,7 +63,7 @@ def greedy_plan(task: Task, budget: Budget | None = None,
     turn = 0
     expansions = 0
     best = None
-    boost = 0           # turns the helpful queue gets in a row (after progress)
+    boost = 0  # turns the helpful queue gets in a row (after progress)
     while queues[0] or queues[1]:
         if boost and queues[1]:
             turn, boost = 1, boost - 1
@@ -81,7 +82,7 @@ def greedy_plan(task: Task, budget: Budget | None = None,
             return None, budget.why_stopped()
         h, helpful = task.heuristic(full)
         if h is None:
-            continue                      # a dead end, even relaxed
+            continue  # a dead end, even relaxed
         if best is None or h < best:
             best, boost = h, boost + BOOST
         for step in task.applicable(full):
@@ -124,8 +125,13 @@ class Greedy(Layers):
             from ethasp.planning import explicit
 
             task = Task(self.model)
-            explicit.search(task, explicit.Events(self.model.events, task.index), self._budget,
-                            publish, self._stop.is_set)
+            explicit.search(
+                task,
+                explicit.Events(self.model.events, task.index),
+                self._budget,
+                publish,
+                self._stop.is_set,
+            )
             return
         plan, why = greedy_plan(Task(self.model), self._budget)
         if plan is None and why == EXHAUSTED:
@@ -134,4 +140,3 @@ class Greedy(Layers):
             publish(stopped=f"greedy search: {why}")
         else:
             publish(plan=tuple(plan))
-

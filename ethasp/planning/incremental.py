@@ -29,11 +29,10 @@ Each part is grounded once per parameter value, never again.
 from __future__ import annotations
 
 import functools
-
 import re
 from collections import defaultdict
+from collections.abc import Callable
 from pathlib import Path
-from typing import Callable
 
 import clingo
 from clingo import ast
@@ -60,10 +59,12 @@ def part_name(kind: str, input_name: str | None = None) -> str:
 def _binding(location, variable: str, parameter: str):
     """The body literal ``Variable = parameter``: it binds a time or input
     variable to the part's parameter (cheaper than rewriting the statement)."""
-    guard = ast.Guard(ast.ComparisonOperator.Equal,
-                      ast.SymbolicTerm(location, clingo.Function(parameter)))
-    return ast.Literal(location, ast.Sign.NoSign,
-                       ast.Comparison(ast.Variable(location, variable), [guard]))
+    guard = ast.Guard(
+        ast.ComparisonOperator.Equal, ast.SymbolicTerm(location, clingo.Function(parameter))
+    )
+    return ast.Literal(
+        location, ast.Sign.NoSign, ast.Comparison(ast.Variable(location, variable), [guard])
+    )
 
 
 # A positive body literal name(X) with a variable X, as clingo prints it.
@@ -87,8 +88,15 @@ def _switch_literal(location, switch: clingo.Symbol):
 _PLACED = (ast.ASTType.Rule, ast.ASTType.Minimize, ast.ASTType.Heuristic)
 
 
-def _place(statement, step_part: str, switch: clingo.Symbol | None, where: str,
-           base_part: str = "base", kind=None, check_part: str = CHECK):
+def _place(
+    statement,
+    step_part: str,
+    switch: clingo.Symbol | None,
+    where: str,
+    base_part: str = "base",
+    kind=None,
+    check_part: str = CHECK,
+):
     """The part of a statement (of type ``kind``, if known), the part's
     parameters, and the statement to add there."""
     if (statement.ast_type if kind is None else kind) not in _PLACED:
@@ -110,7 +118,7 @@ def _place(statement, step_part: str, switch: clingo.Symbol | None, where: str,
             input_name = name
             mapping[variable] = VALUE
     if not mapping and switch is None:
-        return base_part, (), statement      # nothing to rewrite
+        return base_part, (), statement  # nothing to rewrite
     if drop is not None:
         del body[drop]
     for variable, parameter in mapping.items():
@@ -127,10 +135,16 @@ def _place(statement, step_part: str, switch: clingo.Symbol | None, where: str,
     return part_name(time_kind, input_name), (VALUE, TIME), rewritten
 
 
-def add_encoding(builder: ast.ProgramBuilder, path: Path | None, step_part: str = STEP,
-                 switch: clingo.Symbol | None = None, text: str | None = None,
-                 on_message: Callable[[clingo.MessageCode, str], None] | None = None,
-                 base_part: str = "base", check_part: str = CHECK) -> dict[str, tuple[str, ...]]:
+def add_encoding(
+    builder: ast.ProgramBuilder,
+    path: Path | None,
+    step_part: str = STEP,
+    switch: clingo.Symbol | None = None,
+    text: str | None = None,
+    on_message: Callable[[clingo.MessageCode, str], None] | None = None,
+    base_part: str = "base",
+    check_part: str = CHECK,
+) -> dict[str, tuple[str, ...]]:
     """Add an encoding (a file, or ``text``) to a program, split into parts.
 
     Rules without markers go into ``base_part``, rules about the horizon into
@@ -152,16 +166,23 @@ def add_encoding(builder: ast.ProgramBuilder, path: Path | None, step_part: str 
     return dict(params)
 
 
-@functools.lru_cache(maxsize=None)
-def _split_file(path: str, step_part: str, switch: clingo.Symbol | None, base_part: str,
-                check_part: str) -> tuple[dict[str, list], dict[str, tuple[str, ...]]]:
+@functools.cache
+def _split_file(
+    path: str, step_part: str, switch: clingo.Symbol | None, base_part: str, check_part: str
+) -> tuple[dict[str, list], dict[str, tuple[str, ...]]]:
     """An encoding file's statements by part, and the parts' parameters."""
     return _split(None, path, step_part, switch, base_part, None, check_part)
 
 
-def _split(text: str | None, path: str | None, step_part: str, switch: clingo.Symbol | None,
-           base_part: str, on_message,
-           check_part: str = CHECK) -> tuple[dict[str, list], dict[str, tuple[str, ...]]]:
+def _split(
+    text: str | None,
+    path: str | None,
+    step_part: str,
+    switch: clingo.Symbol | None,
+    base_part: str,
+    on_message,
+    check_part: str = CHECK,
+) -> tuple[dict[str, list], dict[str, tuple[str, ...]]]:
     where = path if path is not None else "<encoding>"
     parts: dict[str, list] = defaultdict(list)
     params: dict[str, tuple[str, ...]] = {}
@@ -172,8 +193,9 @@ def _split(text: str | None, path: str | None, step_part: str, switch: clingo.Sy
             if statement.name != "base" or statement.parameters:
                 raise InputError(f"{where}: encodings for multi-shot solving must not use #program")
             return
-        part, parameters, placed = _place(statement, step_part, switch, where, base_part, kind,
-                                          check_part)
+        part, parameters, placed = _place(
+            statement, step_part, switch, where, base_part, kind, check_part
+        )
         parts[part].append(placed)
         params[part] = parameters
 
@@ -188,8 +210,10 @@ def time_parts() -> dict[str, tuple[list[str], str]]:
     """The time domain and the externals of the parts: ``time/1`` and the
     external ``past(t)`` (step t comes after the end) in ``step(t)``, the
     horizon external in ``check(t)``, each input's external in its part."""
-    parts = {STEP: ([TIME], f"time({TIME}). #external past({TIME})."),
-             CHECK: ([TIME], f"#external {TIME_MARKER}({TIME}).")}
+    parts = {
+        STEP: ([TIME], f"time({TIME}). #external past({TIME})."),
+        CHECK: ([TIME], f"#external {TIME_MARKER}({TIME})."),
+    }
     for name in INPUTS:
         parts[name] = ([VALUE], f"#external {name}({VALUE}).")
     return parts

@@ -32,14 +32,15 @@ import os
 import signal
 import sys
 import threading
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Callable
+from typing import TYPE_CHECKING
 
 import clingo
 
 from ethasp.planning.budget import Budget
 
-if TYPE_CHECKING:   # imported in the thread that computes the layers
+if TYPE_CHECKING:  # imported in the thread that computes the layers
     from ethasp.planning.reachability import GroundModel
 
 # Live diagram nodes beyond which the layers give up (the search goes on
@@ -60,10 +61,24 @@ def _value(symbol: clingo.Symbol) -> bool:
 
 
 # The ground atoms the search model is made of.
-MODEL_ATOMS = (("variable", 1), ("action", 1), ("pre", 3), ("eff", 3), ("ceff", 4), ("cpre", 4),
-               ("derived", 1), ("axiom", 2), ("axiom_pre", 4), ("init", 1), ("goal", 2),
-               ("goal_utility", 1), ("event_at", 2), ("event_pre", 3), ("event_effect", 4),
-               ("event_condition", 4))
+MODEL_ATOMS = (
+    ("variable", 1),
+    ("action", 1),
+    ("pre", 3),
+    ("eff", 3),
+    ("ceff", 4),
+    ("cpre", 4),
+    ("derived", 1),
+    ("axiom", 2),
+    ("axiom_pre", 4),
+    ("init", 1),
+    ("goal", 2),
+    ("goal_utility", 1),
+    ("event_at", 2),
+    ("event_pre", 3),
+    ("event_effect", 4),
+    ("event_condition", 4),
+)
 
 
 class Atoms:
@@ -75,8 +90,7 @@ class Atoms:
         self.reachable = planner.search_atoms("reachable", 2)
         self.model = {name: planner.get(name, arity) for name, arity in MODEL_ATOMS}
         # The utilities of facts, for a goal utility (an HModel's) only.
-        self.model["weight"] = (planner.get("weight", 2) if self.model["goal_utility"]
-                                else [])
+        self.model["weight"] = planner.get("weight", 2) if self.model["goal_utility"] else []
 
     def get(self, name: str, arity: int) -> list[clingo.Symbol]:
         return self.model[name]
@@ -119,7 +133,7 @@ def search_model(atoms: Atoms) -> GroundModel:
         action, variable, value = atom.arguments
         if action in usable and variable in moving:
             eff.append((action, variable, _value(value)))
-    never: set = set()          # conditional effects whose condition never holds
+    never: set = set()  # conditional effects whose condition never holds
     for atom in atoms.get("cpre", 4):
         action, key, variable, value = atom.arguments
         if action not in usable:
@@ -133,7 +147,7 @@ def search_model(atoms: Atoms) -> GroundModel:
         action, key, variable, value = atom.arguments
         if action in usable and variable in moving and (action, key) not in never:
             ceff.append((action, key, variable, _value(value)))
-    impossible: set = set()     # axioms with a condition that never holds
+    impossible: set = set()  # axioms with a condition that never holds
     for atom in atoms.get("axiom_pre", 4):
         name, key, variable, value = atom.arguments
         holds = keeps(variable, _value(value))
@@ -141,14 +155,19 @@ def search_model(atoms: Atoms) -> GroundModel:
             axiom_pre.append((name, key, variable, _value(value)))
         elif not holds:
             impossible.add((name, key))
-    axioms = [(atom.arguments[0], atom.arguments[1]) for atom in atoms.get("axiom", 2)
-              if (atom.arguments[0], atom.arguments[1]) not in impossible]
+    axioms = [
+        (atom.arguments[0], atom.arguments[1])
+        for atom in atoms.get("axiom", 2)
+        if (atom.arguments[0], atom.arguments[1]) not in impossible
+    ]
     axiom_pre = [entry for entry in axiom_pre if (entry[0], entry[1]) not in impossible]
-    goal = [(atom.arguments[0], _value(atom.arguments[1])) for atom in atoms.get("goal", 2)
-            if keeps(atom.arguments[0], _value(atom.arguments[1])) is None]
+    goal = [
+        (atom.arguments[0], _value(atom.arguments[1]))
+        for atom in atoms.get("goal", 2)
+        if keeps(atom.arguments[0], _value(atom.arguments[1])) is None
+    ]
     init = [atom.arguments[0] for atom in atoms.get("init", 1) if atom.arguments[0] in moving]
-    actions = [atom.arguments[0] for atom in atoms.get("action", 1)
-               if atom.arguments[0] in usable]
+    actions = [atom.arguments[0] for atom in atoms.get("action", 1) if atom.arguments[0] in usable]
     # A goal utility: the fixed variables' utilities are a constant; the
     # fluents' utilities stay in the search model.
     bounds = [atom.arguments[0].number for atom in atoms.get("goal_utility", 1)]
@@ -164,8 +183,22 @@ def search_model(atoms: Atoms) -> GroundModel:
                 weights[(variable, value)] = utility.number
             elif fixed.get(variable) == value:
                 goal_utility -= utility.number
-    return from_atoms(fluents, actions, pre, eff, ceff, cpre, init, goal, weights,
-                      axiom_pre, axioms, derived, goal_utility, _events(atoms, keeps, moving))
+    return from_atoms(
+        fluents,
+        actions,
+        pre,
+        eff,
+        ceff,
+        cpre,
+        init,
+        goal,
+        weights,
+        axiom_pre,
+        axioms,
+        derived,
+        goal_utility,
+        _events(atoms, keeps, moving),
+    )
 
 
 def _events(atoms, keeps=lambda variable, value: None, moving=None) -> list:
@@ -182,7 +215,7 @@ def _events(atoms, keeps=lambda variable, value: None, moving=None) -> list:
             steps.setdefault(atom.arguments[0], []).append(atom.arguments[1].number)
     if not steps:
         return []
-    never: set = set()                  # events whose precondition never holds
+    never: set = set()  # events whose precondition never holds
     pre: dict = {}
     for atom in atoms.get("event_pre", 3):
         event, variable, value = atom.arguments
@@ -192,7 +225,7 @@ def _events(atoms, keeps=lambda variable, value: None, moving=None) -> list:
         elif not holds:
             never.add(event)
     conditions: dict = {}
-    dead: set = set()                   # effects whose condition never holds
+    dead: set = set()  # effects whose condition never holds
     for atom in atoms.get("event_condition", 4):
         event, key, variable, value = atom.arguments
         holds = keeps(variable, _value(value))
@@ -205,12 +238,23 @@ def _events(atoms, keeps=lambda variable, value: None, moving=None) -> list:
         event, key, variable, value = atom.arguments
         if (moving is None or variable in moving) and (event, key) not in dead:
             effects.setdefault(event, []).append(
-                (key, tuple(sorted(conditions.get((event, key), []), key=str)), variable,
-                 _value(value)))
-    return [GroundEvent(event, tuple(sorted(set(times))), tuple(sorted(pre.get(event, []),
-                                                                       key=str)),
-                        tuple(sorted(effects.get(event, []), key=str)))
-            for event, times in sorted(steps.items(), key=str) if event not in never]
+                (
+                    key,
+                    tuple(sorted(conditions.get((event, key), []), key=str)),
+                    variable,
+                    _value(value),
+                )
+            )
+    return [
+        GroundEvent(
+            event,
+            tuple(sorted(set(times))),
+            tuple(sorted(pre.get(event, []), key=str)),
+            tuple(sorted(effects.get(event, []), key=str)),
+        )
+        for event, times in sorted(steps.items(), key=str)
+        if event not in never
+    ]
 
 
 def _import_diagrams() -> None:
@@ -218,7 +262,7 @@ def _import_diagrams() -> None:
     load on the way (a fifth of a second that plan search does not need)."""
     if "dd" in sys.modules or "networkx" in sys.modules:
         return
-    sys.modules["networkx"] = None      # makes `import networkx` fail: dd goes without
+    sys.modules["networkx"] = None  # makes `import networkx` fail: dd goes without
     try:
         import dd.cudd  # noqa: F401
     except ImportError:
@@ -273,28 +317,35 @@ class Layers:
     through a pipe, one line a finding.  Elsewhere they run in a thread.
     """
 
-    def __init__(self, atoms: Atoms | Callable[[], Atoms], budget: Budget, read_plan: bool = True,
-                 node_limit: int = NODE_LIMIT, bidirectional: bool | None = None):
+    def __init__(
+        self,
+        atoms: Atoms | Callable[[], Atoms],
+        budget: Budget,
+        read_plan: bool = True,
+        node_limit: int = NODE_LIMIT,
+        bidirectional: bool | None = None,
+    ):
         self._atoms = atoms
         self.bidirectional = BIDIRECTIONAL if bidirectional is None else bidirectional
         self.model: GroundModel | None = None
         self.read_plan = read_plan
         self.node_limit = node_limit
         self.status = Status()
-        self.news = threading.Event()       # set whenever the status changes
+        self.news = threading.Event()  # set whenever the status changes
         self._stop = threading.Event()
         self._budget = budget.until(self._stop.is_set)
         self._child: int | None = None
         self._lock = threading.Lock()
 
-    def start(self) -> "Layers":
+    def start(self) -> Layers:
         if can_fork():
             self._start_child()
         else:
-            if callable(self._atoms):        # read here: a thread shares the control
+            if callable(self._atoms):  # read here: a thread shares the control
                 self._atoms = self._atoms()
-            threading.Thread(target=self._run, args=(self._publish,), name="ethasp-layers",
-                             daemon=True).start()
+            threading.Thread(
+                target=self._run, args=(self._publish,), name="ethasp-layers", daemon=True
+            ).start()
         return self
 
     def stop(self) -> None:
@@ -319,22 +370,23 @@ class Layers:
         read, write = os.pipe()
         parent = os.getpid()
         child = os.fork()
-        if child == 0:                       # the child: compute, report, end
+        if child == 0:  # the child: compute, report, end
             code = 0
             try:
                 os.close(read)
-                signal.signal(signal.SIGINT, signal.SIG_IGN)   # the parent ends it
+                signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent ends it
                 self._budget = self._budget.until(lambda: os.getppid() != parent)
                 with os.fdopen(write, "w", buffering=1) as pipe:
                     self._run(lambda **changes: _report(pipe, changes))
-            except BaseException:  # noqa: BLE001 (nothing may escape a forked child)
+            except BaseException:
                 code = 1
             finally:
                 os._exit(code)
         os.close(write)
         self._child = child
-        threading.Thread(target=self._listen, args=(read,), name="ethasp-layers",
-                         daemon=True).start()
+        threading.Thread(
+            target=self._listen, args=(read,), name="ethasp-layers", daemon=True
+        ).start()
 
     def _listen(self, read: int) -> None:
         """Read the child's reports into :attr:`status` (until the pipe closes)."""
@@ -351,7 +403,7 @@ class Layers:
     def _run(self, publish) -> None:
         try:
             self._work(publish)
-        except Exception as error:  # noqa: BLE001 (the search goes on without the layers)
+        except Exception as error:
             publish(stopped=f"exact reachability failed: {type(error).__name__}: {error}")
 
     def _work(self, publish) -> None:
@@ -363,8 +415,14 @@ class Layers:
             from ethasp.planning.task import Task
 
             task = Task(self.model)
-            explicit.search(task, explicit.Events(self.model.events, task.index), self._budget,
-                            publish, self._stop.is_set, read_plan=self.read_plan)
+            explicit.search(
+                task,
+                explicit.Events(self.model.events, task.index),
+                self._budget,
+                publish,
+                self._stop.is_set,
+                read_plan=self.read_plan,
+            )
             return
         _import_diagrams()
         from ethasp.planning.reachability import Reachability
@@ -414,13 +472,15 @@ class Layers:
                 publish(goal_layer=length, bound=length)
                 if self.read_plan:
                     state = self._pick(engine, meeting)
-                    publish(plan=tuple(engine.path_to(state, forward)
-                                       + engine.path_from(state, backward)))
+                    publish(
+                        plan=tuple(
+                            engine.path_to(state, forward) + engine.path_from(state, backward)
+                        )
+                    )
                 return
             publish(bound=forward + backward + 1)
             ahead = len(engine.layers[forward]) <= len(engine.back_layers[backward])
-            if not (engine.expand(self._budget) if ahead
-                    else engine.expand_backward(self._budget)):
+            if not (engine.expand(self._budget) if ahead else engine.expand_backward(self._budget)):
                 publish(stopped=engine.stopped)
                 return
             if engine.complete or engine.back_complete:

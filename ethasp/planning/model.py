@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Iterable, Sequence
+from typing import TYPE_CHECKING
 
 import clingo
 import clingo.script
@@ -28,10 +29,10 @@ class Source:
     name: str
     text: str
     path: Path | None = None
-    generated: bool = False   # written by ethasp (a translation), not by a user
-    kind: str = "asp"         # asp, pddl (a PDDL translation), situation (a HERA
-                              # situation) or hmodel (a restriction's, of facts)
-    facts: tuple[clingo.Symbol, ...] = ()   # ground facts, added without parsing
+    generated: bool = False  # written by ethasp (a translation), not by a user
+    kind: str = "asp"  # asp, pddl (a PDDL translation), situation (a HERA
+    # situation) or hmodel (a restriction's, of facts)
+    facts: tuple[clingo.Symbol, ...] = ()  # ground facts, added without parsing
 
 
 def _describe(problem: clingo.Symbol) -> str:
@@ -52,8 +53,10 @@ def _describe(problem: clingo.Symbol) -> str:
     if name == "condition_without_effect":
         return f"{args[0]} is a condition of a conditional effect that no ceff/4 has"
     if name == "derived_misuse":
-        return (f"derived variable {args[0]} in {args[1]} (a derived variable is computed "
-                "from the state: no effect sets it, no initial value, no utility)")
+        return (
+            f"derived variable {args[0]} in {args[1]} (a derived variable is computed "
+            "from the state: no effect sets it, no initial value, no utility)"
+        )
     if name == "derived_and_variable":
         return f"{args[0]} is declared both a variable and a derived variable"
     if name == "undeclared_derived":
@@ -61,12 +64,16 @@ def _describe(problem: clingo.Symbol) -> str:
     if name == "condition_without_axiom":
         return f"{args[0]} is a condition of an axiom that no axiom/2 has"
     if name == "unstratified":
-        return (f"derived variable {args[0]} depends on the negation of {args[1]}, which "
-                f"depends on {args[0]} (derived variables must be stratified)")
+        return (
+            f"derived variable {args[0]} depends on the negation of {args[1]}, which "
+            f"depends on {args[0]} (derived variables must be stratified)"
+        )
     if name == "too_large":
-        return (f"{args[0]}: the utility is too large: with {args[2]} morally valued elements, "
-                f"|utility| must be at most {args[1]} (= (2^31 - 1) / {args[2]}), so that every "
-                "sum of utilities stays within clingo's 32-bit integers")
+        return (
+            f"{args[0]}: the utility is too large: with {args[2]} morally valued elements, "
+            f"|utility| must be at most {args[1]} (= (2^31 - 1) / {args[2]}), so that every "
+            "sum of utilities stays within clingo's 32-bit integers"
+        )
     if name == "empty":
         return "the model is empty: it declares no variable and no action"
     if name == "undeclared_event":
@@ -74,24 +81,30 @@ def _describe(problem: clingo.Symbol) -> str:
     if name == "bad_time":
         return f"an event's step must be an integer from 1 to 10000 in {args[0]}"
     if name == "derived_in_event":
-        return (f"derived variable {args[0]} in {args[1]} (events read and set state "
-                "variables only)")
+        return f"derived variable {args[0]} in {args[1]} (events read and set state variables only)"
     if name == "contradicting_event_effect":
-        return f"effect {args[1]} of event {args[0]} sets variable {args[2]} both to true and to false"
+        return (
+            f"effect {args[1]} of event {args[0]} sets variable {args[2]} both to true and to false"
+        )
     if name == "undeclared_patient":
         return f"unknown moral patient {args[0]} in {args[1]} (declare it with patient({args[0]}))"
     if name == "bad_sign":
         return f"the sign must be pos or neg in {args[0]}"
     if name == "bad_plan":
-        return (f"{args[0]} does not describe a plan (one length N >= 0, one action at each "
-                "step 1..N)")
+        return (
+            f"{args[0]} does not describe a plan (one length N >= 0, one action at each step 1..N)"
+        )
     if name == "static_written":
-        return (f"{args[1]} changes {args[0]}, which no action of the PDDL domain changes: the "
-                "translation keeps only the action instances whose preconditions on such "
-                "atoms hold initially (give the effect in the domain instead)")
+        return (
+            f"{args[1]} changes {args[0]}, which no action of the PDDL domain changes: the "
+            "translation keeps only the action instances whose preconditions on such "
+            "atoms hold initially (give the effect in the domain instead)"
+        )
     if name == "reserved_name":
-        return (f"{args[0]} in {args[1]}: names of the form ethasp(...) are reserved for the "
-                "state variables that restrictions add to a model")
+        return (
+            f"{args[0]} in {args[1]}: names of the form ethasp(...) are reserved for the "
+            "state variables that restrictions add to a model"
+        )
     if name == "override_without_condition":
         return f"{args[0]} names a condition that no cpre/4 has"
     return str(problem)
@@ -100,8 +113,10 @@ def _describe(problem: clingo.Symbol) -> str:
 def _renamed(logger, placeholder: str, name: str):
     """A clingo logger that names a text source ``name`` where clingo writes
     ``placeholder`` (``<string>`` when parsing text, ``<block>`` when grounding it)."""
+
     def log(code: clingo.MessageCode, message: str) -> None:
         logger(code, message.replace(f"{placeholder}:", f"{name}:"))
+
     return log
 
 
@@ -117,13 +132,18 @@ class Model:
     sources: list[Source] = field(default_factory=list)
     allow_scripts: bool = False
     naming: Naming = field(default_factory=Naming)
-    _planner: "Planner | None" = field(default=None, repr=False, compare=False)
+    _planner: Planner | None = field(default=None, repr=False, compare=False)
 
     # -- construction ---------------------------------------------------------
 
     @classmethod
-    def load(cls, paths: Iterable[str | Path], allow_scripts: bool = False,
-             check: bool = True, texts: Sequence[tuple[str, str]] = ()) -> "Model":
+    def load(
+        cls,
+        paths: Iterable[str | Path],
+        allow_scripts: bool = False,
+        check: bool = True,
+        texts: Sequence[tuple[str, str]] = (),
+    ) -> Model:
         """Load a model from ASP files, or a PDDL domain and problem plus ASP files.
 
         Files ending in ``.pddl`` are translated into rules (see
@@ -147,10 +167,17 @@ class Model:
             try:
                 program, name = translate_files(pddl_paths)
             except RecursionError:
-                raise InputError(f"{', '.join(map(str, pddl_paths))}: expressions nested too "
-                                 "deeply to read") from None
-            sources.append(Source(name, encoding("planning/pddl.lp").read_text() + program,
-                                  generated=True, kind="pddl"))
+                raise InputError(
+                    f"{', '.join(map(str, pddl_paths))}: expressions nested too deeply to read"
+                ) from None
+            sources.append(
+                Source(
+                    name,
+                    encoding("planning/pddl.lp").read_text() + program,
+                    generated=True,
+                    kind="pddl",
+                )
+            )
             naming = PddlNaming()
         for path in paths:
             text = read_text(path)
@@ -166,14 +193,15 @@ class Model:
         return model
 
     @classmethod
-    def from_string(cls, text: str, name: str = "<model>", allow_scripts: bool = False,
-                    check: bool = True) -> "Model":
+    def from_string(
+        cls, text: str, name: str = "<model>", allow_scripts: bool = False, check: bool = True
+    ) -> Model:
         """A model from ASP text."""
         scan_program(text, name)
         return cls._build([Source(name, text)], allow_scripts, check)
 
     @classmethod
-    def _build(cls, sources: list[Source], allow_scripts: bool, check: bool) -> "Model":
+    def _build(cls, sources: list[Source], allow_scripts: bool, check: bool) -> Model:
         model = cls(sources, allow_scripts)
         for source in sources:
             model._parse(source)
@@ -210,25 +238,30 @@ class Model:
             if source.path is not None:
                 ast.parse_files([str(source.path)], visit, logger=messages)
             else:
-                ast.parse_string(source.text, visit,
-                                 logger=_renamed(messages, "<string>", source.name))
+                ast.parse_string(
+                    source.text, visit, logger=_renamed(messages, "<string>", source.name)
+                )
         except RuntimeError:
             messages.raise_first(f"{source.name}: syntax error")
         if scripts and not self.allow_scripts:
             raise InputError(
                 f"{scripts[0]}: the model contains a #script block, which would run code; "
-                "it is refused (pass --allow-scripts to run it)")
+                "it is refused (pass --allow-scripts to run it)"
+            )
 
     # -- use --------------------------------------------------------------------
 
-    def control(self, arguments: Sequence[str] = (), messages: Messages | None = None) -> clingo.Control:
+    def control(
+        self, arguments: Sequence[str] = (), messages: Messages | None = None
+    ) -> clingo.Control:
         """A fresh clingo control object holding the model (not yet grounded)."""
         if self.allow_scripts:
             clingo.script.enable_python()
         logger = messages or Messages()
-        written = [source for source in self.sources if source.path is None
-                   and not source.generated]
-        if len(written) == 1:         # clingo calls a text source <block>
+        written = [
+            source for source in self.sources if source.path is None and not source.generated
+        ]
+        if len(written) == 1:  # clingo calls a text source <block>
             logger = _renamed(logger, "<block>", written[0].name)
         ctl = clingo.Control(list(arguments), logger=logger, message_limit=20)
         for source in self.sources:
@@ -243,15 +276,15 @@ class Model:
         return ctl
 
     @classmethod
-    def of_facts(cls, name: str, facts: Sequence[clingo.Symbol], naming: Naming,
-                 kind: str = "hmodel") -> "Model":
+    def of_facts(
+        cls, name: str, facts: Sequence[clingo.Symbol], naming: Naming, kind: str = "hmodel"
+    ) -> Model:
         """A model made of ground facts that ethasp itself computed (an HModel):
         not parsed and not checked, as its facts come from a checked model."""
-        return cls([Source(name, "", generated=True, kind=kind, facts=tuple(facts))],
-                   naming=naming)
+        return cls([Source(name, "", generated=True, kind=kind, facts=tuple(facts))], naming=naming)
 
     @property
-    def planner(self) -> "Planner":
+    def planner(self) -> Planner:
         """The model's one grounding (:class:`ethasp.planning.planner.Planner`),
         made on first use."""
         if self._planner is None:
@@ -267,31 +300,37 @@ class Model:
         model vary with the searches of the encodings).  The model's planner
         grounds it once for this and for everything after."""
         planner = self.planner
-        names = ", ".join(source.name for source in self.sources if not source.generated) \
-            or ", ".join(source.name for source in self.sources)
+        names = ", ".join(
+            source.name for source in self.sources if not source.generated
+        ) or ", ".join(source.name for source in self.sources)
         answers = planner.base_answers()
         for symbols in answers[:1]:
             if not symbols:
-                break               # check.lp shows error/1 only: no defect
+                break  # check.lp shows error/1 only: no defect
             from clorm import unify
 
             from ethasp.vocabulary import Error
 
-            errors = sorted(error.problem.symbol for error in
-                            unify([Error], symbols).query(Error).all())
+            errors = sorted(
+                error.problem.symbol for error in unify([Error], symbols).query(Error).all()
+            )
             if errors:
                 raise InputError(f"{names}: {_describe(errors[0])}")
         misspelt = misused_vocabulary(planner.signatures())
         if misspelt:
             raise InputError(f"{names}: {misspelt}")
         if not answers:
-            raise InputError(f"{names}: the model's rules have no answer set (a constraint or "
-                             "a contradiction rules every one out), so it describes no "
-                             "planning task")
+            raise InputError(
+                f"{names}: the model's rules have no answer set (a constraint or "
+                "a contradiction rules every one out), so it describes no "
+                "planning task"
+            )
         if len(answers) > 1:
-            raise InputError(f"{names}: the model's rules have more than one answer set (a "
-                             "choice, a disjunction or a loop through negation); a model must "
-                             "describe one planning task")
+            raise InputError(
+                f"{names}: the model's rules have more than one answer set (a "
+                "choice, a disjunction or a loop through negation); a model must "
+                "describe one planning task"
+            )
 
     def own_plan(self):
         """The plan the model comes with (``plan_length/1``, ``plan_step/2``: a
@@ -300,8 +339,10 @@ class Model:
 
         if not self.planner.get("plan_length", 1):
             return None
-        steps = sorted((atom.arguments[0].number, atom.arguments[1])
-                       for atom in self.planner.get("plan_step", 2))
+        steps = sorted(
+            (atom.arguments[0].number, atom.arguments[1])
+            for atom in self.planner.get("plan_step", 2)
+        )
         return Plan(tuple(action for _, action in steps))
 
     def facts(self, predicates):

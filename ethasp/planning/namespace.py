@@ -36,10 +36,10 @@ import hashlib
 import json
 import os
 import re
+from collections.abc import Iterator
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cache
 from pathlib import Path
-from typing import Iterator
 
 import clingo
 from clingo import ast
@@ -68,9 +68,15 @@ MODEL_VOCABULARY: dict[tuple[str, int], str] = {
     ("event_at", 2): "event_at(E,T): event E is due at step T (after the action of step T)",
     ("event_pre", 3): "event_pre(E,V,B): event E happens only if V has value B",
     ("event_effect", 4): "event_effect(E,K,V,B): effect K of event E sets V to B",
-    ("event_condition", 4): "event_condition(E,K,V,B): effect K of event E fires when V has value B",
+    (
+        "event_condition",
+        4,
+    ): "event_condition(E,K,V,B): effect K of event E fires when V has value B",
     ("patient", 1): "patient(P): a moral patient",
-    ("affects", 4): "affects(P,V,B,S): the fact V=B affects patient P positively (pos) or negatively (neg)",
+    (
+        "affects",
+        4,
+    ): "affects(P,V,B,S): the fact V=B affects patient P positively (pos) or negatively (neg)",
     ("plan_length", 1): "plan_length(N): the model comes with a plan of N steps",
     ("plan_step", 2): "plan_step(T,A): the model's plan has action A at step T",
     ("alternative_plan", 2): "alternative_plan(K,N): alternative plan K has N steps",
@@ -91,12 +97,12 @@ PDDL_VOCABULARY: dict[tuple[str, int], str] = {
     ("pddl_add", 2): "pddl_add(A,V): an add effect",
     ("pddl_del", 2): "pddl_del(A,V): a delete effect",
     ("pddl_static", 1): "pddl_static(V): V is an atom of a static predicate (no action of "
-                        "the domain changes it)",
+    "the domain changes it)",
     ("pddl_candidate", 1): "pddl_candidate(A): a term of a plan that is no action (validation)",
     ("pddl_schema_instance", 1): "pddl_schema_instance(A): candidate A is an instance of an "
-                                 "action schema",
+    "action schema",
     ("pddl_static_failure", 3): "pddl_static_failure(A,V,B): static precondition V=B of the "
-                                "instance A fails",
+    "instance A fails",
 }
 
 VOCABULARY = {**MODEL_VOCABULARY, **PDDL_VOCABULARY}
@@ -108,8 +114,12 @@ VOCABULARY = {**MODEL_VOCABULARY, **PDDL_VOCABULARY}
 #: files given with a PDDL task (the translation itself is not checked; a
 #: translation saved as an ASP model, which has no PDDL task behind it, may
 #: write them).
-TRANSLATION_ONLY = (("pddl_static", 1), ("pddl_candidate", 1), ("pddl_schema_instance", 1),
-                    ("pddl_static_failure", 3))
+TRANSLATION_ONLY = (
+    ("pddl_static", 1),
+    ("pddl_candidate", 1),
+    ("pddl_schema_instance", 1),
+    ("pddl_static_failure", 3),
+)
 
 # Encodings whose predicates depend on the model alone, so models may read them.
 MODEL_LAYER = ("planning/model.lp",)
@@ -130,8 +140,10 @@ def misused_vocabulary(signatures) -> str:
         known = arities.get(signature[0])
         if known and signature not in VOCABULARY:
             meant = " or ".join(VOCABULARY[s] for s in known)
-            return (f"{signature_text(signature)} is not in the model vocabulary, which has "
-                    f"{' and '.join(signature_text(s) for s in known)} ({meant})")
+            return (
+                f"{signature_text(signature)} is not in the model vocabulary, which has "
+                f"{' and '.join(signature_text(s) for s in known)} ({meant})"
+            )
     return ""
 
 
@@ -141,6 +153,7 @@ def vocabulary_text() -> str:
 
 
 # -- walking clingo's AST (iteratively: user programs may nest deeply) ---------------
+
 
 def _children(node) -> Iterator:
     for key in node.child_keys:
@@ -154,10 +167,18 @@ def _children(node) -> Iterator:
 
 
 # Nodes that hold terms but no atoms: not walked.
-_TERMS = {ast.ASTType.Variable, ast.ASTType.SymbolicTerm, ast.ASTType.Function,
-          ast.ASTType.UnaryOperation, ast.ASTType.BinaryOperation, ast.ASTType.Interval,
-          ast.ASTType.Pool, ast.ASTType.Comparison, ast.ASTType.Guard,
-          ast.ASTType.BooleanConstant}
+_TERMS = {
+    ast.ASTType.Variable,
+    ast.ASTType.SymbolicTerm,
+    ast.ASTType.Function,
+    ast.ASTType.UnaryOperation,
+    ast.ASTType.BinaryOperation,
+    ast.ASTType.Interval,
+    ast.ASTType.Pool,
+    ast.ASTType.Comparison,
+    ast.ASTType.Guard,
+    ast.ASTType.BooleanConstant,
+}
 
 
 def _atoms(root) -> Iterator:
@@ -239,15 +260,14 @@ class Refused(Exception):
 
 _REFUSED = {
     ast.ASTType.Minimize: "an optimisation statement (#minimize, #maximize or a weak "
-                          "constraint), which would change the optimisations of the encodings",
+    "constraint), which would change the optimisations of the encodings",
     ast.ASTType.Heuristic: "a #heuristic statement, which would change the searches of the "
-                           "encodings",
+    "encodings",
     ast.ASTType.ProjectAtom: "a #project statement, which would change the enumerations of the "
-                             "encodings",
+    "encodings",
     ast.ASTType.ProjectSignature: "a #project statement, which would change the enumerations "
-                                  "of the encodings",
-    ast.ASTType.Edge: "an #edge statement, which would add acyclicity constraints to the "
-                      "encodings",
+    "of the encodings",
+    ast.ASTType.Edge: "an #edge statement, which would add acyclicity constraints to the encodings",
     ast.ASTType.TheoryDefinition: "a #theory definition (theory atoms are not part of models)",
 }
 
@@ -263,8 +283,10 @@ def statement_uses(statement) -> list[Use]:
         raise Refused(_REFUSED[kind])
     if kind == ast.ASTType.Program:
         if statement.name != "base" or len(statement.parameters) > 0:
-            raise Refused(f"a program part #program {statement.name} (models belong to the "
-                          "base program; the other parts are the encodings')")
+            raise Refused(
+                f"a program part #program {statement.name} (models belong to the "
+                "base program; the other parts are the encodings')"
+            )
     elif kind == ast.ASTType.Rule:
         if _has_theory_atom(statement):
             raise Refused("a theory atom (theory atoms are not part of models)")
@@ -276,10 +298,14 @@ def statement_uses(statement) -> list[Use]:
     elif kind == ast.ASTType.ShowTerm:
         term = statement.term
         signatures = _term_signatures(term)
-        if not signatures and not (term.ast_type == ast.ASTType.SymbolicTerm
-                                   and term.symbol.type.name in ("Number", "String")):
-            raise Refused(f"a #show term {term} that is not a function term of the model's "
-                          "own (it could show any atom)")
+        if not signatures and not (
+            term.ast_type == ast.ASTType.SymbolicTerm
+            and term.symbol.type.name in ("Number", "String")
+        ):
+            raise Refused(
+                f"a #show term {term} that is not a function term of the model's "
+                "own (it could show any atom)"
+            )
         shown = signatures
         read_nodes = list(statement.body)
     elif kind == ast.ASTType.ShowSignature:
@@ -294,11 +320,14 @@ def _has_theory_atom(rule) -> bool:
     """Does a rule have a theory atom (they stand in its head or as body literals)?"""
     if rule.head.ast_type == ast.ASTType.TheoryAtom:
         return True
-    return any(literal.ast_type == ast.ASTType.Literal
-               and literal.atom.ast_type == ast.ASTType.TheoryAtom for literal in rule.body)
+    return any(
+        literal.ast_type == ast.ASTType.Literal and literal.atom.ast_type == ast.ASTType.TheoryAtom
+        for literal in rule.body
+    )
 
 
 # -- the encodings' predicates --------------------------------------------------------
+
 
 @dataclass(frozen=True)
 class Owner:
@@ -317,14 +346,15 @@ def _encoding_files() -> list[Path]:
     return sorted(ENCODINGS.rglob("*.lp"))
 
 
-@lru_cache(maxsize=None)
+@cache
 def encoding_predicates() -> dict[str, dict[tuple[str, int], bool]]:
     """For each encoding (path relative to the encodings folder), the predicates it
     mentions, each with True if it defines it (head, choice, #external) and False if
     it only reads, shows or declares it."""
     root = ENCODINGS.resolve()
     result: dict[str, dict[tuple[str, int], bool]] = {
-        path.resolve().relative_to(root).as_posix(): {} for path in _encoding_files()}
+        path.resolve().relative_to(root).as_posix(): {} for path in _encoding_files()
+    }
 
     files: dict[str, str | None] = {}
 
@@ -343,7 +373,7 @@ def encoding_predicates() -> dict[str, dict[tuple[str, int], bool]]:
         if kind == ast.ASTType.Defined:
             mentions.setdefault((statement.name, statement.arity), False)
             return
-        if kind in _REFUSED:   # the encodings' own optimisations and heuristics
+        if kind in _REFUSED:  # the encodings' own optimisations and heuristics
             for signature in _atom_signatures(statement):
                 mentions.setdefault(signature, False)
             if kind == ast.ASTType.ProjectSignature:
@@ -373,7 +403,7 @@ def _cache_folder() -> Path:
     return Path(base) / "ethasp"
 
 
-@lru_cache(maxsize=None)
+@cache
 def _all_mentioned() -> dict[str, frozenset[tuple[str, int]]]:
     """:func:`mentioned` of every encoding, computed once per content of the
     encodings: kept in the user's cache folder under a digest of every
@@ -416,7 +446,7 @@ def _encoding_names(pddl: bool) -> list[str]:
     return [name for name in names if pddl or name not in PDDL_LAYER]
 
 
-@lru_cache(maxsize=None)
+@cache
 def reserved(pddl: bool = False) -> frozenset[tuple[str, int]]:
     """The predicates a model may not define: every predicate an encoding mentions,
     except the vocabulary.  ``planning/pddl.lp`` counts only for PDDL tasks,
@@ -443,7 +473,7 @@ def owner(signature: tuple[str, int], pddl: bool = True) -> Owner | None:
 _COMMENTS = re.compile(r"%\*.*?\*%|%[^\n]*|\"(?:\\.|[^\"\\])*\"", re.S)
 
 
-@lru_cache(maxsize=None)
+@cache
 def encoding_names() -> frozenset[str]:
     """Every lower-case name (predicate or constant) written in an encoding."""
     names: set[str] = set()
@@ -452,7 +482,7 @@ def encoding_names() -> frozenset[str]:
     return frozenset(names)
 
 
-@lru_cache(maxsize=None)
+@cache
 def readable(pddl: bool = False) -> frozenset[tuple[str, int]]:
     """The encodings' predicates a model may read: those of the model layer."""
     layers = MODEL_LAYER + (PDDL_LAYER if pddl else ())
@@ -483,7 +513,8 @@ class NamespaceCheck:
             raise InputError(
                 f"{begin.filename}:{begin.line}: the model defines the constant "
                 f"{statement.name} (#const), a name the encodings use: it would change them; "
-                "rename it")
+                "rename it"
+            )
         if statement.ast_type == ast.ASTType.Rule:
             text = str(statement)
             if "&" not in text and self.names.isdisjoint(_NAME.findall(text)):
@@ -506,8 +537,10 @@ class NamespaceCheck:
                 raise InputError(
                     f"{where}: the model {use.role} {predicate}, {whose}; a model may define "
                     f"and show only the model vocabulary ({vocabulary_text()}) and predicates "
-                    "of its own: rename it")
+                    "of its own: rename it"
+                )
             raise InputError(
                 f"{where}: the model reads {predicate}, {whose}; a model may read only its "
                 "vocabulary, its own predicates and what encodings/planning/model.lp derives "
-                "from it")
+                "from it"
+            )

@@ -26,7 +26,7 @@ becomes the term ``at(robot,room_1)``, a nullary atom ``(done)`` the constant
 from __future__ import annotations
 
 import re
-from typing import Iterable
+from collections.abc import Iterable
 
 import clingo
 
@@ -116,6 +116,10 @@ class Naming:
         return " ".join(self.fact(literal) for literal in literals)
 
 
+# The naming of models written in ASP (it holds nothing: one serves everyone).
+ASP_NAMING = Naming()
+
+
 class PddlNaming(Naming):
     """Actions and facts shown in PDDL form (models read from PDDL):
     ``(move kitchen hall)``, ``(robot-at hall)``, ``(not (robot-at hall))``."""
@@ -156,8 +160,11 @@ class PddlNaming(Naming):
             return str(term)
         parts = []
         for argument in term.arguments:
-            if argument.type == clingo.SymbolType.Function and argument.name in ("true", "false") \
-                    and not argument.arguments:
+            if (
+                argument.type == clingo.SymbolType.Function
+                and argument.name in ("true", "false")
+                and not argument.arguments
+            ):
                 parts.append(argument.name)
                 continue
             if argument.type == clingo.SymbolType.Function and argument.name:

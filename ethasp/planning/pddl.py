@@ -83,19 +83,40 @@ one line naming them.
 from __future__ import annotations
 
 import sys
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Iterable, Sequence
 
 from ethasp.errors import InputError
 from ethasp.planning.naming import pddl_name_to_asp
-from ethasp.planning.pddl_syntax import (FRAGMENT, IMPLIED, Action, AllEffects, And, Atom,
-                                         CostEffect, Derived, Domain, Effect, Equal, Exists,
-                                         Forall, ForallEffect, Formula, Imply, Literal, Not, Or,
-                                         Param, PddlFile, Problem, When, read_domain,
-                                         read_problem)
+from ethasp.planning.pddl_syntax import (
+    FRAGMENT,
+    IMPLIED,
+    Action,
+    AllEffects,
+    And,
+    Atom,
+    CostEffect,
+    Domain,
+    Effect,
+    Equal,
+    Exists,
+    Forall,
+    ForallEffect,
+    Formula,
+    Imply,
+    Literal,
+    Not,
+    Or,
+    Param,
+    PddlFile,
+    Problem,
+    When,
+    read_domain,
+    read_problem,
+)
 
-__all__ = ["FRAGMENT", "PddlFile", "translate", "translate_files", "is_pddl", "split_paths"]
+__all__ = ["FRAGMENT", "PddlFile", "is_pddl", "split_paths", "translate", "translate_files"]
 
 AUXILIARY = "formula"
 
@@ -104,6 +125,7 @@ SCHEMA_PREDICATES = ("pddl_schema_instance", "pddl_static_failure")
 
 
 # -- negation normal form ---------------------------------------------------------
+
 
 @dataclass(frozen=True)
 class Lit:
@@ -154,6 +176,7 @@ def free_variables(formula) -> set[str]:
 
 # -- rules --------------------------------------------------------------------------
 
+
 @dataclass(frozen=True)
 class Scope:
     """Variables in scope (PDDL name -> ASP variable) and body atoms that bind them."""
@@ -178,7 +201,7 @@ class Conjunction:
     body: list[str] = field(default_factory=list)
     variables: list[str] = field(default_factory=list)
 
-    def extend(self, other: "Conjunction") -> None:
+    def extend(self, other: Conjunction) -> None:
         self.literals += other.literals
         self.comparisons += other.comparisons
         self.body += other.body
@@ -209,8 +232,8 @@ class _Translator:
         self.auxiliaries = 0
         self.fresh = 0
         self.eithers: set[tuple[str, ...]] = set()
-        self.costs: int | None = None          # offset of the first ignored action cost
-        self.undeclared_types: dict[str, None] = {}      # used, declared nowhere, no objects
+        self.costs: int | None = None  # offset of the first ignored action cost
+        self.undeclared_types: dict[str, None] = {}  # used, declared nowhere, no objects
         self.undeclared_functions: dict[str, None] = {}  # in numeric facts, not declared
         self.derived = {d.predicate for d in domain.derived}
         self.objects = {pddl_name_to_asp(p.name) for p in domain.constants + problem.objects}
@@ -219,11 +242,14 @@ class _Translator:
         # not) adds or deletes.  Their atoms hold in every state exactly when
         # they hold initially, so a precondition on one decides which actions
         # exist, as a type does (untyped domains write types so: (ball ?b)).
-        changed = {predicate for action in domain.actions
-                   for predicate in effect_predicates(action.effect)}
+        changed = {
+            predicate for action in domain.actions for predicate in effect_predicates(action.effect)
+        }
         self.static = {
-            pddl_name_to_asp(predicate) for predicate in domain.predicates
-            if predicate not in changed and predicate not in self.derived}
+            pddl_name_to_asp(predicate)
+            for predicate in domain.predicates
+            if predicate not in changed and predicate not in self.derived
+        }
 
     def emit(self, line: str) -> None:
         self.lines.append(line)
@@ -263,19 +289,26 @@ class _Translator:
             return asp
         asp = pddl_name_to_asp(term)
         if asp not in self.objects:
-            raise file.error(pos, f"unknown constant {term} (declare it in :constants "
-                                  "of the domain or :objects of the problem)")
+            raise file.error(
+                pos,
+                f"unknown constant {term} (declare it in :constants "
+                "of the domain or :objects of the problem)",
+            )
         return asp
 
     def atom(self, atom: Atom, scope: Scope, file: PddlFile) -> str:
         if atom.predicate not in self.names:
-            raise file.error(atom.pos, f"unknown predicate {atom.predicate} "
-                                       "(declare it in :predicates)")
+            raise file.error(
+                atom.pos, f"unknown predicate {atom.predicate} (declare it in :predicates)"
+            )
         declared = self.domain.predicates.get(atom.predicate)
         if declared is not None and len(declared) != len(atom.terms):
-            raise file.error(atom.pos, f"predicate {atom.predicate} takes {len(declared)} "
-                                       f"argument{'s' if len(declared) != 1 else ''}, "
-                                       f"found {len(atom.terms)}")
+            raise file.error(
+                atom.pos,
+                f"predicate {atom.predicate} takes {len(declared)} "
+                f"argument{'s' if len(declared) != 1 else ''}, "
+                f"found {len(atom.terms)}",
+            )
         arguments = [self.term(term, scope, file, atom.pos) for term in atom.terms]
         return term_of(pddl_name_to_asp(atom.predicate), arguments)
 
@@ -288,8 +321,9 @@ class _Translator:
             right = self.term(atom.right, scope, file, atom.pos)
             into.comparisons.append(f"{left} {'=' if lit.positive else '!='} {right}")
         else:
-            into.literals.append((self.atom(atom, scope, file),
-                                  "true" if lit.positive else "false"))
+            into.literals.append(
+                (self.atom(atom, scope, file), "true" if lit.positive else "false")
+            )
 
     def conjunction(self, formula, scope: Scope, file: PddlFile, lift: bool) -> Conjunction:
         """A formula in negation normal form as one conjunction of literals.
@@ -356,8 +390,11 @@ class _Translator:
         # holds initially: an instance of the axiom whose static literal fails
         # never holds, so it is not written (as for actions); axiom_pre/4 keeps
         # the literal.
-        static = [f"init({atom})" if value == "true" else f"not init({atom})"
-                  for atom, value in alt.literals if atom.split("(")[0] in self.static]
+        static = [
+            f"init({atom})" if value == "true" else f"not init({atom})"
+            for atom, value in alt.literals
+            if atom.split("(")[0] in self.static
+        ]
         body = [*body, *alt.body, *alt.comparisons, *static]
         self.emit(rule(f"axiom({head},{name})", body))
         for atom, value in alt.literals:
@@ -374,12 +411,13 @@ class _Translator:
                 self.emit(f"pddl_subtype({name},{pddl_name_to_asp(parent)}).")
         for param in sorted(self.domain.constants + self.problem.objects, key=lambda p: p.name):
             for type_name in param.types or ("object",):
-                self.emit(f"pddl_object({pddl_name_to_asp(param.name)},"
-                          f"{pddl_name_to_asp(type_name)}).")
+                self.emit(
+                    f"pddl_object({pddl_name_to_asp(param.name)},{pddl_name_to_asp(type_name)})."
+                )
 
     def predicates(self) -> None:
         for predicate, params in sorted(self.domain.predicates.items()):
-            scope, names, typing = self.bind(Scope(), params)
+            _, names, typing = self.bind(Scope(), params)
             kind = "derived" if predicate in self.derived else "variable"
             atom = term_of(pddl_name_to_asp(predicate), names)
             if pddl_name_to_asp(predicate) not in self.static:
@@ -398,24 +436,31 @@ class _Translator:
                 self.emit(rule(f"pddl_static({atom})", [f"variable({atom})"]))
         for definition in self.domain.derived:
             if definition.predicate not in self.domain.predicates:
-                scope, names, typing = self.bind(Scope(), definition.params)
-                self.emit(rule(f"derived({term_of(pddl_name_to_asp(definition.predicate), names)})",
-                               typing))
+                _scope, names, typing = self.bind(Scope(), definition.params)
+                self.emit(
+                    rule(
+                        f"derived({term_of(pddl_name_to_asp(definition.predicate), names)})", typing
+                    )
+                )
 
     def derived_predicates(self) -> None:
         file = self.domain.file
         for number, definition in enumerate(self.domain.derived, start=1):
             declared = self.domain.predicates.get(definition.predicate)
             if declared is not None and len(declared) != len(definition.params):
-                raise file.error(definition.pos, f"derived predicate {definition.predicate} "
-                                                 f"takes {len(declared)} arguments, "
-                                                 f"found {len(definition.params)}")
+                raise file.error(
+                    definition.pos,
+                    f"derived predicate {definition.predicate} "
+                    f"takes {len(declared)} arguments, "
+                    f"found {len(definition.params)}",
+                )
             scope, names, typing = self.bind(Scope(), definition.params)
             head = term_of(pddl_name_to_asp(definition.predicate), names)
             alternatives = self.alternatives(nnf(definition.body), scope, file)
             for index, alt in enumerate(alternatives, start=1):
-                self.axiom(head, f"({','.join([str(number), str(index), *alt.variables])})",
-                           alt, typing)
+                self.axiom(
+                    head, f"({','.join([str(number), str(index), *alt.variables])})", alt, typing
+                )
 
     def action(self, action: Action) -> None:
         file = self.domain.file
@@ -427,10 +472,14 @@ class _Translator:
         # An action whose static precondition fails initially never occurs,
         # so it does not exist (as an action of a wrong type); pre/3 keeps the
         # precondition, for reasons and words.
-        static = [(atom, value) for atom, value in precondition.literals
-                  if atom.split("(")[0] in self.static]
-        pruning = [f"init({atom})" if value == "true" else f"not init({atom})"
-                   for atom, value in static]
+        static = [
+            (atom, value)
+            for atom, value in precondition.literals
+            if atom.split("(")[0] in self.static
+        ]
+        pruning = [
+            f"init({atom})" if value == "true" else f"not init({atom})" for atom, value in static
+        ]
         self.emit(rule(anchor, typing + precondition.comparisons + pruning))
         for atom, value in precondition.literals:
             self.emit(rule(f"pre({head},{atom},{value})", [anchor]))
@@ -440,12 +489,17 @@ class _Translator:
             atoms = []
             for literal in literals:
                 if literal.atom.predicate in self.derived:
-                    raise file.error(literal.atom.pos, f"an effect on the derived predicate "
-                                                       f"{literal.atom.predicate}")
+                    raise file.error(
+                        literal.atom.pos,
+                        f"an effect on the derived predicate {literal.atom.predicate}",
+                    )
                 atoms.append((self.atom(literal.atom, effect_scope, file), literal.positive))
-            alternatives = ([Conjunction()] if not conditions else
-                            self.alternatives(nnf(And(conditions)), effect_scope, file))
-            quantified = [asp for _, asp in effect_scope.variables[len(names):]]
+            alternatives = (
+                [Conjunction()]
+                if not conditions
+                else self.alternatives(nnf(And(conditions)), effect_scope, file)
+            )
+            quantified = [asp for _, asp in effect_scope.variables[len(names) :]]
             for alt in alternatives:
                 body = [*effect_scope.body, *alt.body, *alt.comparisons]
                 if not alt.literals:
@@ -459,8 +513,7 @@ class _Translator:
                     value = "true" if positive else "false"
                     self.emit(rule(f"ceff({head},{name},{atom},{value})", body))
                 for condition_atom, condition_value in alt.literals:
-                    self.emit(rule(f"cpre({head},{name},{condition_atom},{condition_value})",
-                                   body))
+                    self.emit(rule(f"cpre({head},{name},{condition_atom},{condition_value})", body))
 
     def schema(self, head: str, body: list[str], static: list[tuple[str, str]]) -> None:
         """Rules telling why a term of a plan is no action (for validation):
@@ -496,7 +549,7 @@ class _Translator:
             inner, _, _ = self.bind(scope, effect.params)
             yield from self.effects(effect.effect, inner, conditions)
         elif isinstance(effect, When):
-            yield from self.effects(effect.effect, scope, conditions + (effect.condition,))
+            yield from self.effects(effect.effect, scope, (*conditions, effect.condition))
         elif isinstance(effect, CostEffect):
             if self.costs is None:
                 self.costs = effect.pos
@@ -509,8 +562,9 @@ class _Translator:
         file = self.problem.file
         for atom in self.problem.init:
             if atom.predicate in self.derived:
-                raise file.error(atom.pos, f"the derived predicate {atom.predicate} "
-                                           "in the initial state")
+                raise file.error(
+                    atom.pos, f"the derived predicate {atom.predicate} in the initial state"
+                )
             self.emit(f"init({self.atom(atom, Scope(), file)}).")
 
     def goal(self) -> None:
@@ -530,25 +584,31 @@ class _Translator:
         declared = closure(self.domain.requirements)
         lines = []
         for file, used, requirements in (
-                (self.domain.file, self.domain.used, declared),
-                (self.problem.file, self.problem.used,
-                 declared | closure(self.problem.requirements))):
+            (self.domain.file, self.domain.used, declared),
+            (self.problem.file, self.problem.used, declared | closure(self.problem.requirements)),
+        ):
             notes = []
             missing = sorted(set(used) - requirements - {":strips"})
             if missing:
-                notes.append(f"requirement{'s' if len(missing) > 1 else ''} "
-                             f"{', '.join(missing)} used but not declared (read anyway)")
+                notes.append(
+                    f"requirement{'s' if len(missing) > 1 else ''} "
+                    f"{', '.join(missing)} used but not declared (read anyway)"
+                )
             if file is self.domain.file and self.undeclared_types:
                 names = ", ".join(self.undeclared_types)
-                notes.append(f"type{'s' if len(self.undeclared_types) > 1 else ''} {names} "
-                             "used but not declared (read as having no objects)")
+                notes.append(
+                    f"type{'s' if len(self.undeclared_types) > 1 else ''} {names} "
+                    "used but not declared (read as having no objects)"
+                )
             if file is self.domain.file and self.costs is not None:
                 notes.append("action costs are ignored (plans are shortest in number of actions)")
             if file is self.problem.file and self.undeclared_functions:
                 names = ", ".join(self.undeclared_functions)
-                notes.append(f"numeric facts of the undeclared function"
-                             f"{'s' if len(self.undeclared_functions) > 1 else ''} {names} "
-                             "are ignored")
+                notes.append(
+                    f"numeric facts of the undeclared function"
+                    f"{'s' if len(self.undeclared_functions) > 1 else ''} {names} "
+                    "are ignored"
+                )
             if file is self.problem.file and self.problem.metric is not None:
                 notes.append("the metric is ignored (plans are shortest in number of actions)")
             if notes:
@@ -568,9 +628,11 @@ class _Translator:
         for param in self.domain.types + self.domain.constants + self.problem.objects:
             known |= set(param.types)
         known |= {param.name for param in self.domain.types}
-        for params in [*self.domain.predicates.values(),
-                       *(action.params for action in self.domain.actions),
-                       *(definition.params for definition in self.domain.derived)]:
+        for params in [
+            *self.domain.predicates.values(),
+            *(action.params for action in self.domain.actions),
+            *(definition.params for definition in self.domain.derived),
+        ]:
             for param in params:
                 for type_name in param.types:
                     if type_name not in known:
@@ -578,13 +640,17 @@ class _Translator:
 
     def translate(self) -> str:
         if self.problem.domain_name != self.domain.name:
-            raise InputError(f"{self.problem.file.name}: the problem is for domain "
-                             f"{self.problem.domain_name}, not {self.domain.name} "
-                             f"({self.domain.file.name})")
+            raise InputError(
+                f"{self.problem.file.name}: the problem is for domain "
+                f"{self.problem.domain_name}, not {self.domain.name} "
+                f"({self.domain.file.name})"
+            )
         self.check_types()
         self.check_numeric_init()
-        self.emit(f"% {self.domain.file.name} and {self.problem.file.name}, "
-                  "translated by ethasp (see encodings/planning/pddl.lp)")
+        self.emit(
+            f"% {self.domain.file.name} and {self.problem.file.name}, "
+            "translated by ethasp (see encodings/planning/pddl.lp)"
+        )
         self.declarations()
         self.predicates()
         self.derived_predicates()
@@ -661,8 +727,10 @@ def translate_files(paths: Sequence[str | Path]) -> tuple[str, str]:
     for file in files:
         kind = file.kind()
         if kind is None:
-            raise InputError(f"{file.name}: not a PDDL domain or problem "
-                             "(it should start with (define (domain ...) or (define (problem ...))")
+            raise InputError(
+                f"{file.name}: not a PDDL domain or problem "
+                "(it should start with (define (domain ...) or (define (problem ...))"
+            )
         kinds[kind].append(file)
     if len(kinds["domain"]) != 1 or len(kinds["problem"]) != 1:
         names = ", ".join(file.name for file in files)

@@ -28,12 +28,13 @@ import re
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
-from typing import Union
 
 from ethasp.errors import InputError
 
-FRAGMENT = ("ethasp reads STRIPS and ADL (typing, equality, negation, disjunction, quantifiers, "
-            "conditional effects), derived predicates and action costs")
+FRAGMENT = (
+    "ethasp reads STRIPS and ADL (typing, equality, negation, disjunction, quantifiers, "
+    "conditional effects), derived predicates and action costs"
+)
 
 _TOKEN = re.compile(r";[^\n]*|[()]|[^\s();]+")
 _NAME = re.compile(r"[a-z][-_a-z0-9]*")
@@ -45,12 +46,13 @@ RESERVED = {"not"}
 
 # -- files and s-expressions ----------------------------------------------------
 
+
 class Word(str):
     """A word of a PDDL file, with its offset in the text."""
 
     pos: int
 
-    def __new__(cls, text: str, pos: int) -> "Word":
+    def __new__(cls, text: str, pos: int) -> Word:
         word = super().__new__(cls, text)
         word.pos = pos
         return word
@@ -64,7 +66,7 @@ class Group(list):
         self.pos = pos
 
 
-Expr = Union[Word, Group]
+Expr = Word | Group
 
 
 @dataclass(frozen=True)
@@ -75,7 +77,7 @@ class PddlFile:
     text: str
 
     @classmethod
-    def read(cls, path: Path) -> "PddlFile":
+    def read(cls, path: Path) -> PddlFile:
         """Read a file: UTF-8 (a byte order mark is skipped), or else Latin-1 (as
         planners read it: comments may carry accented letters), unless it holds
         a NUL byte, which no text does."""
@@ -91,8 +93,10 @@ class PddlFile:
             text = data.decode("utf-8-sig")
         except UnicodeDecodeError as exc:
             if b"\0" in data:
-                raise InputError(f"{path}: cannot be read (not UTF-8 text: byte "
-                                 f"{exc.object[exc.start]:#04x} at offset {exc.start})") from None
+                raise InputError(
+                    f"{path}: cannot be read (not UTF-8 text: byte "
+                    f"{exc.object[exc.start]:#04x} at offset {exc.start})"
+                ) from None
             text = data.decode("latin-1")
         return cls(str(path), text.lower())
 
@@ -167,6 +171,7 @@ def parse_expressions(file: PddlFile) -> tuple[Group, int | None]:
 
 # -- formulas, effects and declarations ------------------------------------------
 
+
 @dataclass(frozen=True)
 class Param:
     """A typed name: a variable (without '?') or an object; no types means object."""
@@ -193,38 +198,38 @@ class Equal:
 
 @dataclass(frozen=True)
 class Not:
-    argument: "Formula"
+    argument: Formula
 
 
 @dataclass(frozen=True)
 class And:
-    parts: tuple["Formula", ...]
+    parts: tuple[Formula, ...]
 
 
 @dataclass(frozen=True)
 class Or:
-    parts: tuple["Formula", ...]
+    parts: tuple[Formula, ...]
 
 
 @dataclass(frozen=True)
 class Imply:
-    left: "Formula"
-    right: "Formula"
+    left: Formula
+    right: Formula
 
 
 @dataclass(frozen=True)
 class Exists:
     params: tuple[Param, ...]
-    body: "Formula"
+    body: Formula
 
 
 @dataclass(frozen=True)
 class Forall:
     params: tuple[Param, ...]
-    body: "Formula"
+    body: Formula
 
 
-Formula = Union[Atom, Equal, Not, And, Or, Imply, Exists, Forall]
+Formula = Atom | Equal | Not | And | Or | Imply | Exists | Forall
 
 
 @dataclass(frozen=True)
@@ -239,19 +244,19 @@ class Literal:
 class AllEffects:
     """An ``and`` of effects."""
 
-    parts: tuple["Effect", ...]
+    parts: tuple[Effect, ...]
 
 
 @dataclass(frozen=True)
 class ForallEffect:
     params: tuple[Param, ...]
-    effect: "Effect"
+    effect: Effect
 
 
 @dataclass(frozen=True)
 class When:
     condition: Formula
-    effect: "Effect"
+    effect: Effect
 
 
 @dataclass(frozen=True)
@@ -261,7 +266,7 @@ class CostEffect:
     pos: int
 
 
-Effect = Union[Literal, AllEffects, ForallEffect, When, CostEffect]
+Effect = Literal | AllEffects | ForallEffect | When | CostEffect
 
 
 @dataclass(frozen=True)
@@ -288,14 +293,14 @@ class Domain:
     file: PddlFile
     name: str
     requirements: set[str] = field(default_factory=set)
-    types: list[Param] = field(default_factory=list)        # a type and its parents
+    types: list[Param] = field(default_factory=list)  # a type and its parents
     constants: list[Param] = field(default_factory=list)
     predicates: dict[str, tuple[Param, ...]] = field(default_factory=dict)
     predicate_pos: dict[str, int] = field(default_factory=dict)
     functions: set[str] = field(default_factory=set)
     actions: list[Action] = field(default_factory=list)
     derived: list[Derived] = field(default_factory=list)
-    used: dict[str, int] = field(default_factory=dict)      # requirement -> first offset
+    used: dict[str, int] = field(default_factory=dict)  # requirement -> first offset
 
 
 @dataclass
@@ -308,22 +313,41 @@ class Problem:
     init: list[Atom] = field(default_factory=list)
     numeric_init: list[tuple[str, int]] = field(default_factory=list)  # function, offset
     goal: Formula = And(())
-    metric: int | None = None                                  # offset of (:metric ...)
+    metric: int | None = None  # offset of (:metric ...)
     used: dict[str, int] = field(default_factory=dict)
 
 
 # Requirements that ethasp accepts (Fast Downward's list, which also names
 # the ones it implies); others are refused by name.
 REQUIREMENTS = {
-    ":strips", ":typing", ":negative-preconditions", ":negation", ":equality",
-    ":disjunctive-preconditions", ":existential-preconditions", ":universal-preconditions",
-    ":quantified-preconditions", ":conditional-effects", ":derived-predicates",
-    ":action-costs", ":adl", ":fluents", ":numeric-fluents",
+    ":strips",
+    ":typing",
+    ":negative-preconditions",
+    ":negation",
+    ":equality",
+    ":disjunctive-preconditions",
+    ":existential-preconditions",
+    ":universal-preconditions",
+    ":quantified-preconditions",
+    ":conditional-effects",
+    ":derived-predicates",
+    ":action-costs",
+    ":adl",
+    ":fluents",
+    ":numeric-fluents",
 }
 IMPLIED = {
-    ":adl": {":strips", ":typing", ":negative-preconditions", ":disjunctive-preconditions",
-             ":equality", ":existential-preconditions", ":universal-preconditions",
-             ":quantified-preconditions", ":conditional-effects"},
+    ":adl": {
+        ":strips",
+        ":typing",
+        ":negative-preconditions",
+        ":disjunctive-preconditions",
+        ":equality",
+        ":existential-preconditions",
+        ":universal-preconditions",
+        ":quantified-preconditions",
+        ":conditional-effects",
+    },
     ":quantified-preconditions": {":existential-preconditions", ":universal-preconditions"},
     ":disjunctive-preconditions": {":negative-preconditions"},
     ":negation": {":negative-preconditions"},
@@ -366,20 +390,27 @@ class _Reader:
     def name(self, expr: Expr, what: str = "a name") -> str:
         word = self.word(expr, what)
         if not _NAME.fullmatch(word):
-            hint = ("" if word[0] in "?:-" else
-                    " (ethasp reads names that start with a letter and have only letters, "
-                    "digits, '-' and '_')")
+            hint = (
+                ""
+                if word[0] in "?:-"
+                else " (ethasp reads names that start with a letter and have only letters, "
+                "digits, '-' and '_')"
+            )
             raise self.file.syntax_error(word, f"expected {what}, found {word!r}{hint}")
         if word in RESERVED:
-            raise self.file.error(word, f"the name {word} cannot be used: "
-                                        "it is a keyword of ASP, into which PDDL is translated")
+            raise self.file.error(
+                word,
+                f"the name {word} cannot be used: "
+                "it is a keyword of ASP, into which PDDL is translated",
+            )
         return str(word)
 
     def arity(self, group: Group, count: int, what: str) -> None:
         if len(group) != count + 1:
-            raise self.file.syntax_error(group, f"{what} takes {count} argument"
-                                                f"{'s' if count != 1 else ''}, "
-                                                f"found {len(group) - 1}")
+            raise self.file.syntax_error(
+                group,
+                f"{what} takes {count} argument{'s' if count != 1 else ''}, found {len(group) - 1}",
+            )
 
     def head(self, group: Group) -> str | None:
         return str(group[0]) if group and isinstance(group[0], Word) else None
@@ -458,8 +489,10 @@ class _Reader:
             return Imply(self.condition(group[1]), self.condition(group[2]))
         if head in ("exists", "forall"):
             self.arity(group, 2, head)
-            self.use(":existential-preconditions" if head == "exists"
-                     else ":universal-preconditions", group)
+            self.use(
+                ":existential-preconditions" if head == "exists" else ":universal-preconditions",
+                group,
+            )
             params = tuple(self.typed_list(self.group(group[1], "(?x - type ...)"), True))
             body = self.condition(group[2])
             return Exists(params, body) if head == "exists" else Forall(params, body)
@@ -503,7 +536,11 @@ class _Reader:
             return When(self.condition(group[1]), self.effect(group[2]))
         if head in NUMERIC_EFFECTS:
             target = group[1] if len(group) > 1 else None
-            if head == "increase" and isinstance(target, Group) and self.head(target) == "total-cost":
+            if (
+                head == "increase"
+                and isinstance(target, Group)
+                and self.head(target) == "total-cost"
+            ):
                 self.use(":action-costs", group)
                 return CostEffect(group.pos)
             raise self.file.unsupported(group, f"numeric effects ({head})")
@@ -552,18 +589,22 @@ class _Reader:
             key = group[index]
             if not isinstance(key, Word) or key not in (":parameters", ":precondition", ":effect"):
                 raise self.file.syntax_error(
-                    key, "expected :parameters, :precondition or :effect, found "
-                         + (f"{key!r}" if isinstance(key, Word) else "'('"))
+                    key,
+                    "expected :parameters, :precondition or :effect, found "
+                    + (f"{key!r}" if isinstance(key, Word) else "'('"),
+                )
             if index + 1 >= len(group):
                 raise self.file.syntax_error(key, f"{key} needs a value")
             parts[str(key)] = group[index + 1]
             index += 2
         params = ()
         if ":parameters" in parts:
-            params = tuple(self.typed_list(self.group(parts[":parameters"], "(?x - type ...)"),
-                                           True))
-        precondition = (self.condition(parts[":precondition"]) if ":precondition" in parts
-                        else And(()))
+            params = tuple(
+                self.typed_list(self.group(parts[":parameters"], "(?x - type ...)"), True)
+            )
+        precondition = (
+            self.condition(parts[":precondition"]) if ":precondition" in parts else And(())
+        )
         effect = self.effect(parts[":effect"]) if ":effect" in parts else AllEffects(())
         return Action(name, params, precondition, effect, group.pos)
 
@@ -581,7 +622,7 @@ class _Reader:
             declaration = self.group(item, "(p ?x ...)")
             if not declaration:
                 raise self.file.syntax_error(declaration, "expected (p ?x ...)")
-            if declaration[0] == "=":   # equality, built in; some writers of PDDL declare it
+            if declaration[0] == "=":  # equality, built in; some writers of PDDL declare it
                 continue
             predicate = self.name(declaration[0], "a predicate")
             domain.predicates[predicate] = tuple(self.typed_list(declaration[1:], True))
@@ -589,7 +630,7 @@ class _Reader:
 
     def function_declarations(self, group: Group, domain: Domain) -> None:
         for item in group[1:]:
-            if isinstance(item, Word):     # "- number" after a function
+            if isinstance(item, Word):  # "- number" after a function
                 continue
             if not item:
                 raise self.file.syntax_error(item, "expected (f ?x ...)")
@@ -674,16 +715,19 @@ def _read_init(reader: _Reader, group: Group, problem: Problem) -> None:
         if head == "=":
             reader.arity(element, 2, "=")
             if not isinstance(element[1], Group):
-                raise reader.file.error(element, "an equality of objects in the initial state "
-                                                 "(only numeric facts (= (f ...) N) use =; "
-                                                 "objects are equal only to themselves)")
+                raise reader.file.error(
+                    element,
+                    "an equality of objects in the initial state "
+                    "(only numeric facts (= (f ...) N) use =; "
+                    "objects are equal only to themselves)",
+                )
             function = element[1]
             if not function:
                 raise reader.file.syntax_error(function, "expected (f ...)")
             name = reader.name(function[0], "a function")
             problem.numeric_init.append((name, element.pos))
             continue
-        if head == "not":     # closed world: negative facts are the default
+        if head == "not":  # closed world: negative facts are the default
             reader.arity(element, 1, "not")
             reader.atom(reader.group(element[1], "an atom"))
             continue

@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Iterable, Iterator
+from typing import TYPE_CHECKING
 
 import clingo
 
@@ -11,7 +12,7 @@ from ethasp.errors import InputError
 from ethasp.planning.naming import pddl_atom_to_term
 from ethasp.planning.terms import TermError, parse_symbol
 
-if TYPE_CHECKING:   # the typed vocabulary is imported where it is used (start-up time)
+if TYPE_CHECKING:  # the typed vocabulary is imported where it is used (start-up time)
     from ethasp.vocabulary import Occurs
 
 
@@ -54,7 +55,7 @@ def parse_action(text: str) -> clingo.Symbol:
         try:
             return pddl_atom_to_term(text)
         except InputError as error:
-            if "," not in text:      # not a tuple term such as (p,q) either
+            if "," not in text:  # not a tuple term such as (p,q) either
                 raise error from None
     try:
         return parse_symbol(text, "action")
@@ -71,7 +72,7 @@ class Plan:
     actions: tuple[clingo.Symbol, ...]
 
     @classmethod
-    def parse(cls, text: str) -> "Plan":
+    def parse(cls, text: str) -> Plan:
         """Read actions separated by spaces: ``"a1 push(man) a3"`` or ``"(a1) (push man)"``.
 
         Each distinct action text is read once (long plans repeat actions)."""
@@ -84,18 +85,21 @@ class Plan:
         return cls(tuple(actions))
 
     @classmethod
-    def from_occurs(cls, atoms: Iterable[Occurs]) -> "Plan":
+    def from_occurs(cls, atoms: Iterable[Occurs]) -> Plan:
         """The plan of a set of ``occurs(A,T)`` atoms."""
         ordered = sorted(atoms, key=lambda atom: atom.step)
         return cls(tuple(atom.action.symbol for atom in ordered))
 
     @classmethod
-    def from_symbols(cls, symbols: Iterable[clingo.Symbol]) -> "Plan":
+    def from_symbols(cls, symbols: Iterable[clingo.Symbol]) -> Plan:
         """The plan of the ``occurs(A,T)`` atoms among clingo symbols (other
         atoms are left aside): read without the typed vocabulary, whose
         classes take longer to build than a short plan search takes."""
-        occurs = [symbol.arguments for symbol in symbols
-                  if symbol.name == "occurs" and len(symbol.arguments) == 2]
+        occurs = [
+            symbol.arguments
+            for symbol in symbols
+            if symbol.name == "occurs" and len(symbol.arguments) == 2
+        ]
         return cls(tuple(action for action, _ in sorted(occurs, key=lambda a: a[1].number)))
 
     def facts(self) -> list[Occurs]:
@@ -104,8 +108,10 @@ class Plan:
 
         from ethasp.vocabulary import Occurs
 
-        return [Occurs(action=Raw(action), step=index)
-                for index, action in enumerate(self.actions, start=1)]
+        return [
+            Occurs(action=Raw(action), step=index)
+            for index, action in enumerate(self.actions, start=1)
+        ]
 
     def __len__(self) -> int:
         return len(self.actions)

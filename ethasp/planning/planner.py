@@ -49,19 +49,22 @@ from __future__ import annotations
 import functools
 import threading
 import time
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Callable, Iterable, Sequence
+from typing import TYPE_CHECKING
 
 import clingo
 
 from ethasp.errors import InputError
 from ethasp.planning import incremental, namespace
 from ethasp.planning.budget import Budget
-from ethasp.planning.messages import Messages
 from ethasp.planning.incremental import CHECK, STEP, TIME_MARKER
-from ethasp.resources import ENCODINGS, encoding
+from ethasp.planning.messages import Messages
+from ethasp.resources import encoding
 
-if TYPE_CHECKING:   # imported when used: plain plan search starts without them
+if TYPE_CHECKING:  # imported when used: plain plan search starts without them
+    from clorm import FactBase
+
     from ethasp.planning.reachability import GroundModel, Reachability
 
 # What a model defines (encodings/planning/model.lp and reasons/labels.lp):
@@ -69,11 +72,23 @@ if TYPE_CHECKING:   # imported when used: plain plan search starts without them
 MODEL_VOCABULARY = tuple(namespace.MODEL_VOCABULARY)
 # The predicates of the vocabulary about one action (its first argument): a
 # plan's trace reads them for the plan's actions only.
-ACTION_VOCABULARY = (("action", 1), ("pre", 3), ("eff", 3), ("cpre", 4), ("ceff", 4),
-                     ("utility", 2), ("override", 4), ("action_label", 3))
+ACTION_VOCABULARY = (
+    ("action", 1),
+    ("pre", 3),
+    ("eff", 3),
+    ("cpre", 4),
+    ("ceff", 4),
+    ("utility", 2),
+    ("override", 4),
+    ("action_label", 3),
+)
 
-TRACE_ENCODINGS = ("planning/model.lp", "planning/trace.lp", "planning/trace_events.lp",
-                   "judgement/judge.lp")
+TRACE_ENCODINGS = (
+    "planning/model.lp",
+    "planning/trace.lp",
+    "planning/trace_events.lp",
+    "judgement/judge.lp",
+)
 BOUND_ENCODINGS = ("planning/model.lp", "planning/relaxed.lp")
 
 LOOPFREE = "loopfree"
@@ -81,9 +96,14 @@ SEARCH = "search"
 
 # Parts of the model's own base part and of the searches (relative to encodings/).
 MODEL_ENCODINGS = ("planning/model.lp", "planning/check.lp")
-SEARCH_ENCODINGS = ("planning/relaxed.lp", "planning/transition.lp", "planning/events.lp",
-                    "judgement/best.lp", "reasons/other_state.lp",
-                    "questions/questions.lp")
+SEARCH_ENCODINGS = (
+    "planning/relaxed.lp",
+    "planning/transition.lp",
+    "planning/events.lp",
+    "judgement/best.lp",
+    "reasons/other_state.lp",
+    "questions/questions.lp",
+)
 GOAL_ENCODING = "planning/goal.lp"
 # The h^2 mutexes are redundant constraints: they speed up hard horizons, but
 # their fixpoint grows with the square of the facts.  So they are grounded only
@@ -160,8 +180,10 @@ def add_facts(ctl: clingo.Control, facts: Iterable) -> None:
 
 def occurrences(plan) -> list[clingo.Symbol]:
     """A plan's ``occurs(A,T)`` atoms."""
-    return [clingo.Function("occurs", [action, clingo.Number(step)])
-            for step, action in enumerate(plan, start=1)]
+    return [
+        clingo.Function("occurs", [action, clingo.Number(step)])
+        for step, action in enumerate(plan, start=1)
+    ]
 
 
 class Answer:
@@ -213,8 +235,9 @@ class Setting:
     constraints imposed (of questions made by :meth:`Planner.question`; the
     restrictions of principles, and the question constraints that compile,
     are HModels of their own: :mod:`ethasp.principles.hmodel`);
-    ``at_least``: the state at the horizon must be worth at least this much; ``other_state``: a state (:meth:`Planner.avoid`) the state at
-    the horizon must differ from; ``optimize``: find an optimal model of the
+    ``at_least``: the state at the horizon must be worth at least this much;
+    ``other_state``: a state (:meth:`Planner.avoid`) the state at the horizon
+    must differ from; ``optimize``: find an optimal model of the
     objective (the utility of the state at the horizon, then goal states);
     ``satisficing``: the solver's decision heuristic for any-plan searches
     (``planning/satisficing.lp``; it changes which plan is found first, not
@@ -255,10 +278,12 @@ def _locked(method):
     """Run a method under the planner's lock: clingo controls and diagram
     managers serve one thread at a time (the web page runs searches in
     threads)."""
+
     @functools.wraps(method)
     def run(self, *args, **kwargs):
         with self.lock:
             return method(self, *args, **kwargs)
+
     return run
 
 
@@ -277,13 +302,13 @@ class Planner:
         self.ctl = model.control(OPTIONS, self.messages)
         self._parts: dict[str, tuple[str, ...]] = {}
         self._searching = False
-        self._mutexes: bool | None = False   # grounded (True), not yet, or never (None)
+        self._mutexes: bool | None = False  # grounded (True), not yet, or never (None)
         self._canonical: bool | None = False  # the same for the canonical order
-        self._state = False           # the state at the horizon grounded (use_state)
-        self._mutex_size: tuple[int, int] | None = None   # (fluents, pairs)
-        self._threads = 1             # solver threads (see threads())
-        self.grounded = -1            # step and check parts grounded up to this time
-        self._loopfree = 0            # loopfree parts grounded up to this time
+        self._state = False  # the state at the horizon grounded (use_state)
+        self._mutex_size: tuple[int, int] | None = None  # (fluents, pairs)
+        self._threads = 1  # solver threads (see threads())
+        self.grounded = -1  # step and check parts grounded up to this time
+        self._loopfree = 0  # loopfree parts grounded up to this time
         self._inputs: dict[str, list[clingo.Symbol]] = {name: [] for name in incremental.INPUTS}
         self._questions: dict[clingo.Symbol, list[Constraint]] = {}
         self._question_ids: dict[tuple[clingo.Symbol, ...], clingo.Symbol] = {}
@@ -292,7 +317,7 @@ class Planner:
         self._reachability: Reachability | None = None
         self._ground_model: GroundModel | None = None
         self._traces: dict = {}
-        self._externals: dict[clingo.Symbol, bool] = {}   # values assigned so far
+        self._externals: dict[clingo.Symbol, bool] = {}  # values assigned so far
         self._model_text: str | None = None
         self._action_atoms: dict[clingo.Symbol, list[clingo.Symbol]] | None = None
         self._state_text: str | None = None
@@ -333,8 +358,9 @@ class Planner:
         key = (name, arity)
         if key not in self._atoms:
             self._settle(None)
-            self._atoms[key] = [atom.symbol for atom in
-                                self.ctl.symbolic_atoms.by_signature(name, arity)]
+            self._atoms[key] = [
+                atom.symbol for atom in self.ctl.symbolic_atoms.by_signature(name, arity)
+            ]
         return self._atoms[key]
 
     @_locked
@@ -349,23 +375,30 @@ class Planner:
         state is worth more than the upper bound (a small program of its own:
         no search needs to be grounded for it)."""
         if self._bound is None:
-            self._bound = self.solve_program(BOUND_ENCODINGS,
-                                             "#show upper_bound/1. #show best_fact/2.\n")
+            self._bound = self.solve_program(
+                BOUND_ENCODINGS, "#show upper_bound/1. #show best_fact/2.\n"
+            )
         return self._bound
 
-    def facts(self, predicates) -> "FactBase":
+    def facts(self, predicates) -> FactBase:
         """The base part's atoms of the given clorm predicates (the model's
         vocabulary, its rules grounded, and model.lp's)."""
         from clorm import unify
 
-        return unify(list(predicates), [symbol for predicate in predicates
-                                        for symbol in self.get(predicate.meta.name,
-                                                               predicate.meta.arity)])
+        return unify(
+            list(predicates),
+            [
+                symbol
+                for predicate in predicates
+                for symbol in self.get(predicate.meta.name, predicate.meta.arity)
+            ],
+        )
 
     def vocabulary_text(self, signatures: Iterable[tuple[str, int]]) -> str:
         """The ground atoms of these predicates as facts (for programs over a plan)."""
-        return "".join(f"{symbol}.\n" for signature in signatures
-                       for symbol in self.get(*signature))
+        return "".join(
+            f"{symbol}.\n" for signature in signatures for symbol in self.get(*signature)
+        )
 
     @_locked
     def ground_model(self) -> GroundModel:
@@ -385,23 +418,34 @@ class Planner:
             self._ground_model = from_atoms(
                 [a.arguments[0] for a in self.get("variable", 1)],
                 [a.arguments[0] for a in self.get("action", 1)],
-                [(a.arguments[0], a.arguments[1], value(a.arguments[2]))
-                 for a in self.get("pre", 3)],
-                [(a.arguments[0], a.arguments[1], value(a.arguments[2]))
-                 for a in self.get("eff", 3)],
-                [(a.arguments[0], a.arguments[1], a.arguments[2], value(a.arguments[3]))
-                 for a in self.get("ceff", 4)],
-                [(a.arguments[0], a.arguments[1], a.arguments[2], value(a.arguments[3]))
-                 for a in self.get("cpre", 4)],
+                [
+                    (a.arguments[0], a.arguments[1], value(a.arguments[2]))
+                    for a in self.get("pre", 3)
+                ],
+                [
+                    (a.arguments[0], a.arguments[1], value(a.arguments[2]))
+                    for a in self.get("eff", 3)
+                ],
+                [
+                    (a.arguments[0], a.arguments[1], a.arguments[2], value(a.arguments[3]))
+                    for a in self.get("ceff", 4)
+                ],
+                [
+                    (a.arguments[0], a.arguments[1], a.arguments[2], value(a.arguments[3]))
+                    for a in self.get("cpre", 4)
+                ],
                 [a.arguments[0] for a in self.get("init", 1)],
                 [(a.arguments[0], value(a.arguments[1])) for a in self.get("goal", 2)],
                 weights,
-                [(a.arguments[0], a.arguments[1], a.arguments[2], value(a.arguments[3]))
-                 for a in self.get("axiom_pre", 4)],
+                [
+                    (a.arguments[0], a.arguments[1], a.arguments[2], value(a.arguments[3]))
+                    for a in self.get("axiom_pre", 4)
+                ],
                 [(a.arguments[0], a.arguments[1]) for a in self.get("axiom", 2)],
                 [a.arguments[0] for a in self.get("derived", 1)],
                 max((a.arguments[0].number for a in self.get("goal_utility", 1)), default=None),
-                _events(self))
+                _events(self),
+            )
         return self._ground_model
 
     def reachability_pending(self) -> bool:
@@ -417,8 +461,11 @@ class Planner:
     def last_event(self) -> int:
         """The last step at which an event is due (0 without events): a plan of
         fewer steps ends there, after the events."""
-        steps = [atom.arguments[1].number for atom in self.get("event_at", 2)
-                 if atom.arguments[1].type == clingo.SymbolType.Number]
+        steps = [
+            atom.arguments[1].number
+            for atom in self.get("event_at", 2)
+            if atom.arguments[1].type == clingo.SymbolType.Number
+        ]
         return max(steps, default=0)
 
     @property
@@ -437,8 +484,9 @@ class Planner:
         if self._reachability is None:
             from ethasp.planning import reachability
 
-            self._reachability = reachability.Reachability(self.ground_model(),
-                                                           reachability.DEFAULT_NODE_LIMIT)
+            self._reachability = reachability.Reachability(
+                self.ground_model(), reachability.DEFAULT_NODE_LIMIT
+            )
         return self._reachability
 
     # -- grounding ------------------------------------------------------------------
@@ -455,16 +503,29 @@ class Planner:
                 # Grounded when a search is found hard (see use_mutexes).
                 files.append((MUTEX_ENCODING, MUTEX_STEP, None, MUTEX))
                 files.append((CANONICAL_ENCODING, CANONICAL_STEP, None, CANONICAL))
-                self._parts.update(incremental.add_encoding(
-                    builder, encoding(STATE_ENCODING), on_message=self.messages,
-                    base_part=SEARCH, check_part=STATE_CHECK))
+                self._parts.update(
+                    incremental.add_encoding(
+                        builder,
+                        encoding(STATE_ENCODING),
+                        on_message=self.messages,
+                        base_part=SEARCH,
+                        check_part=STATE_CHECK,
+                    )
+                )
                 files.append((GOAL_ENCODING, STEP, GOAL_SWITCH, SEARCH))
                 files.append((SATISFICING_ENCODING, STEP, SATISFICING_SWITCH, SEARCH))
                 files.append((LOOPFREE_ENCODING, LOOPFREE, None, SEARCH))
                 for name, step_part, switch, base_part in files:
-                    self._parts.update(incremental.add_encoding(
-                        builder, encoding(name), step_part=step_part, switch=switch,
-                        on_message=self.messages, base_part=base_part))
+                    self._parts.update(
+                        incremental.add_encoding(
+                            builder,
+                            encoding(name),
+                            step_part=step_part,
+                            switch=switch,
+                            on_message=self.messages,
+                            base_part=base_part,
+                        )
+                    )
             for part, (parameters, text) in incremental.time_parts().items():
                 self.ctl.add(part, parameters, text)
             self.ctl.add(SEARCH, [], "time(0).\n" + "".join(f"#external {s}.\n" for s in switches))
@@ -573,7 +634,7 @@ class Planner:
             return False
         fluents, pairs = self.mutex_size()
         if fluents > MUTEX_MAX_FLUENTS or pairs > MUTEX_MAX_PAIRS:
-            self._mutexes = None       # never
+            self._mutexes = None  # never
             return False
         self._mutexes = True
         self._ground_from_now(MUTEX, MUTEX_STEP, budget)
@@ -603,7 +664,7 @@ class Planner:
         if self._canonical is not False:
             return bool(self._canonical)
         if self.has_events or len(self.search_atoms("usable", 1)) > CANONICAL_MAX_ACTIONS:
-            self._canonical = None     # never
+            self._canonical = None  # never
             return False
         self._canonical = True
         self._ground_from_now(CANONICAL, CANONICAL_STEP, budget)
@@ -616,25 +677,32 @@ class Planner:
         self._start_search(budget)
         if not self._state:
             self._state = True
-            self._ground([(STATE_CHECK, [clingo.Number(t)]) for t in range(0, self.grounded + 1)],
-                         budget)
+            self._ground(
+                [(STATE_CHECK, [clingo.Number(t)]) for t in range(self.grounded + 1)], budget
+            )
 
     def _ground_from_now(self, part: str, step_part: str, budget: Budget | None = None) -> None:
         """Ground an optional part and its step part for every step so far
         (:meth:`ground_to` grounds the step part of later steps)."""
-        self._ground([(part, [])] + [(step_part, [clingo.Number(t)])
-                                     for t in range(1, self.grounded + 1)], budget)
+        self._ground(
+            [(part, [])] + [(step_part, [clingo.Number(t)]) for t in range(1, self.grounded + 1)],
+            budget,
+        )
 
-    def _register(self, name: str, value: clingo.Symbol,
-                  facts: Sequence[clingo.Symbol] = (), budget: Budget | None = None) -> None:
+    def _register(
+        self,
+        name: str,
+        value: clingo.Symbol,
+        facts: Sequence[clingo.Symbol] = (),
+        budget: Budget | None = None,
+    ) -> None:
         """Ground the parts of one input value up to the horizon grounded so far."""
         self._start_search(budget)
         if value in self._inputs[name]:
             return
         parts = [(name, [value])]
-        add_facts(self.ctl, facts)        # seen by the parts grounded next
-        times = range(1, self._loopfree + 1) if name == "simple_path" else \
-            range(0, self.grounded + 1)
+        add_facts(self.ctl, facts)  # seen by the parts grounded next
+        times = range(1, self._loopfree + 1) if name == "simple_path" else range(self.grounded + 1)
         parts += self._input_parts(name, value, times)
         self._inputs[name].append(value)
         self._ground(parts, budget)
@@ -666,10 +734,13 @@ class Planner:
         body)."""
         found = []
         for constraint in constraints:
-            for name, why in (("question_against_goal", "goal"),
-                              ("question_unreachable", "relaxed")):
-                atom = self.ctl.symbolic_atoms[clingo.Function(
-                    name, [constraint.question, constraint.term])]
+            for name, why in (
+                ("question_against_goal", "goal"),
+                ("question_unreachable", "relaxed"),
+            ):
+                atom = self.ctl.symbolic_atoms[
+                    clingo.Function(name, [constraint.question, constraint.term])
+                ]
                 if atom is not None:
                     found.append((constraint, why))
                     break
@@ -681,9 +752,13 @@ class Planner:
         key = frozenset(state)
         if key not in self._avoided:
             number = len(self._avoided) + 1
-            facts = [clingo.Function("other_than", [clingo.Number(number), variable,
-                                                     clingo.Function(str(value).lower())])
-                     for variable, value in sorted(key, key=str)]
+            facts = [
+                clingo.Function(
+                    "other_than",
+                    [clingo.Number(number), variable, clingo.Function(str(value).lower())],
+                )
+                for variable, value in sorted(key, key=str)
+            ]
             self._register("other_state", clingo.Number(number), facts)
             self._avoided[key] = number
         return self._avoided[key]
@@ -693,13 +768,18 @@ class Planner:
 
     # -- solving ---------------------------------------------------------------------
 
-    def _set(self, setting: Setting, horizon: int | None, end: int,
-             simple_path: clingo.Symbol | None = None) -> list[tuple[clingo.Symbol, bool]]:
+    def _set(
+        self,
+        setting: Setting,
+        horizon: int | None,
+        end: int,
+        simple_path: clingo.Symbol | None = None,
+    ) -> list[tuple[clingo.Symbol, bool]]:
         """Assign the externals of a setting (``horizon``: the time whose check
         part applies, None for none; ``end``: the steps after it idle); return
         the assumptions on the question constraints."""
         assign = self._assign
-        for t in range(0, self.grounded + 1):
+        for t in range(self.grounded + 1):
             assign(_time_atom(TIME_MARKER, t), t == horizon)
             if t > 0:
                 assign(_time_atom(PAST, t), t > end)
@@ -709,10 +789,12 @@ class Planner:
         assign(CANONICAL_SWITCH, setting.canonical and simple_path is None)
         wanted = {
             "question": {c.question for c in setting.constraints},
-            "at_least": ({clingo.Number(setting.at_least)}
-                         if setting.at_least is not None else set()),
-            "other_state": ({clingo.Number(setting.other_state)}
-                            if setting.other_state is not None else set()),
+            "at_least": (
+                {clingo.Number(setting.at_least)} if setting.at_least is not None else set()
+            ),
+            "other_state": (
+                {clingo.Number(setting.other_state)} if setting.other_state is not None else set()
+            ),
             "simple_path": {simple_path} if simple_path is not None else set(),
         }
         for name, values in wanted.items():
@@ -734,17 +816,25 @@ class Planner:
     def _prepare(self, setting: Setting, budget: Budget | None = None) -> None:
         for constraint in setting.constraints:
             if constraint not in self._questions.get(constraint.question, ()):
-                raise ValueError(f"constraint {constraint} of an unknown question "
-                                 f"{constraint.question} (see Planner.question)")
+                raise ValueError(
+                    f"constraint {constraint} of an unknown question "
+                    f"{constraint.question} (see Planner.question)"
+                )
         if setting.at_least is not None:
             self._threshold("at_least", setting.at_least, budget)
         if setting.optimize or setting.at_least is not None:
-            self.use_state(budget)    # their answers are read as states
+            self.use_state(budget)  # their answers are read as states
 
     @_locked
-    def solve(self, horizon: int, setting: Setting, budget: Budget,
-              models: int = 1, mutex_after: float = MUTEX_AFTER,
-              moot: Callable[[], bool] | None = None) -> Outcome:
+    def solve(
+        self,
+        horizon: int,
+        setting: Setting,
+        budget: Budget,
+        models: int = 1,
+        mutex_after: float = MUTEX_AFTER,
+        moot: Callable[[], bool] | None = None,
+    ) -> Outcome:
         """Solve at one horizon under a setting (grounding what it needs first);
         a solve that takes more than ``mutex_after`` seconds has the h^2
         mutexes grounded for the next ones (:meth:`use_mutexes`), and one
@@ -760,7 +850,7 @@ class Planner:
             check = max(horizon, self.last_event)
             self.ground_to(check, budget)
         except GroundingStopped:
-            return Outcome(None)        # the budget ran out while grounding
+            return Outcome(None)  # the budget ran out while grounding
         assumptions = self._set(setting, check, horizon)
         began = time.monotonic()
         outcome = self._solve(assumptions, budget, setting.optimize, models)
@@ -769,17 +859,20 @@ class Planner:
             return outcome
         try:
             if seconds > mutex_after and self._mutexes is False:
-                self.use_mutexes(budget)    # a hard search: the next solves get them
-            if seconds > max(mutex_after, CANONICAL_AFTER) and setting.canonical \
-                    and self._canonical is False:
+                self.use_mutexes(budget)  # a hard search: the next solves get them
+            if (
+                seconds > max(mutex_after, CANONICAL_AFTER)
+                and setting.canonical
+                and self._canonical is False
+            ):
                 self.use_canonical(budget)  # a harder one: worth its grounding
         except GroundingStopped:
-            pass                        # the next solve waits for it, or stops
+            pass  # the next solve waits for it, or stops
         return outcome
 
     def _solve(self, assumptions, budget: Budget, optimize: bool, models: int) -> Outcome:
         if budget.expired():
-            return Outcome(None)        # cancelled or out of time: no solve starts
+            return Outcome(None)  # cancelled or out of time: no solve starts
         try:
             self._settle(budget)
         except GroundingStopped:
@@ -805,8 +898,9 @@ class Planner:
             result = handle.get()
         if result.interrupted:
             return Outcome(None, found[-1] if found else [], costs[0] if costs else [])
-        return Outcome(result.satisfiable, found[-1] if found else [],
-                       costs[0] if costs else [], found)
+        return Outcome(
+            result.satisfiable, found[-1] if found else [], costs[0] if costs else [], found
+        )
 
     @_locked
     def threads(self, count: int) -> None:
@@ -865,7 +959,8 @@ class Planner:
                 for symbol in self.get(*signature):
                     by_action.setdefault(symbol.arguments[0], []).append(symbol)
             self._state_text = self.vocabulary_text(
-                [s for s in MODEL_VOCABULARY if s not in ACTION_VOCABULARY])
+                [s for s in MODEL_VOCABULARY if s not in ACTION_VOCABULARY]
+            )
             self._action_atoms = by_action
 
     def plan_model_text(self, plan) -> str:
@@ -874,11 +969,20 @@ class Planner:
         trace of the plan reads (``planning/trace.lp`` joins every fact about
         an action with its occurrence), and much less than the whole model."""
         self.prepare_traces()
-        return self._state_text + "".join(f"{symbol}.\n" for action in dict.fromkeys(plan)
-                                          for symbol in self._action_atoms.get(action, ()))
+        return self._state_text + "".join(
+            f"{symbol}.\n"
+            for action in dict.fromkeys(plan)
+            for symbol in self._action_atoms.get(action, ())
+        )
 
-    def program(self, encodings: Sequence[str], facts: str = "", arguments: Sequence[str] = (),
-                model: bool = True, symbols: Iterable[clingo.Symbol] = ()) -> clingo.Control:
+    def program(
+        self,
+        encodings: Sequence[str],
+        facts: str = "",
+        arguments: Sequence[str] = (),
+        model: bool = True,
+        symbols: Iterable[clingo.Symbol] = (),
+    ) -> clingo.Control:
         """A grounded control with the ground model's facts (unless ``model`` is
         False), the encodings and further facts: programs about one plan or one
         formula, which read the model but do not search it.  ``facts`` is text
@@ -909,17 +1013,24 @@ class Planner:
         for done, answer in self._traces.get(plan, []):
             if wanted <= done:
                 return answer
-        if encodings:     # further programs may read any action of the model
-            answer = self.solve_program(list(TRACE_ENCODINGS) + list(encodings),
-                                        symbols=occurrences(plan))
+        if encodings:  # further programs may read any action of the model
+            answer = self.solve_program(
+                list(TRACE_ENCODINGS) + list(encodings), symbols=occurrences(plan)
+            )
         else:
-            answer = self.solve_program(TRACE_ENCODINGS, self.plan_model_text(plan),
-                                        model=False, symbols=occurrences(plan))
+            answer = self.solve_program(
+                TRACE_ENCODINGS, self.plan_model_text(plan), model=False, symbols=occurrences(plan)
+            )
         self._traces.setdefault(plan, []).append((wanted, answer))
         return answer
 
-    def solve_program(self, encodings: Sequence[str], facts: str = "",
-                      model: bool = True, symbols: Iterable[clingo.Symbol] = ()) -> Answer:
+    def solve_program(
+        self,
+        encodings: Sequence[str],
+        facts: str = "",
+        model: bool = True,
+        symbols: Iterable[clingo.Symbol] = (),
+    ) -> Answer:
         """The first answer set of :meth:`program` (empty if there is none)."""
         ctl = self.program(encodings, facts, model=model, symbols=symbols)
         with ctl.solve(yield_=True) as handle:

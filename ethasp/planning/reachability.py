@@ -33,8 +33,8 @@ from __future__ import annotations
 
 import sys
 import warnings
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
-from typing import Iterable, Sequence
 
 import clingo
 
@@ -116,8 +116,9 @@ class GroundModel:
         """Does a state (true variables given) meet the goal?  (Literals on
         state variables only: for tests and plans read off engines.)"""
         true = set(state)
-        return (all((v in true) == b for v, b in self.goal if v not in self.axioms)
-                and (self.goal_utility is None or self.utility(true) >= self.goal_utility))
+        return all((v in true) == b for v, b in self.goal if v not in self.axioms) and (
+            self.goal_utility is None or self.utility(true) >= self.goal_utility
+        )
 
 
 @dataclass
@@ -179,14 +180,16 @@ def dependency_groups(depends: dict) -> list[list]:
     return groups
 
 
-def _order(model: GroundModel, index: dict[clingo.Symbol, int],
-           rounds: int = FORCE_ROUNDS) -> list[int]:
+def _order(
+    model: GroundModel, index: dict[clingo.Symbol, int], rounds: int = FORCE_ROUNDS
+) -> list[int]:
     """A variable order for the diagrams: variables that actions use together
     are placed near each other (the FORCE heuristic: each action pulls its
     variables towards their centre, for a few rounds)."""
     position = {i: float(i) for i in index.values()}
+
     def positions(literals) -> set[int]:
-        return {index[v] for v, _ in literals if v in index}   # derived ones aside
+        return {index[v] for v, _ in literals if v in index}  # derived ones aside
 
     uses = []
     for action in model.actions:
@@ -205,8 +208,8 @@ def _order(model: GroundModel, index: dict[clingo.Symbol, int],
     if not edges:
         return sorted(position)
     for _ in range(rounds):
-        total = {i: 0.0 for i in position}
-        count = {i: 0 for i in position}
+        total = dict.fromkeys(position, 0.0)
+        count = dict.fromkeys(position, 0)
         for edge in edges:
             centre = sum(position[i] for i in edge) / len(edge)
             for i in edge:
@@ -222,6 +225,7 @@ def _clusters(model: GroundModel, index: dict[clingo.Symbol, int]) -> list[list[
     """Actions in groups that share one transition relation: in the order of the
     variables they write, a group takes actions while they write at most
     :data:`CLUSTER_VARIABLES` variables together."""
+
     def written(action: GroundAction) -> list[int]:
         return sorted({index[e.variable] for e in action.effects})
 
@@ -309,7 +313,7 @@ class Reachability:
         self.back_reached = self.bdd.false
         self.back_complete = False
         self.complete = False
-        self._next = None         # the next layer, computed by closed() but not yet added
+        self._next = None  # the next layer, computed by closed() but not yet added
         self.stopped = ""
 
     # -- diagrams of literals -----------------------------------------------------
@@ -329,8 +333,10 @@ class Reachability:
         groups of derived variables in the order of their dependencies, each
         iterated from false to its least fixpoint."""
         axioms = self.model.axioms
-        depends = {d: {v for body in bodies for v, _ in body if v in axioms}
-                   for d, bodies in axioms.items()}
+        depends = {
+            d: {v for body in bodies for v, _ in body if v in axioms}
+            for d, bodies in axioms.items()
+        }
         for group in dependency_groups(depends):
             for derived in group:
                 self._derived[derived] = self.bdd.false
@@ -368,8 +374,11 @@ class Reachability:
         needed (memoised; decided early where the variables below can no longer
         miss or reach it)."""
         by_level, _ = self._levels()
-        weighted = [(f"x{entry[0]}", entry[1], entry[2]) for entry in by_level
-                    if entry is not None and (entry[1] or entry[2])]
+        weighted = [
+            (f"x{entry[0]}", entry[1], entry[2])
+            for entry in by_level
+            if entry is not None and (entry[1] or entry[2])
+        ]
         count = len(weighted)
         most, least = [0] * (count + 1), [0] * (count + 1)
         for i in range(count - 1, -1, -1):
@@ -450,9 +459,9 @@ class Reachability:
         ``limit`` nodes: there fewer, larger products (often one relation for
         every action) cost less than many small ones."""
         if not self._images or sum(len(parts[0]) for parts in self._images) > limit:
-            return      # large models: joining costs more than it saves (depots)
+            return  # large models: joining costs more than it saves (depots)
         groups, images = [self._groups[0]], [self._images[0]]
-        for group, parts in zip(self._groups[1:], self._images[1:]):
+        for group, parts in zip(self._groups[1:], self._images[1:], strict=True):
             joint = self._joined(images[-1], parts)
             if len(joint[0]) <= limit:
                 groups[-1] = groups[-1] + group
@@ -464,15 +473,17 @@ class Reachability:
 
     def _joined(self, first, second):
         """One relation for two clusters: each keeps the variables only the other writes."""
+
         def keep(parts, names):
-            frame = self.bdd.true        # small: one equivalence per variable
+            frame = self.bdd.true  # small: one equivalence per variable
             for x in names:
                 frame &= self.bdd.var(f"y{x[1:]}").equiv(self.bdd.var(x))
             return parts[0] & frame
 
         written = sorted(set(first[1]) | set(second[1]), key=lambda x: int(x[1:]))
-        relation = keep(first, [x for x in written if x not in first[1]]) | \
-            keep(second, [x for x in written if x not in second[1]])
+        relation = keep(first, [x for x in written if x not in first[1]]) | keep(
+            second, [x for x in written if x not in second[1]]
+        )
         return relation, written, {f"y{x[1:]}": x for x in written}
 
     def _image(self, states, parts):
@@ -486,7 +497,7 @@ class Reachability:
     def nodes(self) -> int:
         """Live diagram nodes (of every diagram of the manager)."""
         if self._compiled:
-            with warnings.catch_warnings():   # dd warns of a changed unit of 'mem'
+            with warnings.catch_warnings():  # dd warns of a changed unit of 'mem'
                 warnings.simplefilter("ignore")
                 return int(self.bdd.statistics()["n_nodes"])
         return len(self.bdd)
@@ -501,10 +512,10 @@ class Reachability:
         new = self.bdd.false
         for count, parts in enumerate(self._images, start=1):
             new |= image(frontier, parts)
-            if count % CHECK_EVERY == 0 or count == len(self._images):
-                if budget is not None and budget.expired():
-                    self.stopped = budget.why_stopped()
-                    return None
+            checked = count % CHECK_EVERY == 0 or count == len(self._images)
+            if checked and budget is not None and budget.expired():
+                self.stopped = budget.why_stopped()
+                return None
         if self.nodes() > self.node_limit:
             self.stopped = f"more than {self.node_limit} diagram nodes"
             return None
@@ -551,7 +562,7 @@ class Reachability:
         """The states from which an action of a cluster leads into ``states``:
         the written variables renamed to their after-copies, then the
         relation's product over them (the others keep their values)."""
-        relation, qvars, rename = parts
+        relation, _qvars, rename = parts
         moved = self.bdd.let({x: y for y, x in rename.items()}, states)
         after = list(rename)
         if self._compiled:
@@ -589,8 +600,9 @@ class Reachability:
         for k in range(layer, 0, -1):
             step = self._successor(current, self.back_layers[k - 1])
             if step is None:
-                raise RuntimeError(f"no successor of a state of backward layer {k} in "
-                                   f"backward layer {k - 1}")
+                raise RuntimeError(
+                    f"no successor of a state of backward layer {k} in backward layer {k - 1}"
+                )
             action, current = step
             actions.append(action)
         return actions
@@ -598,20 +610,26 @@ class Reachability:
     def _successor(self, state: frozenset[clingo.Symbol], layer):
         """An action and the state of ``layer`` it leads to from ``state``."""
         full = self.state(state)
-        for group, parts in zip(self._groups, self._images):
+        for group, parts in zip(self._groups, self._images, strict=True):
             if self._image(full, parts) & layer == self.bdd.false:
                 continue
             for action in group:
                 relation, written = self._relation(action)
                 qvars = [f"x{self.index[v]}" for v in written]
                 moved = self.bdd.exist(qvars, full & relation)
-                after = self.bdd.let({f"y{self.index[v]}": x for v, x in zip(written, qvars)},
-                                     moved) & layer
+                after = (
+                    self.bdd.let(
+                        {f"y{self.index[v]}": x for v, x in zip(written, qvars, strict=True)}, moved
+                    )
+                    & layer
+                )
                 if after != self.bdd.false:
-                    values = self.bdd.pick(after, care_vars=[f"x{i}" for i in
-                                                             range(len(self.model.variables))])
-                    return action.name, frozenset(v for v in self.model.variables
-                                                  if values[f"x{self.index[v]}"])
+                    values = self.bdd.pick(
+                        after, care_vars=[f"x{i}" for i in range(len(self.model.variables))]
+                    )
+                    return action.name, frozenset(
+                        v for v in self.model.variables if values[f"x{self.index[v]}"]
+                    )
         return None
 
     def run(self, budget: Budget | None = None) -> bool:
@@ -643,7 +661,7 @@ class Reachability:
         cluster), then an action of it."""
         full = self.state(state)
         variables = self.model.variables
-        for group, (relation, qvars, rename) in zip(self._groups, self._images):
+        for group, (relation, qvars, rename) in zip(self._groups, self._images, strict=True):
             written = [variables[int(x[1:])] for x in qvars]
             after = self._values(state, written, after=True)
             before = self.bdd.exist(list(rename), relation & after)
@@ -654,8 +672,9 @@ class Reachability:
                 return step
         return None
 
-    def _action_predecessor(self, state: frozenset[clingo.Symbol], full,
-                            actions: list[GroundAction], layer):
+    def _action_predecessor(
+        self, state: frozenset[clingo.Symbol], full, actions: list[GroundAction], layer
+    ):
         """An action of ``actions`` and a state of ``layer`` from which it leads
         to the state ``full``."""
         for action in actions:
@@ -664,14 +683,14 @@ class Reachability:
             relation, written = self._relation(action)
             after = self._values(state, written, after=True)
             qvars = [f"x{self.index[v]}" for v in written]
-            rest = self.bdd.exist(qvars, full)   # the variables the action leaves alone
+            rest = self.bdd.exist(qvars, full)  # the variables the action leaves alone
             before = self.bdd.exist([f"y{self.index[v]}" for v in written], relation & after)
             before &= rest & layer
             if before != self.bdd.false:
-                values = self.bdd.pick(before, care_vars=[f"x{i}" for i in
-                                                          range(len(self.model.variables))])
-                true = frozenset(v for v in self.model.variables
-                                 if values[f"x{self.index[v]}"])
+                values = self.bdd.pick(
+                    before, care_vars=[f"x{i}" for i in range(len(self.model.variables))]
+                )
+                true = frozenset(v for v in self.model.variables if values[f"x{self.index[v]}"])
                 return action.name, true
         return None
 
@@ -685,8 +704,11 @@ class Reachability:
             if (variable in state) != value:
                 return False
         for variable, value in action.pre:
-            if variable in self.index and variable not in written["all"] \
-                    and (variable in state) != value:
+            if (
+                variable in self.index
+                and variable not in written["all"]
+                and (variable in state) != value
+            ):
                 return False
         return True
 
@@ -695,8 +717,11 @@ class Reachability:
         found = self._writes.get(action.name)
         if found is None:
             adds = {e.variable for e in action.effects if e.value}
-            fixed = {(e.variable, e.value) for e in action.effects if not e.condition
-                     and (e.value or e.variable not in adds)}
+            fixed = {
+                (e.variable, e.value)
+                for e in action.effects
+                if not e.condition and (e.value or e.variable not in adds)
+            }
             found = {"all": {e.variable for e in action.effects}, "fixed": fixed}
             self._writes[action.name] = found
         return found
@@ -859,17 +884,22 @@ def _effect_order(effect: Effect) -> tuple:
     return effect.variable, effect.value, effect.condition
 
 
-def from_atoms(variables: Sequence[clingo.Symbol], actions: Sequence[clingo.Symbol],
-               pre: Iterable[tuple[clingo.Symbol, clingo.Symbol, bool]],
-               eff: Iterable[tuple[clingo.Symbol, clingo.Symbol, bool]],
-               ceff: Iterable[tuple[clingo.Symbol, clingo.Symbol, clingo.Symbol, bool]],
-               cpre: Iterable[tuple[clingo.Symbol, clingo.Symbol, clingo.Symbol, bool]],
-               init: Iterable[clingo.Symbol], goal: Iterable[Literal],
-               weights: dict[Literal, int],
-               axiom_pre: Iterable[tuple[clingo.Symbol, clingo.Symbol, clingo.Symbol, bool]] = (),
-               axioms: Iterable[tuple[clingo.Symbol, clingo.Symbol]] = (),
-               derived: Iterable[clingo.Symbol] = (),
-               goal_utility: int | None = None, events: Sequence = ()) -> GroundModel:
+def from_atoms(
+    variables: Sequence[clingo.Symbol],
+    actions: Sequence[clingo.Symbol],
+    pre: Iterable[tuple[clingo.Symbol, clingo.Symbol, bool]],
+    eff: Iterable[tuple[clingo.Symbol, clingo.Symbol, bool]],
+    ceff: Iterable[tuple[clingo.Symbol, clingo.Symbol, clingo.Symbol, bool]],
+    cpre: Iterable[tuple[clingo.Symbol, clingo.Symbol, clingo.Symbol, bool]],
+    init: Iterable[clingo.Symbol],
+    goal: Iterable[Literal],
+    weights: dict[Literal, int],
+    axiom_pre: Iterable[tuple[clingo.Symbol, clingo.Symbol, clingo.Symbol, bool]] = (),
+    axioms: Iterable[tuple[clingo.Symbol, clingo.Symbol]] = (),
+    derived: Iterable[clingo.Symbol] = (),
+    goal_utility: int | None = None,
+    events: Sequence = (),
+) -> GroundModel:
     """A ground model from the atoms of the model vocabulary (actions, then
     ``pre(A,V,B)``, ``eff(A,V,B)``, ``ceff(A,K,V,B)``, ``cpre(A,K,V,B)``, ...,
     ``axiom_pre(D,K,V,B)`` and ``axiom(D,K)`` of derived variables)."""
@@ -889,15 +919,26 @@ def from_atoms(variables: Sequence[clingo.Symbol], actions: Sequence[clingo.Symb
             condition = tuple(sorted(conditions.get((action, key), [])))
             effects[action].append(Effect(variable, value, condition))
     # Sorted for a fixed order (clingo's own order of symbols: fast to compare).
-    ground = [GroundAction(a, tuple(sorted(pres[a])),
-                           tuple(sorted(effects[a], key=_effect_order))) for a in actions]
+    ground = [
+        GroundAction(a, tuple(sorted(pres[a])), tuple(sorted(effects[a], key=_effect_order)))
+        for a in actions
+    ]
     bodies: dict[tuple[clingo.Symbol, clingo.Symbol], list[Literal]] = {
-        (name, key): [] for name, key in axioms}
+        (name, key): [] for name, key in axioms
+    }
     for name, key, variable, value in axiom_pre:
         bodies.setdefault((name, key), []).append((variable, value))
     # A derived variable without axioms never holds.
     derived_axioms: dict[clingo.Symbol, list[tuple[Literal, ...]]] = {d: [] for d in derived}
     for (name, _), body in sorted(bodies.items(), key=str):
         derived_axioms.setdefault(name, []).append(tuple(sorted(body, key=str)))
-    return GroundModel(list(variables), ground, frozenset(init), list(goal), dict(weights),
-                       derived_axioms, goal_utility, list(events))
+    return GroundModel(
+        list(variables),
+        ground,
+        frozenset(init),
+        list(goal),
+        dict(weights),
+        derived_axioms,
+        goal_utility,
+        list(events),
+    )

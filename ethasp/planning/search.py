@@ -24,8 +24,8 @@ import time
 from dataclasses import dataclass, field, replace
 
 from ethasp.errors import InputError
-from ethasp.planning.budget import Budget
 from ethasp.planning import layers as layers_module
+from ethasp.planning.budget import Budget
 from ethasp.planning.layers import Atoms, Layers, Status
 from ethasp.planning.plan import Plan, steps
 from ethasp.planning.planner import MUTEX_AFTER, Planner, Setting
@@ -130,19 +130,25 @@ class _Exact:
     search), the greedy forward search (:mod:`ethasp.planning.greedy`) runs
     instead of the layers, started with the search."""
 
-    def __init__(self, planner: Planner, setting: Setting, budget: Budget, read_plan: bool,
-                 greedy: bool = False, threads: bool = True):
+    def __init__(
+        self,
+        planner: Planner,
+        setting: Setting,
+        budget: Budget,
+        read_plan: bool,
+        greedy: bool = False,
+        threads: bool = True,
+    ):
         self.planner = planner
         self.budget = budget
         self.read_plan = read_plan
         self.threads = threads
-        self.max_horizon = DEFAULT_SATISFICING_HORIZON     # set by the search
+        self.max_horizon = DEFAULT_SATISFICING_HORIZON  # set by the search
         # (With exogenous events, the layers are explicit ones of configurations.)
-        self.usable = (setting.goal and setting.at_least is None
-                       and setting.other_state is None)
+        self.usable = setting.goal and setting.at_least is None and setting.other_state is None
         self.layers: Layers | None = None
         self.greedy: Layers | None = None
-        self.solving = 0.0            # seconds spent in solves so far
+        self.solving = 0.0  # seconds spent in solves so far
         self.atoms: Atoms | None = None
         if not self.usable:
             return
@@ -154,8 +160,10 @@ class _Exact:
             reader = (lambda: Atoms(planner)) if layers_module.can_fork() else Atoms(planner)
             self.greedy = Greedy(reader, budget, read_plan=True).start()
             return
-        large = (len(planner.get("action", 1)) >= LAYERS_AT_ONCE_ACTIONS
-                 or len(planner.get("variable", 1)) >= LAYERS_AT_ONCE_VARIABLES)
+        large = (
+            len(planner.get("action", 1)) >= LAYERS_AT_ONCE_ACTIONS
+            or len(planner.get("variable", 1)) >= LAYERS_AT_ONCE_VARIABLES
+        )
         if large and layers_module.can_fork():
             # Started now, before any solve: the child process reads the
             # ground atoms itself while this process goes on grounding.
@@ -176,8 +184,11 @@ class _Exact:
         """Wait up to :data:`HEAD_START` seconds for an engine started with the
         search (not for layers that start later) to finish, where it may end
         the search with a plan (plain plan search)."""
-        engine = self.greedy if self.greedy is not None else \
-            (self.layers if self.atoms is None else None)
+        engine = (
+            self.greedy
+            if self.greedy is not None
+            else (self.layers if self.atoms is None else None)
+        )
         if engine is None or not self.read_plan:
             return
         end = time.monotonic() + HEAD_START
@@ -227,14 +238,16 @@ class _Exact:
         (or by a plan that the greedy search proposed, of at most
         :attr:`max_horizon` steps)?"""
         proposed = self.greedy_plan()
-        if (proposed is not None and len(proposed) <= self.max_horizon) \
-                or self.greedy_complete():
+        if (proposed is not None and len(proposed) <= self.max_horizon) or self.greedy_complete():
             return True
         status = self.status()
         if status is None:
             return False
-        return ((status.plan is not None and len(status.plan) <= self.max_horizon)
-                or status.complete or status.bound > horizon)
+        return (
+            (status.plan is not None and len(status.plan) <= self.max_horizon)
+            or status.complete
+            or status.bound > horizon
+        )
 
     def done(self) -> bool:
         """Did an engine end the search: a plan proposed, or every reachable
@@ -277,8 +290,13 @@ class _Exact:
         """Did the layers give up (too many diagram nodes), leaving the core they
         took to a second solver thread?"""
         status = self.status()
-        return (self.read_plan and self.threads and status is not None
-                and bool(status.stopped) and _cores() >= 2)
+        return (
+            self.read_plan
+            and self.threads
+            and status is not None
+            and bool(status.stopped)
+            and _cores() >= 2
+        )
 
     def stop(self) -> None:
         for engine in (self.layers, self.greedy):
@@ -290,7 +308,7 @@ def _cores() -> int:
     """The processor cores this process may run on."""
     try:
         return len(os.sched_getaffinity(0))
-    except AttributeError:          # not on Linux
+    except AttributeError:  # not on Linux
         return os.cpu_count() or 1
 
 
@@ -299,8 +317,12 @@ def _one_plan_wanted(setting: Setting) -> bool:
     that independent actions may be taken in one order, ``planning/
     canonical.lp``)?  Not with utility thresholds, states to avoid or
     optimisation (they read the states a plan passes)."""
-    return (setting.goal and setting.at_least is None and setting.other_state is None
-            and not setting.optimize)
+    return (
+        setting.goal
+        and setting.at_least is None
+        and setting.other_state is None
+        and not setting.optimize
+    )
 
 
 def _before(budget: Budget, planner: Planner) -> str:
@@ -312,15 +334,19 @@ def _before(budget: Budget, planner: Planner) -> str:
 def _searched(horizon: int) -> str:
     """Why there is no plan: plans up to the horizon refuted, and no path one
     step longer without a repeated state."""
-    return (f"no plan up to horizon {horizon}, and no path of {steps(horizon + 1)} without a "
-            "repeated state: every reachable state was searched")
+    return (
+        f"no plan up to horizon {horizon}, and no path of {steps(horizon + 1)} without a "
+        "repeated state: every reachable state was searched"
+    )
 
 
 def _settled(horizon: int) -> str:
     """Why there is no plan, where the engine beside the search knew every
     reachable state by the maximal horizon."""
-    return (f"no plan up to horizon {horizon} (the maximal horizon), and exact reachability "
-            "knows every reachable state: none is a goal state")
+    return (
+        f"no plan up to horizon {horizon} (the maximal horizon), and exact reachability "
+        "knows every reachable state: none is a goal state"
+    )
 
 
 def _bound_proof(bound: int, why: str, horizon: int) -> str:
@@ -332,8 +358,10 @@ def _bound_proof(bound: int, why: str, horizon: int) -> str:
         return f"no plan has fewer than {steps(horizon)} (every smaller horizon refuted)"
     if bound >= horizon:
         return f"no plan has fewer than {steps(horizon)}: {why}"
-    return (f"no plan has fewer than {steps(horizon)}: none has fewer than {steps(bound)} ({why}), "
-            f"and the horizons {bound} to {horizon - 1} refuted")
+    return (
+        f"no plan has fewer than {steps(horizon)}: none has fewer than {steps(bound)} ({why}), "
+        f"and the horizons {bound} to {horizon - 1} refuted"
+    )
 
 
 def _layers_plan(planner: Planner, status: Status) -> Plan:
@@ -350,10 +378,18 @@ def _checked(planner: Planner, actions, engine: str) -> Plan:
     return plan
 
 
-def shortest(planner: Planner, setting: Setting, budget: Budget,
-             max_horizon: int = DEFAULT_MAX_HORIZON, start: int = 0, start_proof: str = "",
-             all_plans: bool = False, task: str = "plan search",
-             longest: int | None = None, threads: bool = True) -> SearchResult:
+def shortest(
+    planner: Planner,
+    setting: Setting,
+    budget: Budget,
+    max_horizon: int = DEFAULT_MAX_HORIZON,
+    start: int = 0,
+    start_proof: str = "",
+    all_plans: bool = False,
+    task: str = "plan search",
+    longest: int | None = None,
+    threads: bool = True,
+) -> SearchResult:
     """A shortest plan under a setting, searching horizons ``start`` to ``max_horizon``.
 
     ``start`` must be a proven lower bound on the length of every plan under
@@ -374,28 +410,42 @@ def shortest(planner: Planner, setting: Setting, budget: Budget,
     if budget.expired() or not planner.prepare(budget):
         return SearchResult(BOUNDED, horizon=start, proof=_before(budget, planner))
     if setting.goal and planner.is_fact("unreachable_goal"):
-        return SearchResult(NONE, horizon=0,
-                            proof="the goal is unreachable even ignoring delete effects")
+        return SearchResult(
+            NONE, horizon=0, proof="the goal is unreachable even ignoring delete effects"
+        )
     impossible = _impossible(planner, setting)
     if impossible:
         return SearchResult(NONE, horizon=0, proof=impossible)
     if longest is not None and start > longest:
         return SearchResult(NONE, horizon=start, proof=_too_long(longest, start_proof))
     if start > max_horizon:
-        return SearchResult(BOUNDED, horizon=max_horizon,
-                            proof=f"every plan has more than {steps(max_horizon)} ({start_proof}), "
-                                  "the maximal horizon")
+        return SearchResult(
+            BOUNDED,
+            horizon=max_horizon,
+            proof=f"every plan has more than {steps(max_horizon)} ({start_proof}), "
+            "the maximal horizon",
+        )
     plain = not setting.constraints and not all_plans
     exact = _Exact(planner, setting, budget, read_plan=plain, threads=threads)
     exact.max_horizon = max_horizon
     if plain and _one_plan_wanted(setting):
         setting = replace(setting, canonical=True)
     try:
-        return _shortest(planner, setting, budget, max_horizon, start, start_proof, all_plans,
-                         task, exact, longest)
+        return _shortest(
+            planner,
+            setting,
+            budget,
+            max_horizon,
+            start,
+            start_proof,
+            all_plans,
+            task,
+            exact,
+            longest,
+        )
     finally:
         exact.stop()
-        planner.threads(1)      # later searches on this grounding: one answer each time
+        planner.threads(1)  # later searches on this grounding: one answer each time
 
 
 def _impossible(planner: Planner, setting: Setting) -> str:
@@ -410,23 +460,36 @@ def _impossible(planner: Planner, setting: Setting) -> str:
     constraint, why = found[0]
     if why == "goal":
         return f"the question's constraint {constraint} contradicts the goal"
-    return (f"the question's constraint {constraint} needs an action or a fact that is "
-            "unreachable even ignoring delete effects")
+    return (
+        f"the question's constraint {constraint} needs an action or a fact that is "
+        "unreachable even ignoring delete effects"
+    )
 
 
 def _too_long(longest: int, why: str) -> str:
     """Why no plan exists when every plan has more steps than the question allows."""
-    return (f"every plan has more than {steps(longest)} ({why}), and the question allows at "
-            f"most {steps(longest)}")
+    return (
+        f"every plan has more than {steps(longest)} ({why}), and the question allows at "
+        f"most {steps(longest)}"
+    )
 
 
-def _shortest(planner: Planner, setting: Setting, budget: Budget, max_horizon: int,
-              start: int, start_proof: str, all_plans: bool, task: str,
-              exact: _Exact, longest: int | None = None) -> SearchResult:
+def _shortest(
+    planner: Planner,
+    setting: Setting,
+    budget: Budget,
+    max_horizon: int,
+    start: int,
+    start_proof: str,
+    all_plans: bool,
+    task: str,
+    exact: _Exact,
+    longest: int | None = None,
+) -> SearchResult:
     if longest is not None:
         max_horizon = min(max_horizon, longest)
     checkpoints = _checkpoints(max_horizon)
-    bound, why = start, start_proof          # every plan has at least `bound` steps
+    bound, why = start, start_proof  # every plan has at least `bound` steps
     horizon = start
     exact.head_start()
     while True:
@@ -434,14 +497,26 @@ def _shortest(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
         if status is not None:
             if status.plan is not None and len(status.plan) <= max_horizon:
                 plan = _layers_plan(planner, status)
-                return SearchResult(FOUND, plan=plan, horizon=len(plan), proof=(
-                    f"no plan has fewer than {steps(len(plan))}: exact reachability found no "
-                    f"goal state within {steps(len(plan) - 1)}" if len(plan) else
-                    "the goal holds in the initial state"))
+                return SearchResult(
+                    FOUND,
+                    plan=plan,
+                    horizon=len(plan),
+                    proof=(
+                        f"no plan has fewer than {steps(len(plan))}: exact reachability found no "
+                        f"goal state within {steps(len(plan) - 1)}"
+                        if len(plan)
+                        else "the goal holds in the initial state"
+                    ),
+                )
             if status.complete:
-                return SearchResult(NONE, horizon=horizon, proof=(
-                    "exact reachability layers ran out of new states without meeting a goal "
-                    "state: no goal state is reachable"))
+                return SearchResult(
+                    NONE,
+                    horizon=horizon,
+                    proof=(
+                        "exact reachability layers ran out of new states without meeting a goal "
+                        "state: no goal state is reachable"
+                    ),
+                )
             if status.bound > bound:
                 bound = status.bound
                 why = f"exact reachability found no goal state within {steps(bound - 1)}"
@@ -450,31 +525,48 @@ def _shortest(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
         if horizon > max_horizon:
             if longest is not None and max_horizon >= longest:
                 return SearchResult(NONE, horizon=max_horizon, proof=_too_long(longest, why))
-            return SearchResult(BOUNDED, horizon=max_horizon,
-                                proof=f"every plan has more than {steps(max_horizon)} ({why}), "
-                                      "the maximal horizon")
+            return SearchResult(
+                BOUNDED,
+                horizon=max_horizon,
+                proof=f"every plan has more than {steps(max_horizon)} ({why}), the maximal horizon",
+            )
         budget.report(task, horizon=horizon)
         if exact.spare_core():
-            planner.threads(SOLVER_THREADS)   # the layers' core, for the solver
+            planner.threads(SOLVER_THREADS)  # the layers' core, for the solver
         began = time.monotonic()
-        outcome = planner.solve(horizon, setting, exact.watch(horizon),
-                                models=0 if all_plans else 1, mutex_after=exact.mutex_after(),
-                                moot=exact.done)
+        outcome = planner.solve(
+            horizon,
+            setting,
+            exact.watch(horizon),
+            models=0 if all_plans else 1,
+            mutex_after=exact.mutex_after(),
+            moot=exact.done,
+        )
         exact.solved(time.monotonic() - began)
         if outcome.satisfiable is None:
             if budget.expired():
-                return SearchResult(BOUNDED, horizon=horizon,
-                                    proof=f"{budget.why_stopped()} at horizon {horizon}")
-            continue                       # the layers proved more: look again
+                return SearchResult(
+                    BOUNDED, horizon=horizon, proof=f"{budget.why_stopped()} at horizon {horizon}"
+                )
+            continue  # the layers proved more: look again
         if outcome.satisfiable:
             plans = plans_of(outcome.models if all_plans else [outcome.symbols])
-            return SearchResult(FOUND, plan=plans[0], horizon=horizon,
-                                proof=_bound_proof(bound, why, horizon),
-                                plans=plans if all_plans else [])
+            return SearchResult(
+                FOUND,
+                plan=plans[0],
+                horizon=horizon,
+                proof=_bound_proof(bound, why, horizon),
+                plans=plans if all_plans else [],
+            )
         if longest is not None and horizon >= longest:
-            return SearchResult(NONE, horizon=horizon, proof=(
-                f"no plan up to horizon {horizon}, and the question allows at most "
-                f"{steps(longest)}"))
+            return SearchResult(
+                NONE,
+                horizon=horizon,
+                proof=(
+                    f"no plan up to horizon {horizon}, and the question allows at most "
+                    f"{steps(longest)}"
+                ),
+            )
         if horizon in checkpoints:
             # No plan of at most h steps, and no simple path of h + 1 steps: every
             # reachable state is within h steps of the initial one (a shortest
@@ -484,22 +576,34 @@ def _shortest(planner: Planner, setting: Setting, budget: Budget, max_horizon: i
             exact.solved(time.monotonic() - began)
             if exists is None:
                 if budget.expired():
-                    return SearchResult(BOUNDED, horizon=horizon,
-                                        proof=f"{budget.why_stopped()} at horizon {horizon}")
+                    return SearchResult(
+                        BOUNDED,
+                        horizon=horizon,
+                        proof=f"{budget.why_stopped()} at horizon {horizon}",
+                    )
             elif not exists:
                 return SearchResult(NONE, horizon=horizon, proof=_searched(horizon))
         if horizon >= max_horizon:
             if exact.settle(max_horizon):
                 return SearchResult(NONE, horizon=horizon, proof=_settled(max_horizon))
-            return SearchResult(BOUNDED, horizon=max_horizon,
-                                proof=f"no plan up to horizon {max_horizon} (the maximal horizon)")
+            return SearchResult(
+                BOUNDED,
+                horizon=max_horizon,
+                proof=f"no plan up to horizon {max_horizon} (the maximal horizon)",
+            )
         horizon += 1
 
 
-def any_plan(planner: Planner, setting: Setting, budget: Budget,
-             max_horizon: int = DEFAULT_SATISFICING_HORIZON, start: int = 0,
-             start_proof: str = "", task: str = "plan search",
-             longest: int | None = None) -> SearchResult:
+def any_plan(
+    planner: Planner,
+    setting: Setting,
+    budget: Budget,
+    max_horizon: int = DEFAULT_SATISFICING_HORIZON,
+    start: int = 0,
+    start_proof: str = "",
+    task: str = "plan search",
+    longest: int | None = None,
+) -> SearchResult:
     """Some plan under a setting, found fast and not proven shortest
     (``optimal`` False); ``longest`` as in :func:`shortest`.
 
@@ -520,115 +624,186 @@ def any_plan(planner: Planner, setting: Setting, budget: Budget,
     if budget.expired() or not planner.prepare(budget):
         return SearchResult(BOUNDED, horizon=start, optimal=False, proof=_before(budget, planner))
     if setting.goal and planner.is_fact("unreachable_goal"):
-        return SearchResult(NONE, horizon=0, optimal=False,
-                            proof="the goal is unreachable even ignoring delete effects")
+        return SearchResult(
+            NONE,
+            horizon=0,
+            optimal=False,
+            proof="the goal is unreachable even ignoring delete effects",
+        )
     impossible = _impossible(planner, setting)
     if impossible:
         return SearchResult(NONE, horizon=0, optimal=False, proof=impossible)
     if longest is not None and start > longest:
-        return SearchResult(NONE, horizon=start, optimal=False,
-                            proof=_too_long(longest, start_proof))
+        return SearchResult(
+            NONE, horizon=start, optimal=False, proof=_too_long(longest, start_proof)
+        )
     plain = not setting.constraints
     exact = _Exact(planner, setting, budget, read_plan=plain, greedy=True)
     exact.max_horizon = max_horizon
-    setting = replace(setting, satisficing=True,
-                      canonical=plain and _one_plan_wanted(setting))
+    setting = replace(setting, satisficing=True, canonical=plain and _one_plan_wanted(setting))
     try:
-        return _any_plan(planner, setting, budget, max_horizon, start, start_proof, task, exact,
-                         longest)
+        return _any_plan(
+            planner, setting, budget, max_horizon, start, start_proof, task, exact, longest
+        )
     finally:
         exact.stop()
 
 
-def _any_plan(planner: Planner, setting: Setting, budget: Budget, max_horizon: int, start: int,
-              start_proof: str, task: str, exact: _Exact,
-              longest: int | None = None) -> SearchResult:
+def _any_plan(
+    planner: Planner,
+    setting: Setting,
+    budget: Budget,
+    max_horizon: int,
+    start: int,
+    start_proof: str,
+    task: str,
+    exact: _Exact,
+    longest: int | None = None,
+) -> SearchResult:
     if longest is not None:
         max_horizon = min(max_horizon, longest)
-    bound, why = start, start_proof          # every plan has at least `bound` steps
+    bound, why = start, start_proof  # every plan has at least `bound` steps
     horizon, slice_, checked = start, SLICE, 0
     exact.head_start()
     while True:
         proposed = exact.greedy_plan()
         if proposed is not None and len(proposed) <= max_horizon:
             plan = _checked(planner, proposed, "greedy search")
-            return SearchResult(FOUND, plan=plan, horizon=len(plan), optimal=False,
-                                proof="a plan found by greedy forward search (not proven "
-                                      "shortest)")
+            return SearchResult(
+                FOUND,
+                plan=plan,
+                horizon=len(plan),
+                optimal=False,
+                proof="a plan found by greedy forward search (not proven shortest)",
+            )
         if exact.greedy_complete():
-            return SearchResult(NONE, horizon=horizon, optimal=False, proof=(
-                "greedy forward search expanded every reachable state (but those from "
-                "which even the relaxed goal is unreachable), and none is a goal state"))
+            return SearchResult(
+                NONE,
+                horizon=horizon,
+                optimal=False,
+                proof=(
+                    "greedy forward search expanded every reachable state (but those from "
+                    "which even the relaxed goal is unreachable), and none is a goal state"
+                ),
+            )
         status = exact.status()
         if status is not None:
             if status.plan is not None and len(status.plan) <= max_horizon:
                 plan = _layers_plan(planner, status)
-                return SearchResult(FOUND, plan=plan, horizon=len(plan), optimal=False,
-                                    proof="a plan read off exact reachability layers")
+                return SearchResult(
+                    FOUND,
+                    plan=plan,
+                    horizon=len(plan),
+                    optimal=False,
+                    proof="a plan read off exact reachability layers",
+                )
             if status.complete:
-                return SearchResult(NONE, horizon=horizon, optimal=False, proof=(
-                    "exact reachability layers ran out of new states without meeting a goal "
-                    "state: no goal state is reachable"))
+                return SearchResult(
+                    NONE,
+                    horizon=horizon,
+                    optimal=False,
+                    proof=(
+                        "exact reachability layers ran out of new states without meeting a goal "
+                        "state: no goal state is reachable"
+                    ),
+                )
             if status.bound > bound:
                 bound = status.bound
                 why = f"exact reachability found no goal state within {steps(bound - 1)}"
         horizon = max(horizon, bound)
         if horizon > max_horizon:
             if longest is not None and max_horizon >= longest:
-                return SearchResult(NONE, horizon=max_horizon, optimal=False,
-                                    proof=_too_long(longest, why))
-            return SearchResult(BOUNDED, horizon=max_horizon, optimal=False,
-                                proof=f"no plan found up to horizon {max_horizon} (the maximal "
-                                      f"horizon; every plan has at least {steps(bound)})")
+                return SearchResult(
+                    NONE, horizon=max_horizon, optimal=False, proof=_too_long(longest, why)
+                )
+            return SearchResult(
+                BOUNDED,
+                horizon=max_horizon,
+                optimal=False,
+                proof=f"no plan found up to horizon {max_horizon} (the maximal "
+                f"horizon; every plan has at least {steps(bound)})",
+            )
         budget.report(task, horizon=horizon)
         began = time.monotonic()
         end = began + slice_
         watch = exact.watch(horizon)
-        outcome = planner.solve(horizon, setting,
-                                watch.until(lambda: time.monotonic() > end), models=1,
-                                mutex_after=exact.mutex_after(),
-                                moot=exact.done)
+        outcome = planner.solve(
+            horizon,
+            setting,
+            watch.until(lambda end=end: time.monotonic() > end),
+            models=1,
+            mutex_after=exact.mutex_after(),
+            moot=exact.done,
+        )
         exact.solved(time.monotonic() - began)
         if outcome.satisfiable is None:
             if budget.expired():
-                return SearchResult(BOUNDED, horizon=horizon, optimal=False,
-                                    proof=f"{budget.why_stopped()} at horizon {horizon}")
+                return SearchResult(
+                    BOUNDED,
+                    horizon=horizon,
+                    optimal=False,
+                    proof=f"{budget.why_stopped()} at horizon {horizon}",
+                )
             if exact.moot(horizon):
-                continue                   # the layers proved more: look again
+                continue  # the layers proved more: look again
             # The slice ran out: more room, and more time for it.
             horizon = min(max_horizon, max(horizon + 1, int(horizon * GROWTH) + 1))
             slice_ *= GROWTH
             continue
         if outcome.satisfiable:
             plan = plans_of([outcome.symbols])[0]
-            return SearchResult(FOUND, plan=plan, horizon=horizon, optimal=False,
-                                proof=f"a plan found at horizon {horizon} (not proven shortest)")
+            return SearchResult(
+                FOUND,
+                plan=plan,
+                horizon=horizon,
+                optimal=False,
+                proof=f"a plan found at horizon {horizon} (not proven shortest)",
+            )
         bound, why = horizon + 1, f"horizon {horizon} refuted"
         if longest is not None and horizon >= longest:
-            return SearchResult(NONE, horizon=horizon, optimal=False, proof=(
-                f"no plan up to horizon {horizon}, and the question allows at most "
-                f"{steps(longest)}"))
+            return SearchResult(
+                NONE,
+                horizon=horizon,
+                optimal=False,
+                proof=(
+                    f"no plan up to horizon {horizon}, and the question allows at most "
+                    f"{steps(longest)}"
+                ),
+            )
         if horizon >= 4 * checked or horizon == max_horizon:
             checked = max(horizon, 1)
             exists = planner.simple_path_exists(horizon + 1, setting, exact.watch(horizon))
             if exists is False:
-                return SearchResult(NONE, horizon=horizon, optimal=False,
-                                    proof=_searched(horizon))
+                return SearchResult(NONE, horizon=horizon, optimal=False, proof=_searched(horizon))
             if exists is None and budget.expired():
-                return SearchResult(BOUNDED, horizon=horizon, optimal=False,
-                                    proof=f"{budget.why_stopped()} at horizon {horizon}")
+                return SearchResult(
+                    BOUNDED,
+                    horizon=horizon,
+                    optimal=False,
+                    proof=f"{budget.why_stopped()} at horizon {horizon}",
+                )
         if horizon >= max_horizon:
             if exact.settle(max_horizon):
-                return SearchResult(NONE, horizon=horizon, optimal=False,
-                                    proof=_settled(max_horizon))
-            return SearchResult(BOUNDED, horizon=max_horizon, optimal=False,
-                                proof=f"no plan up to horizon {max_horizon} (the maximal horizon)")
+                return SearchResult(
+                    NONE, horizon=horizon, optimal=False, proof=_settled(max_horizon)
+                )
+            return SearchResult(
+                BOUNDED,
+                horizon=max_horizon,
+                optimal=False,
+                proof=f"no plan up to horizon {max_horizon} (the maximal horizon)",
+            )
         horizon += 1
 
 
-def find_plan(model, max_horizon: int | None = None, time_limit: float | None = None,
-              all_plans: bool = False, budget: Budget | None = None,
-              satisficing: bool = False) -> SearchResult:
+def find_plan(
+    model,
+    max_horizon: int | None = None,
+    time_limit: float | None = None,
+    all_plans: bool = False,
+    budget: Budget | None = None,
+    satisficing: bool = False,
+) -> SearchResult:
     """A shortest plan for the model (all shortest plans with ``all_plans``);
     with ``satisficing``, some plan, found fast and not proven shortest.
     ``max_horizon`` defaults to :data:`DEFAULT_MAX_HORIZON` (shortest plans)
@@ -639,16 +814,27 @@ def find_plan(model, max_horizon: int | None = None, time_limit: float | None = 
     finds a shortest permissible action sequence instead).
     """
     if not model.planner.get("goal", 2):
-        raise InputError("the model has no goal, so plan search has nothing to reach (with "
-                         "--principle NAME it finds a shortest action sequence permissible "
-                         "under NAME)")
+        raise InputError(
+            "the model has no goal, so plan search has nothing to reach (with "
+            "--principle NAME it finds a shortest action sequence permissible "
+            "under NAME)"
+        )
     budget = budget or Budget(time_limit)
     if satisficing:
         if all_plans:
-            raise InputError("all shortest plans cannot be listed by an any-plan search "
-                             "(satisficing)")
-        return any_plan(model.planner, Setting(), budget,
-                        DEFAULT_SATISFICING_HORIZON if max_horizon is None else max_horizon)
-    return shortest(model.planner, Setting(), budget,
-                    DEFAULT_MAX_HORIZON if max_horizon is None else max_horizon,
-                    all_plans=all_plans)
+            raise InputError(
+                "all shortest plans cannot be listed by an any-plan search (satisficing)"
+            )
+        return any_plan(
+            model.planner,
+            Setting(),
+            budget,
+            DEFAULT_SATISFICING_HORIZON if max_horizon is None else max_horizon,
+        )
+    return shortest(
+        model.planner,
+        Setting(),
+        budget,
+        DEFAULT_MAX_HORIZON if max_horizon is None else max_horizon,
+        all_plans=all_plans,
+    )

@@ -82,9 +82,10 @@ import itertools
 import json
 import re
 import sys
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Iterable
+from typing import Any
 
 import clingo
 
@@ -162,8 +163,9 @@ class _Reader:
             self.fail(f"{what} must be a list, not {type(value).__name__}")
         return value
 
-    def partial(self, value: Any, what: str, known: bool = True,
-                reads: bool = True) -> list[Literal]:
+    def partial(
+        self, value: Any, what: str, known: bool = True, reads: bool = True
+    ) -> list[Literal]:
         """A partial state {v: b}: its literals.  A variable that initialState
         leaves out (``known``) is declared here, false initially; ``reads``
         says whether the literals are read (conditions, goals, utilities,
@@ -186,19 +188,26 @@ class _Reader:
         """One warning per variable that initialState leaves out."""
         for variable, first in self.undefined.items():
             places = self.read_false.get(variable)
-            differ = (f"; HERA's answers may differ, as the situation reads "
-                      f"'{variable} is false' ({', '.join(dict.fromkeys(places))}), which "
-                      "holds here and fails in HERA before an effect sets it"
-                      if places else "")
-            self.warn(f"variable {variable} (in {first}) has no value in initialState: read "
-                      f"as false until an effect sets it (in HERA neither value holds until "
-                      f"then){differ}")
+            differ = (
+                f"; HERA's answers may differ, as the situation reads "
+                f"'{variable} is false' ({', '.join(dict.fromkeys(places))}), which "
+                "holds here and fails in HERA before an effect sets it"
+                if places
+                else ""
+            )
+            self.warn(
+                f"variable {variable} (in {first}) has no value in initialState: read "
+                f"as false until an effect sets it (in HERA neither value holds until "
+                f"then){differ}"
+            )
 
     def fact(self, value: Any, what: str) -> Literal:
         literals = self.partial(value, what)
         if len(literals) != 1:
-            self.fail(f"{what} must be a fact of one variable, such as {{v: true}} (HERA "
-                      f"matches facts of one variable only), not {value!r}")
+            self.fail(
+                f"{what} must be a fact of one variable, such as {{v: true}} (HERA "
+                f"matches facts of one variable only), not {value!r}"
+            )
         return literals[0]
 
     def integer(self, value: Any, what: str) -> int:
@@ -211,10 +220,16 @@ class _Reader:
         return value
 
     def add(self, name: str, *arguments) -> None:
-        terms = [argument if isinstance(argument, clingo.Symbol) else
-                 clingo.Number(argument) if isinstance(argument, int) and not isinstance(argument, bool)
-                 else clingo.Function("true" if argument else "false") if isinstance(argument, bool)
-                 else argument for argument in arguments]
+        terms = [
+            argument
+            if isinstance(argument, clingo.Symbol)
+            else clingo.Number(argument)
+            if isinstance(argument, int) and not isinstance(argument, bool)
+            else clingo.Function("true" if argument else "false")
+            if isinstance(argument, bool)
+            else argument
+            for argument in arguments
+        ]
         self.facts.append(clingo.Function(name, terms))
 
     # -- the parts of a situation -------------------------------------------------------
@@ -266,13 +281,19 @@ class _Reader:
         result = []
         for index, effect in enumerate(self.sequence(value, f"the effects of {what}"), 1):
             effect = self.mapping(effect, f"effect {index} of {what}")
-            condition = self.partial(effect.get("condition"), f"the condition of effect {index} of {what}")
+            condition = self.partial(
+                effect.get("condition"), f"the condition of effect {index} of {what}"
+            )
             sets = self.partial(effect.get("effect"), f"effect {index} of {what}", reads=False)
             result.append((condition, sets))
         return result
 
-    def compile_action(self, action: clingo.Symbol, pre: list[Literal],
-                       effects: list[tuple[list[Literal], list[Literal]]]) -> None:
+    def compile_action(
+        self,
+        action: clingo.Symbol,
+        pre: list[Literal],
+        effects: list[tuple[list[Literal], list[Literal]]],
+    ) -> None:
         """ceff/cpre facts for HERA's effects in order (see the module docstring)."""
         conditions: list[dict[str, bool] | None] = []
         for condition, _ in effects:
@@ -286,7 +307,7 @@ class _Reader:
         for i, (_, sets) in enumerate(effects):
             full = conditions[i]
             if full is None:
-                continue          # the precondition and the condition exclude each other
+                continue  # the precondition and the condition exclude each other
             for variable, value in sets:
                 overriders = []
                 if value:
@@ -295,18 +316,27 @@ class _Reader:
                         if later is None or dict(effects[j][1]).get(variable) is not False:
                             continue
                         if any(full.get(w, c) != c for w, c in later.items()):
-                            continue          # never fires together with effect i
+                            continue  # never fires together with effect i
                         overriders.append([(w, not c) for w, c in later.items() if w not in full])
                 self.emit_effect(action, i + 1, variable, value, full, overriders)
 
-    def emit_effect(self, action: clingo.Symbol, index: int, variable: str, value: bool,
-                    condition: dict[str, bool], overriders: list[list[Literal]]) -> None:
+    def emit_effect(
+        self,
+        action: clingo.Symbol,
+        index: int,
+        variable: str,
+        value: bool,
+        condition: dict[str, bool],
+        overriders: list[list[Literal]],
+    ) -> None:
         term = name_term(variable)
         # The impossible override condition of an effect that a later one always
         # overrides: a literal contradicting its condition (or, without one, both
         # values of its variable); never one of its genuine conditions.
-        dormant = ([(w, not c) for w, c in sorted(condition.items())][:1]
-                   or [(variable, True), (variable, False)])
+        dormant = [(w, not c) for w, c in sorted(condition.items())][:1] or [
+            (variable, True),
+            (variable, False),
+        ]
         if not overriders:
             copies: list[list[Literal]] = [[]]
         elif any(not choices for choices in overriders):
@@ -317,8 +347,10 @@ class _Reader:
             for choices in overriders:
                 count *= len(choices)
             if count > MAX_COPIES:
-                self.fail(f"action {hera_name(action)}: effect {index} is overridden by "
-                          f"later effects in too many ways to map ({count} cases)")
+                self.fail(
+                    f"action {hera_name(action)}: effect {index} is overridden by "
+                    f"later effects in too many ways to map ({count} cases)"
+                )
             copies = []
             for choice in itertools.product(*overriders):
                 guard = dict(choice)
@@ -344,8 +376,10 @@ class _Reader:
             what = f"event {name}"
             for part in ("preconditions", "effects", "timepoints"):
                 if part not in event:
-                    self.fail(f"{what} has no {part} (HERA would then ignore every event of the "
-                              f"situation; write {part}: {'{}' if part == 'preconditions' else '[]'})")
+                    self.fail(
+                        f"{what} has no {part} (HERA would then ignore every event of the "
+                        f"situation; write {part}: {'{}' if part == 'preconditions' else '[]'})"
+                    )
             if name in names:
                 self.fail(f"two events are named {name}")
             names.add(name)
@@ -353,16 +387,17 @@ class _Reader:
             self.add("event", term)
             for time in self.sequence(event.get("timepoints"), f"the timepoints of {what}"):
                 time = self.integer(time, f"a time point of {what}")
-                if time >= 0:          # HERA's time points count from 0; earlier ones never come
+                if time >= 0:  # HERA's time points count from 0; earlier ones never come
                     if time >= 1_000_000:
                         self.fail(f"{what}: time point {time} is beyond 999999")
                     self.add("event_at", term, time + 1)
-            for variable, truth in self.partial(event.get("preconditions"),
-                                                f"the preconditions of {what}"):
+            for variable, truth in self.partial(
+                event.get("preconditions"), f"the preconditions of {what}"
+            ):
                 self.add("event_pre", term, name_term(variable), truth)
             for condition, sets in self.effects(event.get("effects"), what):
                 if not sets:
-                    continue          # an effect that sets nothing
+                    continue  # an effect that sets nothing
                 key += 1
                 for variable, truth in sets:
                     self.add("event_effect", term, key, name_term(variable), truth)
@@ -376,15 +411,19 @@ class _Reader:
             literals = self.partial(entry.get("fact"), f"the fact of utility {index}")
             utility = self.integer(entry.get("utility"), f"utility {index}")
             if len(literals) != 1:
-                self.warn(f"utility {index} is of a fact of {len(literals)} variables, which HERA "
-                          "never matches: ignored")
+                self.warn(
+                    f"utility {index} is of a fact of {len(literals)} variables, which HERA "
+                    "never matches: ignored"
+                )
                 continue
             fact = literals[0]
             if fact in seen:
                 if seen[fact] != utility:
-                    self.warn(f"utility {index} is a second utility for the fact "
-                              f"{{{fact[0]}: {str(fact[1]).lower()}}}: ignored (HERA uses the "
-                              "first)")
+                    self.warn(
+                        f"utility {index} is a second utility for the fact "
+                        f"{{{fact[0]}: {str(fact[1]).lower()}}}: ignored (HERA uses the "
+                        "first)"
+                    )
                 continue
             seen[fact] = utility
             self.add("utility", name_term(fact[0]), fact[1], utility)
@@ -407,8 +446,10 @@ class _Reader:
             name = self.name(step, f"an action of the {what}")
             if name not in actions:
                 if number is None:
-                    self.warn(f"the {what} names {name}, which is not an action of the "
-                              "situation: dropped from the plan (as HERA does)")
+                    self.warn(
+                        f"the {what} names {name}, which is not an action of the "
+                        "situation: dropped from the plan (as HERA does)"
+                    )
                     continue
                 self.fail(f"the {what} names {name}, which is not an action of the situation")
             steps.append(name_term(name))
@@ -425,19 +466,26 @@ class _Reader:
         labels = self.mapping(value, "labels")
         if "agent" in labels:
             agent = labels["agent"]
-            if not (isinstance(agent, list) and len(agent) == 2
-                    and all(isinstance(part, str) for part in agent)):
+            if not (
+                isinstance(agent, list)
+                and len(agent) == 2
+                and all(isinstance(part, str) for part in agent)
+            ):
                 self.fail("labels: agent must be [name, possessive], e.g. [the robot, its]")
             self.add("agent_label", clingo.String(agent[0]), clingo.String(agent[1]))
         for name, words in self.mapping(labels.get("actions"), "labels of actions").items():
             name = self.name(name, "an action in labels")
             if name not in actions:
                 self.fail(f"labels: {name} is not an action of the situation")
-            if not (isinstance(words, list) and len(words) == 2
-                    and all(isinstance(part, str) for part in words)):
+            if not (
+                isinstance(words, list)
+                and len(words) == 2
+                and all(isinstance(part, str) for part in words)
+            ):
                 self.fail(f"labels: action {name} needs [phrase, gerund]")
-            self.add("action_label", name_term(name), clingo.String(words[0]),
-                     clingo.String(words[1]))
+            self.add(
+                "action_label", name_term(name), clingo.String(words[0]), clingo.String(words[1])
+            )
         for index, entry in enumerate(self.sequence(labels.get("facts"), "labels of facts"), 1):
             entry = self.mapping(entry, f"fact label {index}")
             variable, truth = self.fact(entry.get("fact"), f"fact label {index}")
@@ -471,7 +519,9 @@ def _load(path: Path, text: str) -> Any:
         line = f":{mark.line + 1}" if mark is not None else ""
         raise InputError(f"{path}{line}: not YAML: {error.problem}") from None
     except (yaml.YAMLError, RecursionError) as error:
-        raise InputError(f"{path}: not YAML: {str(error).splitlines()[0] if str(error) else 'nested too deeply'}") from None
+        raise InputError(
+            f"{path}: not YAML: {str(error).splitlines()[0] if str(error) else 'nested too deeply'}"
+        ) from None
 
 
 def translate(path: Path) -> str:

@@ -41,7 +41,7 @@ class Step:
     neg: int
     add: int
     delete: int
-    conditional: tuple[tuple[int, int, int, int], ...]   # (pos, neg, add, delete)
+    conditional: tuple[tuple[int, int, int, int], ...]  # (pos, neg, add, delete)
 
     def applicable(self, state: int) -> bool:
         return state & self.pos == self.pos and not state & self.neg
@@ -69,15 +69,16 @@ class Task:
         self.derived = sorted(model.axioms, key=str)
         index = {v: i for i, v in enumerate(self.variables + self.derived)}
         self.index = index
-        self.base = (1 << len(self.variables)) - 1      # the bits of the state variables
+        self.base = (1 << len(self.variables)) - 1  # the bits of the state variables
         # A goal utility (an HModel's): the utility of the state where every
         # variable is false, and what each true variable adds to it.
         self.goal_utility = model.goal_utility
         self.utility_base = sum(model.weights.get((v, False), 0) for v in self.variables)
-        self.utility_gain = [(1 << i, model.weights.get((v, True), 0)
-                              - model.weights.get((v, False), 0))
-                             for i, v in enumerate(self.variables)
-                             if model.weights.get((v, True), 0) != model.weights.get((v, False), 0)]
+        self.utility_gain = [
+            (1 << i, model.weights.get((v, True), 0) - model.weights.get((v, False), 0))
+            for i, v in enumerate(self.variables)
+            if model.weights.get((v, True), 0) != model.weights.get((v, False), 0)
+        ]
         self.steps: list[Step] = []
         # (needs, adds, step); step AXIOM for an axiom
         relaxed: list[tuple[tuple[int, ...], tuple[int, ...], int]] = []
@@ -104,10 +105,16 @@ class Task:
                 bit = 1 << index[effect.variable]
                 if effect.condition:
                     cpos, cneg = masks(effect.condition)
-                    conditional.append((cpos, cneg, bit if effect.value else 0,
-                                        0 if effect.value else bit))
-                    relaxed.append((needs + tuple(literal(v, b) for v, b in effect.condition),
-                                    (literal(effect.variable, effect.value),), number))
+                    conditional.append(
+                        (cpos, cneg, bit if effect.value else 0, 0 if effect.value else bit)
+                    )
+                    relaxed.append(
+                        (
+                            needs + tuple(literal(v, b) for v, b in effect.condition),
+                            (literal(effect.variable, effect.value),),
+                            number,
+                        )
+                    )
                 else:
                     if effect.value:
                         add |= bit
@@ -117,10 +124,14 @@ class Task:
             relaxed.append((needs, tuple(plain_adds), number))
             self.steps.append(Step(action.name, pos, neg, add, delete, tuple(conditional)))
         # Derived variables by groups, dependencies first: (bit, axioms' masks).
-        depends = {d: {v for body in bodies for v, _ in body if v in model.axioms}
-                   for d, bodies in model.axioms.items()}
-        self.strata = [[(1 << index[d], [masks(body) for body in model.axioms[d]])
-                        for d in group] for group in dependency_groups(depends)]
+        depends = {
+            d: {v for body in bodies for v, _ in body if v in model.axioms}
+            for d, bodies in model.axioms.items()
+        }
+        self.strata = [
+            [(1 << index[d], [masks(body) for body in model.axioms[d]]) for d in group]
+            for group in dependency_groups(depends)
+        ]
         # Relaxed axioms: a derived variable becomes true by one of its axioms,
         # and false once every axiom has a literal whose opposite is reached
         # (an extra literal per axiom, numbered after the variables' ones).
@@ -128,8 +139,9 @@ class Task:
         for derived in self.derived:
             falsified = []
             for body in model.axioms[derived]:
-                relaxed.append((tuple(literal(v, b) for v, b in body),
-                                (literal(derived, True),), AXIOM))
+                relaxed.append(
+                    (tuple(literal(v, b) for v, b in body), (literal(derived, True),), AXIOM)
+                )
                 falsified.append(self.literals)
                 for v, b in body:
                     relaxed.append(((literal(v, not b),), (self.literals,), AXIOM))
@@ -179,8 +191,10 @@ class Task:
             return False
         if self.goal_utility is None:
             return True
-        return (self.utility_base + sum(gain for bit, gain in self.utility_gain if state & bit)
-                >= self.goal_utility)
+        return (
+            self.utility_base + sum(gain for bit, gain in self.utility_gain if state & bit)
+            >= self.goal_utility
+        )
 
     def applicable(self, state: int) -> list[Step]:
         found = [s for s in self._unconditioned if not state & s.neg]

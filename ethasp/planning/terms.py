@@ -30,7 +30,7 @@ import clingo
 
 from ethasp.errors import InputError
 
-INT_MIN = -2**31
+INT_MIN = -(2**31)
 INT_MAX = 2**31 - 1
 
 # The deepest nesting of parentheses, and the most arithmetic operators in one
@@ -44,6 +44,8 @@ _LETTERS = frozenset("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ_'")
 
 def _ascii_word(char: str) -> bool:
     return char.isascii() and (char.isalnum() or char == "_")
+
+
 _BASES = {"x": 16, "o": 8, "b": 2}
 
 
@@ -69,7 +71,7 @@ class TermError(InputError):
 class Scan:
     """What a scan of a program text found: the files it includes."""
 
-    includes: list[tuple[str, int]] = field(default_factory=list)   # (name, line)
+    includes: list[tuple[str, int]] = field(default_factory=list)  # (name, line)
 
 
 def _where(name: str, line: int, column: int | None = None) -> str:
@@ -85,7 +87,7 @@ def _number(text: str, start: int) -> tuple[int, int]:
         while end < len(text) and _ascii_word(text[end]):
             end += 1
         try:
-            return int(text[start + 2:end], base), end
+            return int(text[start + 2 : end], base), end
         except ValueError:
             return 0, end  # clingo reports the syntax error
     while end < len(text) and text[end] in _DIGITS:
@@ -96,10 +98,12 @@ def _number(text: str, start: int) -> tuple[int, int]:
 # What the quick scan looks at: comments, strings and #script blocks (left
 # out), #include directives, long or based integer literals, and whatever
 # else it must count or refuse.
-_SKIPPED = re.compile(r'%\*.*?(?:\*%|\Z)|%[^\n]*|"(?:\\.|[^"\\])*"?|#script\b.*?(?:#end|\Z)',
-                      re.S)
-_INCLUDE = re.compile(r'%\*.*?(?:\*%|\Z)|%[^\n]*|#include\s*"([^"]*)"|"(?:\\.|[^"\\])*"?'
-                      r'|#script\b.*?(?:#end|\Z)', re.S)
+_SKIPPED = re.compile(r'%\*.*?(?:\*%|\Z)|%[^\n]*|"(?:\\.|[^"\\])*"?|#script\b.*?(?:#end|\Z)', re.S)
+_INCLUDE = re.compile(
+    r'%\*.*?(?:\*%|\Z)|%[^\n]*|#include\s*"([^"]*)"|"(?:\\.|[^"\\])*"?'
+    r"|#script\b.*?(?:#end|\Z)",
+    re.S,
+)
 _RISKY_NUMBER = re.compile(r"\d{10,}|0[xob]", re.I)
 _CONTROL = re.compile(r"[\x00-\x08\x0e-\x1f]")
 _STATEMENT_END = re.compile(r"(?<!\.)\.(?!\.)")
@@ -132,10 +136,11 @@ def _quick_scan(text: str) -> Scan | None:
             deepest = max(deepest, depth)
         if deepest > MAX_NESTING:
             return None
-    if sum(kept.count(op) for op in _OPERATORS) > MAX_NESTING:
-        if any(sum(part.count(op) for op in _OPERATORS) > MAX_NESTING
-               for part in _STATEMENT_END.split(kept)):
-            return None
+    if sum(kept.count(op) for op in _OPERATORS) > MAX_NESTING and any(
+        sum(part.count(op) for op in _OPERATORS) > MAX_NESTING
+        for part in _STATEMENT_END.split(kept)
+    ):
+        return None
     scan = Scan()
     if "#include" in text:
         for match in _INCLUDE.finditer(text):
@@ -158,14 +163,15 @@ def _scan_exactly(text: str, name: str) -> Scan:
             # (clingo's message about such a character cuts it in the middle of its
             # UTF-8 bytes, which its Python library cannot decode: it aborts.)
             shown = char if char.isprintable() else f"U+{ord(char):04X}"
-            raise LimitError(_where(name, line, index - line_start + 1),
-                             f"the character {shown!r} outside a string or comment "
-                             "(names in ASP are ASCII)")
+            raise LimitError(
+                _where(name, line, index - line_start + 1),
+                f"the character {shown!r} outside a string or comment (names in ASP are ASCII)",
+            )
         elif char == "%":
-            if text.startswith("%*", index):           # block comment
+            if text.startswith("%*", index):  # block comment
                 end = text.find("*%", index + 2)
                 end = length if end < 0 else end + 2
-            else:                                       # line comment
+            else:  # line comment
                 end = text.find("\n", index)
                 end = length if end < 0 else end
             line += text.count("\n", index, end)
@@ -190,7 +196,7 @@ def _scan_exactly(text: str, name: str) -> Scan:
                 index = stop
                 continue
             if directive == "#include":
-                rest = text[end:end + 4096].lstrip()
+                rest = text[end : end + 4096].lstrip()
                 if rest.startswith('"'):
                     close = rest.find('"', 1)
                     if close > 0:
@@ -207,30 +213,38 @@ def _scan_exactly(text: str, name: str) -> Scan:
                 raise LimitError(
                     _where(name, line, index - line_start + 1),
                     f"the integer {literal} is out of range: clingo's integers are 32-bit, "
-                    f"from {INT_MIN} to {INT_MAX}")
+                    f"from {INT_MIN} to {INT_MAX}",
+                )
             index = end
         elif char < " " and char not in "\t\r\f\v":
-            raise LimitError(_where(name, line, index - line_start + 1),
-                             f"a control character {ord(char):#04x}: not a program text")
+            raise LimitError(
+                _where(name, line, index - line_start + 1),
+                f"a control character {ord(char):#04x}: not a program text",
+            )
         else:
             if char == "(":
                 depth += 1
                 if depth > MAX_NESTING:
                     raise LimitError(
                         _where(name, line, index - line_start + 1),
-                        f"parentheses nested more than {MAX_NESTING} deep (the limit of ethasp)")
+                        f"parentheses nested more than {MAX_NESTING} deep (the limit of ethasp)",
+                    )
             elif char == ")":
                 depth = max(0, depth - 1)
-            elif char == "." and not text.startswith("..", index) and \
-                    not (index > 0 and text[index - 1] == "."):
-                operators = 0                            # end of a statement
+            elif (
+                char == "."
+                and not text.startswith("..", index)
+                and not (index > 0 and text[index - 1] == ".")
+            ):
+                operators = 0  # end of a statement
             elif char in _OPERATORS and not (char in "-~" and index > 0 and text[index - 1] == ":"):
                 operators += 1
                 if operators > MAX_NESTING:
                     raise LimitError(
                         _where(name, line),
                         f"more than {MAX_NESTING} arithmetic operators in one statement "
-                        "(the limit of ethasp)")
+                        "(the limit of ethasp)",
+                    )
             index += 1
     return scan
 
@@ -252,8 +266,9 @@ def scan_file(path: Path, text: str | None = None, seen: set[Path] | None = None
                 try:
                     included = candidate.read_text()
                 except (OSError, UnicodeDecodeError) as exc:
-                    raise InputError(f"{path}:{line}: the included file {name} cannot be read "
-                                     f"({_reason(exc)})") from None
+                    raise InputError(
+                        f"{path}:{line}: the included file {name} cannot be read ({_reason(exc)})"
+                    ) from None
                 scan_file(candidate, included, seen)
                 break
         # A missing file is reported by clingo, with its place.
@@ -294,9 +309,9 @@ def _arithmetic(text: str) -> str | None:
             while index < len(text) and text[index] != '"':
                 index += 2 if text[index] == "\\" else 1
             previous = '"'
-        elif char in "+*/\\^&?~|":
-            return char
-        elif char == "-" and previous and (previous.isalnum() or previous in ")\"'_"):
+        elif char in "+*/\\^&?~|" or (
+            char == "-" and previous and (previous.isalnum() or previous in ")\"'_")
+        ):
             return char
         elif text.startswith("..", index):
             return ".."
@@ -319,7 +334,7 @@ def parse_symbol(text: str, what: str = "term") -> clingo.Symbol:
         raise TermError(what, "empty term", "empty")
     try:
         stripped.encode("utf-8")
-    except UnicodeEncodeError:   # bytes that were not UTF-8 (kept as surrogates)
+    except UnicodeEncodeError:  # bytes that were not UTF-8 (kept as surrogates)
         raise TermError(what, "not UTF-8 text", "not UTF-8 text") from None
     try:
         scan_program(stripped, what)
@@ -339,4 +354,4 @@ def parse_symbol(text: str, what: str = "term") -> clingo.Symbol:
 def _short(text: str, limit: int = 60) -> str:
     """A text cut for a message."""
     text = " ".join(text.split())
-    return text if len(text) <= limit else text[:limit - 3] + "..."
+    return text if len(text) <= limit else text[: limit - 3] + "..."

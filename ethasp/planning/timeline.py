@@ -18,16 +18,37 @@ from clorm import unify
 
 from ethasp.errors import InputError
 from ethasp.planning.model import Model
-from ethasp.planning.naming import Naming
+from ethasp.planning.naming import ASP_NAMING, Naming
 from ethasp.planning.plan import Plan
 from ethasp.planning.planner import occurrences
 from ethasp.planning.validation import read_validation
-from ethasp.vocabulary import (Action, ActionLabel, AgentLabel, Caused, Causing, Changed,
-                               EventChanged, FactLabel, Final, Goal, Happened, Init, Initially,
-                               SetAt, UtilityOfFinal, Variable, Weight)
+from ethasp.vocabulary import (
+    Action,
+    ActionLabel,
+    AgentLabel,
+    Caused,
+    Causing,
+    Changed,
+    EventChanged,
+    FactLabel,
+    Final,
+    Goal,
+    Happened,
+    Init,
+    Initially,
+    SetAt,
+    UtilityOfFinal,
+    Variable,
+    Weight,
+)
 
-STEPS = ("planning/model.lp", "planning/trace.lp", "planning/trace_events.lp",
-         "planning/steps.lp", "judgement/judge.lp")
+STEPS = (
+    "planning/model.lp",
+    "planning/trace.lp",
+    "planning/trace_events.lp",
+    "planning/steps.lp",
+    "judgement/judge.lp",
+)
 
 # Every state of a plan is computed for its picture: longer plans are refused.
 MAX_STEPS = 200
@@ -47,7 +68,7 @@ class Fact:
         return naming.fact(self.literal())
 
     @classmethod
-    def of(cls, variable: clingo.Symbol, value: str) -> "Fact":
+    def of(cls, variable: clingo.Symbol, value: str) -> Fact:
         return cls(variable, value == "true")
 
 
@@ -75,23 +96,27 @@ class Valuation:
     fact_labels: dict[Fact, str] = field(default_factory=dict)
 
     @classmethod
-    def of_model(cls, model: Model) -> "Valuation":
+    def of_model(cls, model: Model) -> Valuation:
         """Read from the model's facts (its rules grounded)."""
-        facts = model.facts([Action, Variable, Init, Goal, Weight, AgentLabel, ActionLabel,
-                             FactLabel])
+        facts = model.facts(
+            [Action, Variable, Init, Goal, Weight, AgentLabel, ActionLabel, FactLabel]
+        )
         agents = sorted((a.name, a.possessive) for a in facts.query(AgentLabel).all())
         return cls(
             actions=sorted((a.name.symbol for a in facts.query(Action).all()), key=str),
             variables=sorted((v.name.symbol for v in facts.query(Variable).all()), key=str),
             initial={i.variable.symbol for i in facts.query(Init).all()},
-            goal=sorted((Fact.of(g.variable.symbol, g.value) for g in facts.query(Goal).all()),
-                        key=_order),
+            goal=sorted(
+                (Fact.of(g.variable.symbol, g.value) for g in facts.query(Goal).all()), key=_order
+            ),
             weights={w.element.symbol: w.utility for w in facts.query(Weight).all()},
             agent=agents[0] if agents else None,
-            action_labels={a.action.symbol: (a.phrase, a.gerund)
-                           for a in facts.query(ActionLabel).all()},
-            fact_labels={Fact.of(f.variable.symbol, f.value): f.phrase
-                         for f in facts.query(FactLabel).all()},
+            action_labels={
+                a.action.symbol: (a.phrase, a.gerund) for a in facts.query(ActionLabel).all()
+            },
+            fact_labels={
+                Fact.of(f.variable.symbol, f.value): f.phrase for f in facts.query(FactLabel).all()
+            },
         )
 
     def action_utility(self, action: clingo.Symbol) -> int:
@@ -107,27 +132,45 @@ class Valuation:
     def fact_label(self, fact: Fact) -> str:
         return self.fact_labels.get(fact, "")
 
-    def to_json(self, naming: Naming = Naming()) -> dict:
+    def to_json(self, naming: Naming = ASP_NAMING) -> dict:
         """The model at a glance, named by ``naming``, each element with its
         utility, moral value and label."""
 
         def fact(variable: clingo.Symbol, value: bool) -> dict:
             item = Fact(variable, value)
             utility = self.fact_utility(item)
-            return {"literal": item.literal(), "shown": item.shown(naming), "utility": utility,
-                    "moral": moral(utility), "label": self.fact_label(item)}
+            return {
+                "literal": item.literal(),
+                "shown": item.shown(naming),
+                "utility": utility,
+                "moral": moral(utility),
+                "label": self.fact_label(item),
+            }
 
         return {
-            "agent": None if self.agent is None else {"name": self.agent[0],
-                                                      "possessive": self.agent[1]},
-            "actions": [{"term": str(action), "shown": naming.action(action),
-                         "utility": self.action_utility(action),
-                         "moral": moral(self.action_utility(action)),
-                         "label": self.action_label(action)} for action in self.actions],
-            "variables": [{"term": str(variable), "shown": naming.fact(str(variable)),
-                           "initial": variable in self.initial,
-                           "true": fact(variable, True), "false": fact(variable, False)}
-                          for variable in self.variables],
+            "agent": None
+            if self.agent is None
+            else {"name": self.agent[0], "possessive": self.agent[1]},
+            "actions": [
+                {
+                    "term": str(action),
+                    "shown": naming.action(action),
+                    "utility": self.action_utility(action),
+                    "moral": moral(self.action_utility(action)),
+                    "label": self.action_label(action),
+                }
+                for action in self.actions
+            ],
+            "variables": [
+                {
+                    "term": str(variable),
+                    "shown": naming.fact(str(variable)),
+                    "initial": variable in self.initial,
+                    "true": fact(variable, True),
+                    "false": fact(variable, False),
+                }
+                for variable in self.variables
+            ],
             "goal": [fact(item.variable, item.value) for item in self.goal],
         }
 
@@ -164,8 +207,9 @@ class Timeline:
     valuation: Valuation
 
     def changed_variables(self) -> list[clingo.Symbol]:
-        return sorted({fact.variable for column in self.columns for fact in column.changes},
-                      key=str)
+        return sorted(
+            {fact.variable for column in self.columns for fact in column.changes}, key=str
+        )
 
 
 def _order(fact: Fact) -> tuple[str, bool]:
@@ -181,8 +225,10 @@ def timeline(model: Model, plan: Plan, valuation: Valuation | None = None) -> Ti
     """The timeline of a plan (one clingo call); InputError if it is not a plan
     or has more than :data:`MAX_STEPS` steps."""
     if len(plan) > MAX_STEPS:
-        raise InputError(f"the plan has {len(plan)} steps; pictures are drawn for plans of "
-                         f"at most {MAX_STEPS} steps")
+        raise InputError(
+            f"the plan has {len(plan)} steps; pictures are drawn for plans of "
+            f"at most {MAX_STEPS} steps"
+        )
     valuation = valuation or Valuation.of_model(model)
     ctl = model.planner.program(STEPS, symbols=occurrences(plan))
     symbols: list[clingo.Symbol] = []
@@ -193,8 +239,10 @@ def timeline(model: Model, plan: Plan, valuation: Valuation | None = None) -> Ti
     validation = read_validation(plan, symbols)
     if not validation.valid:
         raise InputError(f"not a plan: {validation.message(model.naming)}")
-    atoms = unify([Initially, SetAt, Changed, Causing, Caused, Final, UtilityOfFinal,
-                   EventChanged, Happened], symbols)
+    atoms = unify(
+        [Initially, SetAt, Changed, Causing, Caused, Final, UtilityOfFinal, EventChanged, Happened],
+        symbols,
+    )
     sets = list(atoms.query(SetAt).all())
     changes = list(atoms.query(Changed).all())
     causing = list(atoms.query(Causing).all())
@@ -206,16 +254,31 @@ def timeline(model: Model, plan: Plan, valuation: Valuation | None = None) -> Ti
     for step, action in enumerate(plan, start=1):
         changed = _facts(changes, step)
         events = _facts(by_events, step)
-        columns.append(Column(step, action,
-                              changed + [fact for fact in events if fact not in changed],
-                              [fact for fact in _facts(sets, step) if fact not in changed],
-                              set(_facts(causing, step)), happened.get(step, [])))
+        columns.append(
+            Column(
+                step,
+                action,
+                changed + [fact for fact in events if fact not in changed],
+                [fact for fact in _facts(sets, step) if fact not in changed],
+                set(_facts(causing, step)),
+                happened.get(step, []),
+            )
+        )
     for step in sorted(s for s in happened if s > len(plan)):
-        columns.append(Column(step, clingo.Function("events", happened[step]),
-                              _facts(by_events, step), [], set(), happened[step]))
+        columns.append(
+            Column(
+                step,
+                clingo.Function("events", happened[step]),
+                _facts(by_events, step),
+                [],
+                set(),
+                happened[step],
+            )
+        )
     moved = {fact.variable for column in columns for fact in column.changes}
     initial = [fact for fact in _facts(atoms.query(Initially).all()) if fact.variable in moved]
     final = _facts(atoms.query(Final).all())
     utility = next(iter(atoms.query(UtilityOfFinal).all())).utility
-    return Timeline(plan, initial, columns, final, set(_facts(atoms.query(Caused).all())),
-                    utility, valuation)
+    return Timeline(
+        plan, initial, columns, final, set(_facts(atoms.query(Caused).all())), utility, valuation
+    )

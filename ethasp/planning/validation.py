@@ -17,17 +17,31 @@ from clorm import unify
 from ethasp.errors import InputError
 from ethasp.planning.messages import Messages
 from ethasp.planning.model import Model
-from ethasp.planning.naming import Naming
+from ethasp.planning.naming import ASP_NAMING, Naming
 from ethasp.planning.pddl import SCHEMA_PREDICATES
 from ethasp.planning.plan import Plan
 from ethasp.planning.planner import add_facts
 from ethasp.resources import encoding
-from ethasp.vocabulary import (Failure, Final, Invalid, IsPlan, NoSchemaInstance, StaticFailure,
-                               Unmet, UnmetGoal)
+from ethasp.vocabulary import (
+    Failure,
+    Final,
+    Invalid,
+    IsPlan,
+    NoSchemaInstance,
+    StaticFailure,
+    Unmet,
+    UnmetGoal,
+)
 
 # The atoms of a plan's trace that a validation reads (planning/trace.lp).
-TRACE_ATOMS = (("invalid", 1), ("unmet", 4), ("failure", 1), ("final", 2), ("unmet_goal", 2),
-               ("plan", 0))
+TRACE_ATOMS = (
+    ("invalid", 1),
+    ("unmet", 4),
+    ("failure", 1),
+    ("final", 2),
+    ("unmet_goal", 2),
+    ("plan", 0),
+)
 
 
 def literal(variable: clingo.Symbol, value: str) -> str:
@@ -57,7 +71,7 @@ class Validation:
     unmet_goals: list[str] = field(default_factory=list)
     final_state: list[str] = field(default_factory=list)
 
-    def message(self, naming: Naming = Naming()) -> str:
+    def message(self, naming: Naming = ASP_NAMING) -> str:
         """One line saying why the sequence is not a plan ('' if it is one).
 
         ``naming`` shows actions and facts (a model's :attr:`Model.naming`).
@@ -66,19 +80,28 @@ class Validation:
             return ""
         if self.failure_step is not None:
             unmet = self.unmet_preconditions
-            static = (f" and no action changes {'it' if len(unmet) == 1 else 'them'}"
-                      if self.static else "")
-            return (f"step {self.failure_step}: action {naming.action(self.failure_action)} "
-                    f"is not applicable: precondition "
-                    f"{', '.join(map(naming.fact, unmet))} does not hold{static}")
-        return (f"the goal is not reached: {', '.join(map(naming.fact, self.unmet_goals))} "
-                "does not hold at the end")
+            static = (
+                f" and no action changes {'it' if len(unmet) == 1 else 'them'}"
+                if self.static
+                else ""
+            )
+            return (
+                f"step {self.failure_step}: action {naming.action(self.failure_action)} "
+                f"is not applicable: precondition "
+                f"{', '.join(map(naming.fact, unmet))} does not hold{static}"
+            )
+        return (
+            f"the goal is not reached: {', '.join(map(naming.fact, self.unmet_goals))} "
+            "does not hold at the end"
+        )
 
     def to_json(self) -> dict:
         return {
             "plan": self.plan.to_list(),
             "valid": self.valid,
-            "failure": None if self.failure_step is None else {
+            "failure": None
+            if self.failure_step is None
+            else {
                 "step": self.failure_step,
                 "action": self.failure_action,
                 "unmet_preconditions": self.unmet_preconditions,
@@ -89,7 +112,7 @@ class Validation:
         }
 
 
-def _problem(problem: clingo.Symbol, naming: Naming = Naming()) -> str:
+def _problem(problem: clingo.Symbol, naming: Naming = ASP_NAMING) -> str:
     args = problem.arguments
     if problem.name == "unknown_action":
         return f"unknown action {naming.action(args[0])} at step {args[1]}"
@@ -102,8 +125,9 @@ def validate(model: Model, plan: Plan) -> Validation:
     return read_validation(plan, model.planner.trace(plan).select(TRACE_ATOMS), model)
 
 
-def read_validation(plan: Plan, symbols: list[clingo.Symbol],
-                    model: Model | None = None) -> Validation:
+def read_validation(
+    plan: Plan, symbols: list[clingo.Symbol], model: Model | None = None
+) -> Validation:
     """The validation of a plan from the shown atoms of a program with trace.lp
     (and, for a PDDL task's ``model``, of the instances of its action schemas
     that the plan names and that are no actions)."""
@@ -114,24 +138,34 @@ def read_validation(plan: Plan, symbols: list[clingo.Symbol],
         static = _static_failure(model, problems) if model is not None else None
         if static is None:
             naming = model.naming if model is not None else Naming()
-            first = min(problems, key=lambda problem: _problem(problem))   # as ever: by text
+            first = min(problems, key=lambda problem: _problem(problem))  # as ever: by text
             raise InputError(f"plan: {_problem(first, naming)}")
         if not failures or static[0] < failures[0]:
             return Validation(plan, False, *static, static=True)
     if failures:
         step = failures[0]
-        unmet = sorted((atom for atom in facts.query(Unmet).all() if atom.step == step),
-                       key=lambda atom: str(atom.variable))
-        return Validation(plan, False, failure_step=step, failure_action=str(unmet[0].action),
-                          unmet_preconditions=[literal(a.variable.symbol, a.value) for a in unmet])
+        unmet = sorted(
+            (atom for atom in facts.query(Unmet).all() if atom.step == step),
+            key=lambda atom: str(atom.variable),
+        )
+        return Validation(
+            plan,
+            False,
+            failure_step=step,
+            failure_action=str(unmet[0].action),
+            unmet_preconditions=[literal(a.variable.symbol, a.value) for a in unmet],
+        )
     final = sorted(literal(atom.variable.symbol, atom.value) for atom in facts.query(Final).all())
-    goals = sorted(literal(atom.variable.symbol, atom.value) for atom in facts.query(UnmetGoal).all())
+    goals = sorted(
+        literal(atom.variable.symbol, atom.value) for atom in facts.query(UnmetGoal).all()
+    )
     valid = bool(list(facts.query(IsPlan).all()))
     return Validation(plan, valid, unmet_goals=goals, final_state=final)
 
 
-def _static_failure(model: Model,
-                    problems: list[clingo.Symbol]) -> tuple[int, str, list[str]] | None:
+def _static_failure(
+    model: Model, problems: list[clingo.Symbol]
+) -> tuple[int, str, list[str]] | None:
     """The first step whose term is an instance of a PDDL action schema that
     fails a static precondition: (step, action, failing preconditions); None
     if some problem is another one (an unknown action, a missing step)."""
@@ -148,8 +182,9 @@ def _static_failure(model: Model,
     return steps[action], str(action), failing[action]
 
 
-def static_failures(model: Model,
-                    terms: list[clingo.Symbol]) -> dict[clingo.Symbol, list[str]] | None:
+def static_failures(
+    model: Model, terms: list[clingo.Symbol]
+) -> dict[clingo.Symbol, list[str]] | None:
     """For terms that are no actions of a PDDL task: the static preconditions
     (literals ``v`` / ``-v``) that each fails, as an instance of its action
     schema; None if some term is no instance of any schema (with its equalities),
@@ -162,9 +197,13 @@ def static_failures(model: Model,
         failing.setdefault(atom.action.symbol, []).append(atom)
     if set(failing) != set(terms):
         return None
-    return {term: [literal(a.variable.symbol, a.value)
-                   for a in sorted(atoms, key=lambda atom: str(atom.variable))]
-            for term, atoms in failing.items()}
+    return {
+        term: [
+            literal(a.variable.symbol, a.value)
+            for a in sorted(atoms, key=lambda atom: str(atom.variable))
+        ]
+        for term, atoms in failing.items()
+    }
 
 
 def _schema_program(model: Model, candidates: list[clingo.Symbol]):
@@ -175,18 +214,28 @@ def _schema_program(model: Model, candidates: list[clingo.Symbol]):
     ctl = clingo.Control(logger=messages, message_limit=20)
     try:
         with ast.ProgramBuilder(ctl) as builder:
+
             def keep(statement):
-                if statement.ast_type == ast.ASTType.Rule and _head_name(statement) in \
-                        SCHEMA_PREDICATES:
+                if (
+                    statement.ast_type == ast.ASTType.Rule
+                    and _head_name(statement) in SCHEMA_PREDICATES
+                ):
                     builder.add(statement)
+
             for source in model.sources:
                 if source.path is not None:
                     ast.parse_files([str(source.path)], keep, logger=messages)
                 else:
                     ast.parse_string(source.text, keep, logger=messages)
             ast.parse_files([str(encoding("planning/static.lp"))], builder.add)
-        add_facts(ctl, [*model.planner.get("init", 1), *model.planner.get("has_type", 2),
-                        *(clingo.Function("pddl_candidate", [action]) for action in candidates)])
+        add_facts(
+            ctl,
+            [
+                *model.planner.get("init", 1),
+                *model.planner.get("has_type", 2),
+                *(clingo.Function("pddl_candidate", [action]) for action in candidates),
+            ],
+        )
         ctl.ground([("base", [])])
     except RuntimeError:
         messages.raise_first("grounding failed")

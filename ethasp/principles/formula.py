@@ -23,7 +23,8 @@ Actions, variables and moral patients are ASP terms of the model (``pull``,
 ``push(man)``, ``at(robot,r1)``, ``"4alive"``); ``v`` is the fact "v is true"
 and ``-v`` the fact "v is false".  Actions and variables may also be written
 as PDDL atoms (``(push man)``, ``(at robot r1)``), and a false fact as
-``(not (at robot r1))``: reasons of PDDL models are printed so.  The operator names are case-insensitive.
+``(not (at robot r1))``: reasons of PDDL models are printed so.  The
+operator names are case-insensitive.
 The operators after GEq are HERA's (see ``encodings/judgement/language.lp``);
 a comparison of utility terms is ``ucompare(O,X,Y)`` with O ``gt``, ``geq``
 or ``eq`` (``<`` and ``<=`` swap the sides), X and Y built of ``u(C)``,
@@ -48,8 +49,8 @@ column.
 from __future__ import annotations
 
 import re
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Iterable, Mapping, Sequence
 
 import clingo
 from clorm import Raw
@@ -64,16 +65,38 @@ TRUE, FALSE = Function("true"), Function("false")
 EMPTY = Function("empty")
 
 # Operator names (lower case) and how they print.
-ATOMS = {"good": "Good", "bad": "Bad", "neutral": "Neutral", "caused": "Caused", "geq": "GEq",
-         "goal_fact": "Goal", "finally": "Finally", "but_for": "ButFor",
-         "instrumental": "Instrumental", "avoidable": "Avoidable", "means": "Means",
-         "means2": "Means2", "end": "End", "ucompare": "U"}
+ATOMS = {
+    "good": "Good",
+    "bad": "Bad",
+    "neutral": "Neutral",
+    "caused": "Caused",
+    "geq": "GEq",
+    "goal_fact": "Goal",
+    "finally": "Finally",
+    "but_for": "ButFor",
+    "instrumental": "Instrumental",
+    "avoidable": "Avoidable",
+    "means": "Means",
+    "means2": "Means2",
+    "end": "End",
+    "ucompare": "U",
+}
 # HERA's operators on facts and on patients, by the name users write (lower case).
-FACT_OPERATORS = {"goal": "goal_fact", "finally": "finally", "butfor": "but_for",
-                  "instrumental": "instrumental", "avoidable": "avoidable"}
+FACT_OPERATORS = {
+    "goal": "goal_fact",
+    "finally": "finally",
+    "butfor": "but_for",
+    "instrumental": "instrumental",
+    "avoidable": "avoidable",
+}
 PATIENT_OPERATORS = {"means": "means", "means2": "means2", "end": "end"}
-COMPARISONS = {">=": ("geq", False), "<=": ("geq", True), ">": ("gt", False),
-               "<": ("gt", True), "=": ("eq", False)}
+COMPARISONS = {
+    ">=": ("geq", False),
+    "<=": ("geq", True),
+    ">": ("gt", False),
+    "<": ("gt", True),
+    "=": ("eq", False),
+}
 _SHOWN = {"gt": ">", "geq": ">=", "eq": "="}
 KEYWORDS = {"not", "and", "or", "true", "false"}
 
@@ -84,6 +107,7 @@ _STOP = {",", "&", ")"}
 
 # -- the model's elements -------------------------------------------------------
 
+
 @dataclass(frozen=True)
 class Elements:
     """The names a formula can use: the model's actions and variables."""
@@ -93,15 +117,18 @@ class Elements:
     patients: frozenset[clingo.Symbol] = frozenset()
 
     @classmethod
-    def of_model(cls, model) -> "Elements":
+    def of_model(cls, model) -> Elements:
         """The actions, variables and moral patients of a :class:`ethasp.model.Model`."""
         planner = model.planner
-        return cls(frozenset(a.arguments[0] for a in planner.get("action", 1)),
-                   frozenset(v.arguments[0] for v in planner.get("variable", 1)),
-                   frozenset(p.arguments[0] for p in planner.get("patient", 1)))
+        return cls(
+            frozenset(a.arguments[0] for a in planner.get("action", 1)),
+            frozenset(v.arguments[0] for v in planner.get("variable", 1)),
+            frozenset(p.arguments[0] for p in planner.get("patient", 1)),
+        )
 
 
 # -- parsed formulas ------------------------------------------------------------
+
 
 @dataclass
 class Formula:
@@ -119,8 +146,10 @@ class Formula:
         symbol = Function(name) if isinstance(name, str) else name
         facts: list = [FormulaOf(name=Raw(symbol), formula=Raw(self.term))]
         for conj, members in self.conjunctions.items():
-            facts += [Conj(name=Raw(conj), variable=Raw(variable), value=value)
-                      for variable, value in members]
+            facts += [
+                Conj(name=Raw(conj), variable=Raw(variable), value=value)
+                for variable, value in members
+            ]
         return facts
 
     def __str__(self) -> str:
@@ -186,15 +215,14 @@ class _Parser:
     def parse(self) -> Formula:
         """formula ::= disjunction ["->" formula]; disjunctions and conjunctions are
         left associative chains of "or" and "and"; "not" binds tightest."""
-        operands: list[tuple[clingo.Symbol, int]] = []      # (term, operators nested in it)
-        operators: list[tuple[str, int]] = []                # (operator or "(", position)
+        operands: list[tuple[clingo.Symbol, int]] = []  # (term, operators nested in it)
+        operators: list[tuple[str, int]] = []  # (operator or "(", position)
 
         def reduce_while_stronger(level: int) -> None:
-            while operators and operators[-1][0] != _OPEN \
-                    and _PRECEDENCE[operators[-1][0]] > level:
+            while operators and operators[-1][0] != _OPEN and _PRECEDENCE[operators[-1][0]] > level:
                 self.apply(operators.pop(), operands)
 
-        opened = 0                                           # "(" on the stack
+        opened = 0  # "(" on the stack
         while True:
             # An operand: prefixes ("not", "("), then an atom.
             while True:
@@ -239,9 +267,11 @@ class _Parser:
         arguments = [operands.pop()] if name == "neg" else [operands.pop(-2), operands.pop()]
         depth = 1 + max(depth for _, depth in arguments)
         if depth > MAX_NESTING:
-            self.fail(f"the formula nests operators more than {MAX_NESTING} deep (the limit "
-                      "of ethasp; a chain of 'and' or 'or' nests one level per operator)",
-                      position)
+            self.fail(
+                f"the formula nests operators more than {MAX_NESTING} deep (the limit "
+                "of ethasp; a chain of 'and' or 'or' nests one level per operator)",
+                position,
+            )
         operands.append((Function(name, [term for term, _ in arguments]), depth))
 
     def atom(self) -> clingo.Symbol:
@@ -252,8 +282,11 @@ class _Parser:
         if key == "false" and self.accept(word):
             return Function("any", [EMPTY])
         self.skip()
-        if key == "u" or (word is None and self.pos < len(self.text)
-                          and (self.text[self.pos].isdigit() or self.text[self.pos] == "-")):
+        if key == "u" or (
+            word is None
+            and self.pos < len(self.text)
+            and (self.text[self.pos].isdigit() or self.text[self.pos] == "-")
+        ):
             return self.comparison()
         if key in FACT_OPERATORS or key in PATIENT_OPERATORS:
             self.accept(word)
@@ -266,9 +299,11 @@ class _Parser:
             self.expect(")")
             return term
         if key not in ATOMS or key in ("ucompare", "goal_fact", "but_for"):
-            self.fail(f"expected a formula (Good, Bad, Neutral, Caused, GEq, Goal, Finally, "
-                      f"ButFor, Instrumental, Avoidable, Means, Means2, End, U, not, true, "
-                      f"false or '('), found {self.found()}")
+            self.fail(
+                f"expected a formula (Good, Bad, Neutral, Caused, GEq, Goal, Finally, "
+                f"ButFor, Instrumental, Avoidable, Means, Means2, End, U, not, true, "
+                f"false or '('), found {self.found()}"
+            )
         self.accept(word)
         self.expect("(")
         if key == "geq":
@@ -308,8 +343,11 @@ class _Parser:
         depth = 0
         while True:
             self.skip()
-            if (self.pos < len(self.text) and self.text[self.pos] in "+-"
-                    and not self.text.startswith("->", self.pos)):
+            if (
+                self.pos < len(self.text)
+                and self.text[self.pos] in "+-"
+                and not self.text.startswith("->", self.pos)
+            ):
                 name = "add" if self.text[self.pos] == "+" else "sub"
                 self.pos += 1
                 depth += 1
@@ -360,8 +398,11 @@ class _Parser:
             detail = f" ({error.reason})" if error.reason else ""
             self.fail(f"not a patient name: '{text[:60]}'{detail}", start)
         if symbol not in self.elements.patients:
-            self.fail(f"unknown moral patient '{symbol}' (declare it with patient/1, or "
-                      "affects in a situation)", start)
+            self.fail(
+                f"unknown moral patient '{symbol}' (declare it with patient/1, or "
+                "affects in a situation)",
+                start,
+            )
         return symbol
 
     # -- elements -------------------------------------------------------------------
@@ -386,7 +427,7 @@ class _Parser:
             elif depth == 0 and char in _STOP:
                 break
             self.pos += 1
-        return self.text[start:self.pos].rstrip(), start
+        return self.text[start : self.pos].rstrip(), start
 
     def element(self, allow_action: bool, operator: str) -> clingo.Symbol:
         """``action(A)`` or ``fact(V,B)`` for the name at the current position."""
@@ -395,12 +436,11 @@ class _Parser:
             self.fail(f"expected an action or a fact, found {self.found()}", start)
         negative = text.startswith("-")
         name = text[1:].lstrip() if negative else text
-        pddl = _PDDL_NOT.fullmatch(name)          # (not (p a)): a PDDL model's false fact
+        pddl = _PDDL_NOT.fullmatch(name)  # (not (p a)): a PDDL model's false fact
         if pddl and not negative:
             negative, name = True, pddl.group(1)
         try:
-            symbol = (pddl_atom_to_term(name) if name.startswith("(")
-                      else parse_symbol(name, "name"))
+            symbol = pddl_atom_to_term(name) if name.startswith("(") else parse_symbol(name, "name")
         except (TermError, InputError) as error:
             shown = text if len(text) <= 60 else text[:57] + "..."
             reason = getattr(error, "reason", "")
@@ -408,7 +448,7 @@ class _Parser:
             self.fail(f"not an action or variable name: '{shown}'{detail}", start)
         is_action = symbol in self.elements.actions
         is_variable = symbol in self.elements.variables
-        written = " ".join(name.split()) if name.startswith("(") else symbol   # as typed
+        written = " ".join(name.split()) if name.startswith("(") else symbol  # as typed
         if is_action and is_variable:
             self.fail(f"'{written}' is both an action and a variable of the model", start)
         if not is_action and not is_variable:
@@ -476,7 +516,7 @@ class _Lookup:
     def __init__(self, mapping: Mapping | None, naming: Naming | None = None):
         self.mapping = mapping or {}
         self.by_text: dict[str, list] | None = None
-        self.naming = naming          # how the printed formula names actions and facts
+        self.naming = naming  # how the printed formula names actions and facts
 
     def __call__(self, name) -> list:
         if name in self.mapping:
@@ -507,17 +547,25 @@ def _facts_text(side, conj: _Lookup) -> str:
 def _utility_text(term: clingo.Symbol, conj: _Lookup) -> str:
     """A utility term as text (no recursion: the left spine is walked)."""
     parts: list[str] = []
-    while term.type == clingo.SymbolType.Function and term.name in ("add", "sub") \
-            and len(term.arguments) == 2:
-        parts.append(("+ " if term.name == "add" else "- ")
-                     + _utility_primary(term.arguments[1], conj))
+    while (
+        term.type == clingo.SymbolType.Function
+        and term.name in ("add", "sub")
+        and len(term.arguments) == 2
+    ):
+        parts.append(
+            ("+ " if term.name == "add" else "- ") + _utility_primary(term.arguments[1], conj)
+        )
         term = term.arguments[0]
-    return " ".join([_utility_primary(term, conj)] + list(reversed(parts)))
+    return " ".join([_utility_primary(term, conj), *list(reversed(parts))])
 
 
 def _utility_primary(term: clingo.Symbol, conj: _Lookup) -> str:
     signs = 0
-    while term.type == clingo.SymbolType.Function and term.name == "minus" and len(term.arguments) == 1:
+    while (
+        term.type == clingo.SymbolType.Function
+        and term.name == "minus"
+        and len(term.arguments) == 1
+    ):
         signs += 1
         term = term.arguments[0]
     if term.type == clingo.SymbolType.Function and term.name == "num" and len(term.arguments) == 1:
@@ -533,15 +581,18 @@ def _atom_text(term: clingo.Symbol, conj: _Lookup) -> str:
     name, args = term.name, term.arguments
     if name in ("good", "bad", "neutral") and len(args) == 1:
         return f"{ATOMS[name]}({_element(args[0], conj.naming)})"
-    if name in ("caused", "goal_fact", "finally", "but_for", "instrumental", "avoidable") \
-            and len(args) == 2:
+    if (
+        name in ("caused", "goal_fact", "finally", "but_for", "instrumental", "avoidable")
+        and len(args) == 2
+    ):
         return f"{ATOMS[name]}({format_fact(*args, conj.naming)})"
     if name in ("means", "means2", "end") and len(args) == 1:
         patient = conj.naming.name(args[0]) if conj.naming is not None else str(args[0])
         return f"{ATOMS[name]}({patient})"
     if name == "ucompare" and len(args) == 3 and args[0].name in _SHOWN:
-        return (f"{_utility_text(args[1], conj)} {_SHOWN[args[0].name]} "
-                f"{_utility_text(args[2], conj)}")
+        return (
+            f"{_utility_text(args[1], conj)} {_SHOWN[args[0].name]} {_utility_text(args[2], conj)}"
+        )
     if name == "geq" and len(args) == 2:
         sides = []
         for side in args:
@@ -567,7 +618,7 @@ def _format(term: clingo.Symbol, conj: _Lookup, members: _Lookup) -> str:
         if isinstance(item, str):
             out.append(item)
             continue
-        if item[0] is None:                      # done with an all/any name
+        if item[0] is None:  # done with an all/any name
             active.discard(item[1])
             continue
         term, required = item
@@ -580,7 +631,7 @@ def _format(term: clingo.Symbol, conj: _Lookup, members: _Lookup) -> str:
             if key in active:
                 raise ValueError(f"not a formula of L: {name}({key}) contains itself")
             parts = members(args[0])
-            if len(parts) == 1:                  # prints as its one member
+            if len(parts) == 1:  # prints as its one member
                 active.add(key)
                 stack += [(None, key), (parts[0], required)]
                 continue
@@ -608,13 +659,17 @@ def _format(term: clingo.Symbol, conj: _Lookup, members: _Lookup) -> str:
             active.add(str(args[0]))
             items.append((None, str(args[0])))
         if strength < required:
-            items = ["("] + items + [")"]
+            items = ["(", *items, ")"]
         stack += reversed(items)
     return "".join(out)
 
 
-def format_formula(term: clingo.Symbol, conj_members: ConjMembers | None = None,
-                   members: Members | None = None, naming: Naming | None = None) -> str:
+def format_formula(
+    term: clingo.Symbol,
+    conj_members: ConjMembers | None = None,
+    members: Members | None = None,
+    naming: Naming | None = None,
+) -> str:
     """Print a formula term of ``language.lp`` in the syntax of :func:`parse_formula`.
 
     ``conj_members`` maps conjunction names (symbols, or their text) to their
@@ -628,8 +683,9 @@ def format_formula(term: clingo.Symbol, conj_members: ConjMembers | None = None,
     return _format(term, _Lookup(conj_members, naming), _Lookup(members))
 
 
-def format_literal(term: clingo.Symbol, conj_members: ConjMembers | None = None,
-                   naming: Naming | None = None) -> str:
+def format_literal(
+    term: clingo.Symbol, conj_members: ConjMembers | None = None, naming: Naming | None = None
+) -> str:
     """Print a literal of L: an atom (Good, Bad, Neutral, Caused, GEq) or its negation."""
     atom = term.arguments[0] if term.name == "neg" and len(term.arguments) == 1 else term
     if atom.name not in ATOMS:

@@ -23,8 +23,8 @@ keeps the model's action names and adds only state variables named
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass
-from typing import Iterable
 
 import clingo
 
@@ -40,8 +40,18 @@ MODEL = "planning/model.lp"
 
 # Constraint terms of questions that questions/restriction.lp compiles
 # (at_most(N) is the search's maximal horizon: the HModel leaves it out).
-COMPILED_CONSTRAINTS = ("unused", "used", "before", "ends", "at", "not_at", "within",
-                        "not_within", "fact_at", "at_most")
+COMPILED_CONSTRAINTS = (
+    "unused",
+    "used",
+    "before",
+    "ends",
+    "at",
+    "not_at",
+    "within",
+    "not_within",
+    "fact_at",
+    "at_most",
+)
 
 
 @dataclass(frozen=True)
@@ -54,10 +64,13 @@ class Restriction:
     best_utility: int | None = None
 
     @classmethod
-    def of(cls, principles: Iterable[str] = (), terms: Iterable[clingo.Symbol] = (),
-           best_utility: int | None = None) -> "Restriction":
-        return cls(tuple(sorted(set(principles))), tuple(sorted(set(terms), key=str)),
-                   best_utility)
+    def of(
+        cls,
+        principles: Iterable[str] = (),
+        terms: Iterable[clingo.Symbol] = (),
+        best_utility: int | None = None,
+    ) -> Restriction:
+        return cls(tuple(sorted(set(principles))), tuple(sorted(set(terms), key=str)), best_utility)
 
     @property
     def empty(self) -> bool:
@@ -75,8 +88,6 @@ def compiled(term: clingo.Symbol, derived: frozenset = frozenset()) -> bool:
     if term.type != clingo.SymbolType.Function or term.name not in COMPILED_CONSTRAINTS:
         return False
     return not (term.name == "fact_at" and term.arguments[0] in derived)
-
-
 
 
 def hmodel(model: Model, restriction: Restriction) -> Model:
@@ -98,7 +109,7 @@ def impossible(model: Model, restriction: Restriction) -> list[tuple[clingo.Symb
 def _made(model: Model, restriction: Restriction):
     made = results(model).setdefault("hmodels", {})
     planner = model.planner
-    with planner.lock:       # one compilation per restriction, whichever thread asks
+    with planner.lock:  # one compilation per restriction, whichever thread asks
         if restriction not in made:
             made[restriction] = _compile(model, restriction)
         return made[restriction]
@@ -129,5 +140,7 @@ def _compile(model: Model, restriction: Restriction):
         # the HModel is the model itself, with its one grounding.
         return model, sorted(found, key=str)
     facts = [atom.arguments[0] for atom in answer.get("hmodel", 1)]
-    return (Model.of_facts(f"<HModel of {restriction.describe()}>", facts, model.naming),
-            sorted(found, key=str))
+    return (
+        Model.of_facts(f"<HModel of {restriction.describe()}>", facts, model.naming),
+        sorted(found, key=str),
+    )

@@ -33,27 +33,42 @@ is judged even where it misses its goal, as HERA does.
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
-from typing import Iterable, Sequence
+from typing import TYPE_CHECKING
 
 import clingo
 from clorm import unify
 
-from ethasp.principles.memo import results
 from ethasp.errors import InputError
 from ethasp.planning.budget import Budget
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
-from ethasp.planning.search import DEFAULT_MAX_HORIZON
 from ethasp.planning.planner import TRACE_ENCODINGS, Answer, occurrences
-from ethasp.planning.search import FOUND, NONE, find_plan
+from ethasp.planning.search import DEFAULT_MAX_HORIZON, FOUND, NONE, find_plan
 from ethasp.planning.validation import TRACE_ATOMS, Validation, read_validation, validate
 from ethasp.principles.formula import Elements, parse_formula
-from ethasp.principles.principle import (COUNTERFACTUALS, DEFAULT, GOAL_REACHABLE, Principle,
-                                         available_principles, formula_needs, select_principles)
-from ethasp.principles.utilitarianism import (BOUNDED, PROVEN, BestReachable, ReachableState,
-                                              best_reachable, better_state)
+from ethasp.principles.memo import results
+from ethasp.principles.principle import (
+    COUNTERFACTUALS,
+    DEFAULT,
+    GOAL_REACHABLE,
+    Principle,
+    formula_needs,
+    select_principles,
+)
+from ethasp.principles.utilitarianism import (
+    BOUNDED,
+    PROVEN,
+    BestReachable,
+    ReachableState,
+    best_reachable,
+    better_state,
+)
 from ethasp.vocabulary import UtilityOfFinal, Verdict
+
+if TYPE_CHECKING:  # ethasp.reasons imports this module
+    from ethasp.reasons.explanation import Explanation
 
 # The program that evaluates formulas over a plan's trace.
 LANGUAGE = "judgement/language.lp"
@@ -88,12 +103,16 @@ class Judgement:
     formula: str
     best_reachable: BestReachable | None = None
     compared: ReachableState | None = None
-    explanation: "Explanation | None" = None  # ethasp.reasons.explanation.Explanation
+    explanation: Explanation | None = None
 
     def to_json(self) -> dict:
         """The judgement as one JSON object (the single place that builds it)."""
-        data: dict = {"principle": self.principle, "permissible": self.permissible,
-                      "status": self.status, "proof": self.proof}
+        data: dict = {
+            "principle": self.principle,
+            "permissible": self.permissible,
+            "status": self.status,
+            "proof": self.proof,
+        }
         if self.compared is not None:
             data["compared_with"] = self.compared.to_json()
         if self.best_reachable is not None:
@@ -116,9 +135,12 @@ class JudgementReport:
     goal_reached: bool = True
 
     def to_json(self) -> dict:
-        data = {"plan": self.plan.to_list(), "final_state": self.final_state,
-                "utility": self.utility,
-                "judgements": [judgement.to_json() for judgement in self.judgements]}
+        data = {
+            "plan": self.plan.to_list(),
+            "final_state": self.final_state,
+            "utility": self.utility,
+            "judgements": [judgement.to_json() for judgement in self.judgements],
+        }
         if not self.goal_reached:
             data["goal_reached"] = False
         return data
@@ -177,8 +199,11 @@ def counterfactuals(model: Model, plan: Plan) -> list[clingo.Symbol]:
             last[:] = answer.symbols(shown=True)
 
         ctl.solve(on_model=keep)
-        memo[key] = sorted(clingo.Function("counterfactual", [atom.arguments[0]])
-                           for atom in last if atom.name == "witness")
+        memo[key] = sorted(
+            clingo.Function("counterfactual", [atom.arguments[0]])
+            for atom in last
+            if atom.name == "witness"
+        )
     return memo[key]
 
 
@@ -201,8 +226,9 @@ def goal_reachable(model: Model, budget: Budget, max_horizon: int) -> tuple[bool
     return answer
 
 
-def _inputs(model: Model, plan: Plan, needs: Iterable[str], budget: Budget,
-            max_horizon: int) -> Inputs:
+def _inputs(
+    model: Model, plan: Plan, needs: Iterable[str], budget: Budget, max_horizon: int
+) -> Inputs:
     inputs = Inputs()
     needs = set(needs)
     if COUNTERFACTUALS in needs:
@@ -218,9 +244,13 @@ def _inputs(model: Model, plan: Plan, needs: Iterable[str], budget: Budget,
     return inputs
 
 
-def evaluation(model: Model, plan: Plan, principles: Iterable[Principle] = (),
-               budget: Budget | None = None,
-               max_horizon: int = DEFAULT_MAX_HORIZON) -> Answer:
+def evaluation(
+    model: Model,
+    plan: Plan,
+    principles: Iterable[Principle] = (),
+    budget: Budget | None = None,
+    max_horizon: int = DEFAULT_MAX_HORIZON,
+) -> Answer:
     """The plan's evaluation, computed once per plan by the model's planner: its
     trace (validity, final state, Caused, utility) and the formula of the
     paper's principles that depend on the plan alone and of the ``principles``
@@ -230,10 +260,12 @@ def evaluation(model: Model, plan: Plan, principles: Iterable[Principle] = (),
     return _evaluation(model, plan, principles, budget or Budget(), max_horizon)[0]
 
 
-def _evaluation(model: Model, plan: Plan, principles: Iterable[Principle], budget: Budget,
-                max_horizon: int) -> tuple[Answer, Inputs]:
-    chosen = [p for p in list(select_principles(DEFAULT)) + list(principles)
-              if not p.reads_alternatives]
+def _evaluation(
+    model: Model, plan: Plan, principles: Iterable[Principle], budget: Budget, max_horizon: int
+) -> tuple[Answer, Inputs]:
+    chosen = [
+        p for p in list(select_principles(DEFAULT)) + list(principles) if not p.reads_alternatives
+    ]
     encodings = sorted({p.encoding for p in chosen})
     needs = set().union(*(p.needs for p in chosen))
     if not needs:
@@ -243,8 +275,9 @@ def _evaluation(model: Model, plan: Plan, principles: Iterable[Principle], budge
     memo = results(model.planner)
     if key not in memo:
         memo[key] = model.planner.solve_program(
-            list(TRACE_ENCODINGS) + [LANGUAGE, RUNS, EVIDENCE, *encodings],
-            symbols=occurrences(plan) + inputs.facts)
+            [*list(TRACE_ENCODINGS), LANGUAGE, RUNS, EVIDENCE, *encodings],
+            symbols=occurrences(plan) + inputs.facts,
+        )
     return memo[key], inputs
 
 
@@ -260,16 +293,23 @@ def final_utility(model: Model, plan: Plan) -> int:
     return next(iter(answer.query(UtilityOfFinal).all())).utility
 
 
-def evaluate(model: Model, plan: Plan, encodings: Sequence[str], facts: Iterable = (),
-             inputs: Iterable[clingo.Symbol] = ()) -> Answer:
+def evaluate(
+    model: Model,
+    plan: Plan,
+    encodings: Sequence[str],
+    facts: Iterable = (),
+    inputs: Iterable[clingo.Symbol] = (),
+) -> Answer:
     """Evaluate formulas of L (given by principle encodings and facts, clingo
     symbols or clorm facts: for instance a state to compare with) over a plan's
     trace: the verdicts and the atoms that reasons read (``judgement/evidence.lp``).
     ``inputs`` are the counterfactual facts and ``goal_reachable``, if needed."""
-    symbols = (trace_facts(model, plan) + [getattr(fact, "raw", fact) for fact in facts]
-               + list(inputs))
-    return model.planner.solve_program(list(FORMULAS) + [EVIDENCE] + list(encodings),
-                                       symbols=symbols)
+    symbols = (
+        trace_facts(model, plan) + [getattr(fact, "raw", fact) for fact in facts] + list(inputs)
+    )
+    return model.planner.solve_program(
+        [*list(FORMULAS), EVIDENCE, *list(encodings)], symbols=symbols
+    )
 
 
 @dataclass
@@ -283,8 +323,9 @@ class _Compared:
     best: BestReachable | None
 
 
-def _compare(model: Model, plan: Plan, utility: int, budget: Budget, max_horizon: int,
-             want_best: bool) -> _Compared:
+def _compare(
+    model: Model, plan: Plan, utility: int, budget: Budget, max_horizon: int, want_best: bool
+) -> _Compared:
     """Decide whether a reachable state is better than the final state."""
     planner = model.planner
     comparison = better_state(planner, utility, budget, max_horizon)
@@ -292,23 +333,40 @@ def _compare(model: Model, plan: Plan, utility: int, budget: Budget, max_horizon
     if want_best and (best is None or best.status != PROVEN):
         best = best_reachable(planner, budget, max_horizon)
     if comparison.better is not None:
-        return _Compared(False, PROVEN, comparison.proof + ", more than the final state's "
-                         f"{utility}", comparison.better, best)
+        return _Compared(
+            False,
+            PROVEN,
+            comparison.proof + f", more than the final state's {utility}",
+            comparison.better,
+            best,
+        )
     if comparison.status == PROVEN:
         if best is None or best.found is None:
             # No reachable state is better, and the final state is reachable: it is a best one.
-            final = [(s.arguments[0], s.arguments[1].name == "true")
-                     for s in planner.trace(plan).get("final", 2)]
-            best = BestReachable(PROVEN, f"the final state is reachable and {comparison.proof}",
-                                 ReachableState(final, utility, len(plan)))
+            final = [
+                (s.arguments[0], s.arguments[1].name == "true")
+                for s in planner.trace(plan).get("final", 2)
+            ]
+            best = BestReachable(
+                PROVEN,
+                f"the final state is reachable and {comparison.proof}",
+                ReachableState(final, utility, len(plan)),
+            )
         return _Compared(True, PROVEN, comparison.proof, None, best)
-    return _Compared(True, BOUNDED, f"{comparison.proof}; a better reachable state may exist",
-                     None, best)
+    return _Compared(
+        True, BOUNDED, f"{comparison.proof}; a better reachable state may exist", None, best
+    )
 
 
-def judge(model: Model, plan: Plan, principles: Iterable[str] | None = None,
-          max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
-          budget: Budget | None = None, best: bool = False) -> JudgementReport:
+def judge(
+    model: Model,
+    plan: Plan,
+    principles: Iterable[str] | None = None,
+    max_horizon: int = DEFAULT_MAX_HORIZON,
+    time_limit: float | None = None,
+    budget: Budget | None = None,
+    best: bool = False,
+) -> JudgementReport:
     """Judge a plan under the principles (the paper's three when None; see
     :func:`ethasp.principles.principle.select_principles`), without explanations.
 
@@ -321,7 +379,7 @@ def judge(model: Model, plan: Plan, principles: Iterable[str] | None = None,
     budget = budget or Budget(time_limit)
     chosen = select_principles(principles)
     if any(principle.needs for principle in chosen):
-        _require_plan(model, validate(model, plan))     # before searching for inputs
+        _require_plan(model, validate(model, plan))  # before searching for inputs
     answer, inputs = _evaluation(model, plan, chosen, budget, max_horizon)
     validation = read_validation(plan, answer.select(TRACE_ATOMS))
     _require_plan(model, validation)
@@ -337,8 +395,10 @@ def judge(model: Model, plan: Plan, principles: Iterable[str] | None = None,
             facts = compared.best.found.asp_facts()
         comparison = evaluate(model, plan, [p.encoding for p in comparing], facts)
         answer = Answer(answer.get("verdict", 2) + comparison.get("verdict", 2))
-    verdicts = {str(atom.name.symbol): atom.value == "true"
-                for atom in unify([Verdict], answer.get("verdict", 2)).query(Verdict).all()}
+    verdicts = {
+        str(atom.name.symbol): atom.value == "true"
+        for atom in unify([Verdict], answer.get("verdict", 2)).query(Verdict).all()
+    }
     judgements = []
     for principle in chosen:
         permissible = verdicts[principle.asp_name]
@@ -346,22 +406,39 @@ def judge(model: Model, plan: Plan, principles: Iterable[str] | None = None,
             if GOAL_REACHABLE in principle.needs:
                 status, proof = inputs.status, inputs.proof
             elif principle.needs:
-                status, proof = PROVEN, ("the counterfactual facts of the plan are known "
-                                         "(every variant of the plan was considered)")
+                status, proof = (
+                    PROVEN,
+                    (
+                        "the counterfactual facts of the plan are known "
+                        "(every variant of the plan was considered)"
+                    ),
+                )
             else:
                 status, proof = PROVEN, "the principle depends on the plan alone"
-            judgements.append(Judgement(principle.name, permissible, status, proof,
-                                        principle.asp_name))
+            judgements.append(
+                Judgement(principle.name, permissible, status, proof, principle.asp_name)
+            )
             continue
         assert compared is not None
         if permissible != compared.permissible:
-            raise RuntimeError(f"{principle.name}: the formula's verdict disagrees with the "
-                               "comparison of reachable states")
-        judgements.append(Judgement(principle.name, permissible, compared.status,
-                                    compared.proof, principle.asp_name, compared.best,
-                                    compared.state))
-    return JudgementReport(plan, validation.final_state, utility, judgements,
-                           goal_reached=not validation.unmet_goals)
+            raise RuntimeError(
+                f"{principle.name}: the formula's verdict disagrees with the "
+                "comparison of reachable states"
+            )
+        judgements.append(
+            Judgement(
+                principle.name,
+                permissible,
+                compared.status,
+                compared.proof,
+                principle.asp_name,
+                compared.best,
+                compared.state,
+            )
+        )
+    return JudgementReport(
+        plan, validation.final_state, utility, judgements, goal_reached=not validation.unmet_goals
+    )
 
 
 def query(model: Model, plan: Plan, formula: str) -> QueryResult:

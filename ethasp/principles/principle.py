@@ -20,9 +20,9 @@ from __future__ import annotations
 
 import functools
 import re
+from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Iterable
 
 import clingo
 from clingo import ast
@@ -37,11 +37,11 @@ FOLDER = "principles"
 class Principle:
     """An ethical principle and its encoding."""
 
-    name: str                 # as users write it: do-no-harm
-    asp_name: str             # as the encoding writes it: do_no_harm
-    encoding: str             # relative to the encodings folder
+    name: str  # as users write it: do-no-harm
+    asp_name: str  # as the encoding writes it: do_no_harm
+    encoding: str  # relative to the encodings folder
     reads_alternatives: bool  # it needs a best reachable state
-    needs: frozenset[str] = frozenset()   # inputs searched first: COUNTERFACTUALS, GOAL_REACHABLE
+    needs: frozenset[str] = frozenset()  # inputs searched first: COUNTERFACTUALS, GOAL_REACHABLE
 
 
 # Inputs that a principle's formula may need (see language.lp): the
@@ -49,15 +49,28 @@ class Principle:
 # reaches the goal.
 COUNTERFACTUALS = "counterfactuals"
 GOAL_REACHABLE = "goal_reachable"
-_NEEDS = {("but_for", 2): COUNTERFACTUALS, ("instrumental", 2): COUNTERFACTUALS,
-          ("means", 1): COUNTERFACTUALS, ("means2", 1): COUNTERFACTUALS,
-          ("avoidable", 2): GOAL_REACHABLE}
+_NEEDS = {
+    ("but_for", 2): COUNTERFACTUALS,
+    ("instrumental", 2): COUNTERFACTUALS,
+    ("means", 1): COUNTERFACTUALS,
+    ("means2", 1): COUNTERFACTUALS,
+    ("avoidable", 2): GOAL_REACHABLE,
+}
 
 # The groups of principles that --principle names (besides "all").
 PAPER = ("deontology", "do-no-harm", "utilitarianism")
-HERA = ("hera-deontology", "goal-deontology", "avoid-any-harm", "avoid-avoidable-harm",
-        "hera-do-no-harm", "do-no-instrumental-harm", "kantian-humanity", "kantian-humanity-2",
-        "double-effect", "hera-utilitarianism")
+HERA = (
+    "hera-deontology",
+    "goal-deontology",
+    "avoid-any-harm",
+    "avoid-avoidable-harm",
+    "hera-do-no-harm",
+    "do-no-instrumental-harm",
+    "kantian-humanity",
+    "kantian-humanity-2",
+    "double-effect",
+    "hera-utilitarianism",
+)
 GROUPS = {"paper": PAPER, "hera": HERA}
 DEFAULT = PAPER
 
@@ -72,15 +85,18 @@ def _scan(path: Path) -> tuple[bool, frozenset[str]]:
     found: list[bool] = []
 
     class Finder(ast.Transformer):
-        def visit_SymbolicAtom(self, node):  # noqa: N802 (clingo's visitor naming)
+        def visit_SymbolicAtom(self, node):
             symbol = node.symbol
-            if (symbol.ast_type == ast.ASTType.Function and symbol.name == "alternative"
-                    and len(symbol.arguments) == 1):
+            if (
+                symbol.ast_type == ast.ASTType.Function
+                and symbol.name == "alternative"
+                and len(symbol.arguments) == 1
+            ):
                 found.append(True)
             return node
 
     text = _COMMENTS.sub(" ", path.read_text())
-    if re.search(r"\balternative\(", text):      # parsed only where it may occur
+    if re.search(r"\balternative\(", text):  # parsed only where it may occur
         ast.parse_files([str(path)], Finder(), logger=lambda code, message: None)
     needs = {need for (name, _), need in _NEEDS.items() if re.search(rf"\b{name}\(", text)}
     return bool(found), frozenset(needs)
@@ -105,8 +121,11 @@ def _discover() -> tuple[Principle, ...]:
     result = []
     for path in sorted((ENCODINGS / FOLDER).glob("*.lp")):
         alternatives, needs = _scan(path)
-        result.append(Principle(path.stem.replace("_", "-"), path.stem,
-                                f"{FOLDER}/{path.name}", alternatives, needs))
+        result.append(
+            Principle(
+                path.stem.replace("_", "-"), path.stem, f"{FOLDER}/{path.name}", alternatives, needs
+            )
+        )
     return tuple(result)
 
 
@@ -129,15 +148,14 @@ def select_principles(names: Iterable[str] | None = None) -> list[Principle]:
     chosen: list[Principle] = []
     for name in names:
         key = name.strip().lower()
-        if key == "all":
-            group = [p.name for p in known]
-        else:
-            group = list(GROUPS.get(key, [key]))
+        group = [p.name for p in known] if key == "all" else list(GROUPS.get(key, [key]))
         for member in group:
             principle = by_name.get(member)
             if principle is None:
-                raise InputError(f"unknown principle {name!r} (known: "
-                                 f"{', '.join(p.name for p in known)}; groups: paper, hera, all)")
+                raise InputError(
+                    f"unknown principle {name!r} (known: "
+                    f"{', '.join(p.name for p in known)}; groups: paper, hera, all)"
+                )
             if principle not in chosen:
                 chosen.append(principle)
     return chosen

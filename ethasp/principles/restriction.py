@@ -24,21 +24,27 @@ by a proof), ``none`` (proven: no permissible plan exists) or ``bounded``.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Sequence
 
 from ethasp.errors import InputError
+from ethasp.planning.budget import Budget
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan, steps
-from ethasp.planning.budget import Budget
 from ethasp.planning.planner import Constraint, Setting
-from ethasp.planning.search import (BOUNDED, DEFAULT_MAX_HORIZON, DEFAULT_SATISFICING_HORIZON,
-                                    FOUND, NONE, any_plan, shortest)
+from ethasp.planning.search import (
+    BOUNDED,
+    DEFAULT_MAX_HORIZON,
+    DEFAULT_SATISFICING_HORIZON,
+    FOUND,
+    NONE,
+    any_plan,
+    shortest,
+)
 from ethasp.principles.hmodel import Restriction, compiled, hmodel, impossible
-from ethasp.principles.principle import (GROUPS, Principle, available_principles,
-                                         select_principles)
-from ethasp.resources import ENCODINGS
+from ethasp.principles.principle import GROUPS, Principle, available_principles, select_principles
 from ethasp.principles.utilitarianism import PROVEN, BestReachable, best_reachable
+from ethasp.resources import ENCODINGS
 
 RESTRICTIONS = "restrictions"
 
@@ -53,10 +59,12 @@ def _principles(names: Sequence[str]) -> list[Principle]:
     chosen = select_principles(names)
     for principle in chosen:
         if not restricts(principle):
-            raise InputError(f"principle {principle.name} has no restriction encoding "
-                             f"({RESTRICTIONS}/{principle.asp_name}.lp): it can judge plans "
-                             "but not generate them (plans are generated under "
-                             f"{', '.join(restricting_principles())})")
+            raise InputError(
+                f"principle {principle.name} has no restriction encoding "
+                f"({RESTRICTIONS}/{principle.asp_name}.lp): it can judge plans "
+                "but not generate them (plans are generated under "
+                f"{', '.join(restricting_principles())})"
+            )
     return chosen
 
 
@@ -71,8 +79,7 @@ def restricting_principles() -> list[str]:
     return [principle.name for principle in available_principles() if restricts(principle)]
 
 
-def one_restricting_principle(name: str,
-                              what: str = "contrast plans are made under one of") -> str:
+def one_restricting_principle(name: str, what: str = "contrast plans are made under one of") -> str:
     """The one principle a name names, which must restrict plan search: a group
     (``paper``, ``hera``, ``all``) or a principle without a restriction
     encoding is refused with one line naming those that can (``what`` comes
@@ -83,8 +90,10 @@ def one_restricting_principle(name: str,
         raise InputError(f"principle {name!r} names a group, but {what}: {known}")
     principle = select_principles([name])[0]
     if not restricts(principle):
-        raise InputError(f"principle {principle.name} cannot restrict plan search (it judges "
-                         f"plans only); {what}: {known}")
+        raise InputError(
+            f"principle {principle.name} cannot restrict plan search (it judges "
+            f"plans only); {what}: {known}"
+        )
     return principle.name
 
 
@@ -97,6 +106,7 @@ def principle_names(names: Sequence[str]) -> list[str]:
 
 
 # -- HPlans ------------------------------------------------------------------
+
 
 @dataclass
 class HPlanResult:
@@ -153,14 +163,17 @@ def _final_utility(model: Model, plan: Plan) -> int:
     return final_utility(model, plan)
 
 
-def plan_with_principles(model: Model, principles: Sequence[str],
-                         max_horizon: int | None = None,
-                         time_limit: float | None = None,
-                         all_plans: bool = False,
-                         constraints: Sequence[Constraint] = (),
-                         budget: Budget | None = None,
-                         satisficing: bool = False,
-                         max_length: int | None = None) -> HPlanResult:
+def plan_with_principles(
+    model: Model,
+    principles: Sequence[str],
+    max_horizon: int | None = None,
+    time_limit: float | None = None,
+    all_plans: bool = False,
+    constraints: Sequence[Constraint] = (),
+    budget: Budget | None = None,
+    satisficing: bool = False,
+    max_length: int | None = None,
+) -> HPlanResult:
     """A shortest HPlan: a plan of the model permissible under all the principles.
 
     ``constraints`` (of contrastive questions) restrict the HModel further;
@@ -173,8 +186,7 @@ def plan_with_principles(model: Model, principles: Sequence[str],
     defaults to 64, or 256 with ``satisficing``.
     """
     if satisficing and all_plans:
-        raise InputError("all shortest plans cannot be listed by an any-plan search "
-                         "(satisficing)")
+        raise InputError("all shortest plans cannot be listed by an any-plan search (satisficing)")
     if max_horizon is None:
         max_horizon = DEFAULT_SATISFICING_HORIZON if satisficing else DEFAULT_MAX_HORIZON
     budget = budget or Budget(time_limit)
@@ -184,21 +196,28 @@ def plan_with_principles(model: Model, principles: Sequence[str],
     plans = "plan meeting the question" if constraints else "plan"
     under = " and ".join(names)
     permissible = f" permissible under {under}" if names else ""
-    if not names:      # the question alone: "no plan meets the question"
+    if not names:  # the question alone: "no plan meets the question"
         plans_are = "plan meets the question" if constraints else "plan exists"
     else:
         plans_are = f"{plans} is{permissible}"
     if any(principle.reads_alternatives for principle in chosen):
         best = best_reachable(model.planner, budget, max_horizon)
         if best.utility is None:
-            return HPlanResult(BOUNDED, names, horizon=best.searched, best=best,
-                               proof=f"no reachable state valued yet: {best.proof}")
+            return HPlanResult(
+                BOUNDED,
+                names,
+                horizon=best.searched,
+                best=best,
+                proof=f"no reachable state valued yet: {best.proof}",
+            )
     # The HModel: a planning model of its own, planned for by every engine.
     terms = [constraint.term for constraint in constraints]
     derived = frozenset(atom.arguments[0] for atom in model.planner.get("derived", 1))
-    restriction = Restriction.of([p.asp_name for p in chosen],
-                                 [t for t in terms if compiled(t, derived) and t.name != "at_most"],
-                                 best.utility if best is not None else None)
+    restriction = Restriction.of(
+        [p.asp_name for p in chosen],
+        [t for t in terms if compiled(t, derived) and t.name != "at_most"],
+        best.utility if best is not None else None,
+    )
     restricted = model if restriction.empty else hmodel(model, restriction)
     against = impossible(model, restriction) if restriction.terms else []
     if against:
@@ -206,37 +225,70 @@ def plan_with_principles(model: Model, principles: Sequence[str],
         # needs what relaxed reachability excludes).
         term, why = against[0]
         shown = model.naming.constraint(term)
-        reason = (f"the question's constraint {shown} contradicts the goal" if why == "goal"
-                  else f"the question's constraint {shown} needs an action or a fact that is "
-                       "unreachable even ignoring delete effects")
+        reason = (
+            f"the question's constraint {shown} contradicts the goal"
+            if why == "goal"
+            else f"the question's constraint {shown} needs an action or a fact that is "
+            "unreachable even ignoring delete effects"
+        )
         return HPlanResult(NONE, names, None, 0, f"no {plans_are}: {reason}", best=best)
     planner = restricted.planner
     rest = [t for t in terms if not compiled(t, derived)]
     # Constraints that no HModel writes are imposed on its search (in ASP).
     setting = Setting(constraints=frozenset(planner.question(rest)) if rest else frozenset())
     task = f"plan search under {under}" if names else "plan search"
-    result = (any_plan(planner, setting, budget, max_horizon, task=task, longest=max_length)
-              if satisficing else
-              shortest(planner, setting, budget, max_horizon, all_plans=all_plans, task=task,
-                       longest=max_length, threads=restricted is model))
+    result = (
+        any_plan(planner, setting, budget, max_horizon, task=task, longest=max_length)
+        if satisficing
+        else shortest(
+            planner,
+            setting,
+            budget,
+            max_horizon,
+            all_plans=all_plans,
+            task=task,
+            longest=max_length,
+            threads=restricted is model,
+        )
+    )
     if result.status == FOUND and best is not None and best.status != PROVEN:
         # A plan reaching the best utility found is no proof: a better state may
         # exist.  The plan is reported, bounded: permissible as far as searched.
         return HPlanResult(
-            BOUNDED, names, result.plan, result.horizon, best=best, optimal=result.optimal,
+            BOUNDED,
+            names,
+            result.plan,
+            result.horizon,
+            best=best,
+            optimal=result.optimal,
             utility=_final_utility(model, result.plan),
             proof=f"a plan of {steps(len(result.plan))} reaches utility {best.utility}, but a "
-                  f"better reachable state is not excluded ({best.proof})")
+            f"better reachable state is not excluded ({best.proof})",
+        )
     if result.status == FOUND:
         kind = f"a shortest {plans}" if result.optimal else f"a {plans}"
-        return HPlanResult(FOUND, names, result.plan, result.horizon,
-                           f"{kind}{permissible}: {result.proof}",
-                           result.plans, best, optimal=result.optimal,
-                           utility=_final_utility(model, result.plan))
+        return HPlanResult(
+            FOUND,
+            names,
+            result.plan,
+            result.horizon,
+            f"{kind}{permissible}: {result.proof}",
+            result.plans,
+            best,
+            optimal=result.optimal,
+            utility=_final_utility(model, result.plan),
+        )
     if result.status == NONE:
         # With utilitarianism the search asked for utility >= best.utility, a lower
         # bound of the best reachable utility: no such goal state, no permissible plan.
-        return HPlanResult(NONE, names, None, result.horizon,
-                           f"no {plans_are}: {result.proof}", best=best)
-    return HPlanResult(BOUNDED, names, None, result.horizon,
-                       f"no {plans}{permissible} found: {result.proof}", best=best)
+        return HPlanResult(
+            NONE, names, None, result.horizon, f"no {plans_are}: {result.proof}", best=best
+        )
+    return HPlanResult(
+        BOUNDED,
+        names,
+        None,
+        result.horizon,
+        f"no {plans}{permissible} found: {result.proof}",
+        best=best,
+    )

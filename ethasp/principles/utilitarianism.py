@@ -25,18 +25,18 @@ effects) ends a search for the best as soon as a state attains it.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-from typing import Callable
+from collections.abc import Callable
+from dataclasses import dataclass
 
 import clingo
 from clorm import Raw, unify
 
-from ethasp.principles.memo import results
 from ethasp.planning.budget import Budget
 from ethasp.planning.plan import steps
 from ethasp.planning.planner import Planner, Setting
 from ethasp.planning.reachability import Best, Reachability
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
+from ethasp.principles.memo import results
 from ethasp.vocabulary import Alternative, AtHorizon, BestFact, Conj, UpperBound
 
 PROVEN, BOUNDED = "proven", "bounded"
@@ -67,7 +67,8 @@ class ReachableState:
         """``alternative(name)`` and its ``conj(name,V,B)`` facts."""
         return [Alternative(name=Raw(name))] + [
             Conj(name=Raw(name), variable=Raw(v), value="true" if b else "false")
-            for v, b in self.facts]
+            for v, b in self.facts
+        ]
 
     def to_json(self) -> dict:
         return {"state": self.literals, "utility": self.utility, "distance": self.distance}
@@ -108,8 +109,13 @@ class BestReachable:
         return self.found.asp_facts() if self.found else []
 
     def to_json(self) -> dict:
-        return {"state": self.state, "utility": self.utility, "horizon": self.horizon,
-                "status": self.status, "proof": self.proof}
+        return {
+            "state": self.state,
+            "utility": self.utility,
+            "horizon": self.horizon,
+            "status": self.status,
+            "proof": self.proof,
+        }
 
 
 @dataclass
@@ -130,9 +136,9 @@ class Comparison:
 
 # -- the exact engine -------------------------------------------------------------
 
+
 def _state(model_variables, best: Best) -> ReachableState:
-    return ReachableState([(v, v in best.state) for v in model_variables], best.utility,
-                          best.layer)
+    return ReachableState([(v, v in best.state) for v in model_variables], best.utility, best.layer)
 
 
 def upper_bound(planner: Planner) -> int:
@@ -149,12 +155,19 @@ PROBE_HORIZONS = (1, 2, 4, 8)
 PROBE_SECONDS = 1.0
 
 
-UB_PROOF = ("utility {u} is the upper bound (per variable, the best utility of a value "
-            "reachable ignoring delete effects)")
+UB_PROOF = (
+    "utility {u} is the upper bound (per variable, the best utility of a value "
+    "reachable ignoring delete effects)"
+)
 
 
-def _expand(planner: Planner, budget: Budget, max_horizon: int,
-            decided: Callable[[Reachability, int], bool], task: str) -> tuple[Reachability, str]:
+def _expand(
+    planner: Planner,
+    budget: Budget,
+    max_horizon: int,
+    decided: Callable[[Reachability, int], bool],
+    task: str,
+) -> tuple[Reachability, str]:
     """Expand the layers of exact reachability until ``decided(r, k)`` holds for
     a new layer k, every state is known, or a limit; return why it stopped
     ('' when decided or complete)."""
@@ -175,14 +188,22 @@ def _expand(planner: Planner, budget: Budget, max_horizon: int,
                 return r, ""
             if closed is None:
                 return r, r.stopped
-            return r, f"the layers of states reached within {steps(max_horizon)} (the maximal horizon)"
+            return (
+                r,
+                f"the layers of states reached within {steps(max_horizon)} (the maximal horizon)",
+            )
         budget.report(task, horizon=len(r.layers))
         if not r.expand(budget):
             return r, r.stopped
 
 
-def _best_reachable(planner: Planner, budget: Budget, max_horizon: int, within: str,
-                    other_than: list[tuple[clingo.Symbol, bool]] | None) -> BestReachable:
+def _best_reachable(
+    planner: Planner,
+    budget: Budget,
+    max_horizon: int,
+    within: str,
+    other_than: list[tuple[clingo.Symbol, bool]] | None,
+) -> BestReachable:
     """:func:`best_reachable`, under the planner's lock; proven results are kept."""
     key = ("best_reachable", within, frozenset(other_than or ()), max_horizon)
     if key in results(planner):
@@ -213,6 +234,7 @@ def _bound_states(planner: Planner, r: Reachability):
 
 # -- models with exogenous events: explicit layers of configurations ----------------
 
+
 def _configurations(planner: Planner):
     """The explicit layers of the planner's ground model (events included), made once."""
     if "configurations" not in results(planner):
@@ -236,7 +258,9 @@ def _final_state(planner: Planner, layers, configuration) -> ReachableState:
     return ReachableState(facts, layers.task.utility(final), distance)
 
 
-def _walk(planner: Planner, budget: Budget, max_horizon: int, visit, task: str) -> tuple[object, str]:
+def _walk(
+    planner: Planner, budget: Budget, max_horizon: int, visit, task: str
+) -> tuple[object, str]:
     """Layer after layer of configurations until ``visit(k)`` is True, every
     configuration is known, or a limit; return the layers and why they stopped
     ('' when decided or complete)."""
@@ -257,14 +281,16 @@ def _walk(planner: Planner, budget: Budget, max_horizon: int, visit, task: str) 
                 return layers, ""
             if closed is None:
                 return layers, layers.stopped
-            return layers, (f"the configurations reached within {steps(max_horizon)} (the "
-                            "maximal horizon)")
+            return layers, (
+                f"the configurations reached within {steps(max_horizon)} (the maximal horizon)"
+            )
         if not layers.expand(budget):
             return layers, layers.stopped
 
 
-def _best_explicit(planner: Planner, budget: Budget, max_horizon: int, within: str,
-                   other_than) -> BestReachable | None:
+def _best_explicit(
+    planner: Planner, budget: Budget, max_horizon: int, within: str, other_than
+) -> BestReachable | None:
     """The best reachable state of a model with events, by explicit layers;
     None where they gave up (too many configurations) with time left."""
     layers = _configurations(planner)
@@ -272,7 +298,7 @@ def _best_explicit(planner: Planner, budget: Budget, max_horizon: int, within: s
     # other_than: the states that agree with all these literals are left out.
     pos = sum(1 << task.index[v] for v, b in other_than or () if b)
     neg = sum(1 << task.index[v] for v, b in other_than or () if not b)
-    found: list = []        # (utility, goal, -layer, configuration)
+    found: list = []  # (utility, goal, -layer, configuration)
 
     def visit(k: int) -> bool:
         for configuration in layers.layers[k]:
@@ -284,26 +310,33 @@ def _best_explicit(planner: Planner, budget: Budget, max_horizon: int, within: s
                 continue
             key = (task.utility(final), goal, -k)
             if not found or key > found[0][:3]:
-                found[:] = [key + (configuration,)]
+                found[:] = [(*key, configuration)]
         return False
 
     layers, stopped = _walk(planner, budget, max_horizon, visit, "best reachable state")
     searched = len(layers.layers) - 1
     best = _final_state(planner, layers, found[0][3]) if found else None
     if not stopped:
-        proof = ("every reachable state is known (explicit layers of configurations, exogenous "
-                 f"events included: no new one after {steps(searched)})")
+        proof = (
+            "every reachable state is known (explicit layers of configurations, exogenous "
+            f"events included: no new one after {steps(searched)})"
+        )
         if best is None:
             return BestReachable(PROVEN, proof + "; none is in the set asked for", None, searched)
         return BestReachable(PROVEN, proof, best, searched)
     if stopped.startswith("more than") and not budget.expired():
-        return None         # the layers gave up: optimisation takes over
-    return BestReachable(BOUNDED, f"searched the states reached within {steps(searched)}; "
-                                  f"stopped: {stopped}", best, searched)
+        return None  # the layers gave up: optimisation takes over
+    return BestReachable(
+        BOUNDED,
+        f"searched the states reached within {steps(searched)}; stopped: {stopped}",
+        best,
+        searched,
+    )
 
 
-def _better_explicit(planner: Planner, utility: int, budget: Budget,
-                     max_horizon: int) -> Comparison | None:
+def _better_explicit(
+    planner: Planner, utility: int, budget: Budget, max_horizon: int
+) -> Comparison | None:
     """Is a reachable state better than ``utility`` (a model with events, by
     explicit layers)?  None where they gave up with time left."""
     layers = _configurations(planner)
@@ -319,20 +352,25 @@ def _better_explicit(planner: Planner, utility: int, budget: Budget,
     layers, stopped = _walk(planner, budget, max_horizon, visit, "a better reachable state")
     if found:
         state = _final_state(planner, layers, found[0])
-        return Comparison(PROVEN, f"a state of utility {state.utility} is reachable in "
-                                  f"{steps(state.distance)}", better=state)
+        return Comparison(
+            PROVEN,
+            f"a state of utility {state.utility} is reachable in {steps(state.distance)}",
+            better=state,
+        )
     if not stopped:
         best = _best_explicit(planner, budget, max_horizon, "all", None)
         return Comparison(PROVEN, f"no reachable state is better: {best.proof}", best=best)
     if stopped.startswith("more than") and not budget.expired():
-        return None         # the layers gave up: the threshold searches take over
+        return None  # the layers gave up: the threshold searches take over
     searched = len(layers.layers) - 1
-    return Comparison(BOUNDED, f"no better state among those reached within {steps(searched)}; "
-                               f"stopped: {stopped}")
+    return Comparison(
+        BOUNDED, f"no better state among those reached within {steps(searched)}; stopped: {stopped}"
+    )
 
 
-def _best_exact(planner: Planner, budget: Budget, max_horizon: int, within: str,
-                other_than) -> BestReachable | None:
+def _best_exact(
+    planner: Planner, budget: Budget, max_horizon: int, within: str, other_than
+) -> BestReachable | None:
     if not planner.exact_reachability:
         # Exogenous events: explicit layers, else optimisation in ASP.
         return _best_explicit(planner, budget, max_horizon, within, other_than)
@@ -364,16 +402,21 @@ def _best_exact(planner: Planner, budget: Budget, max_horizon: int, within: str,
     if best is not None:
         best = r.best_of(_goal_first(r, within_reached, best.utility)) or best
     if not stopped:
-        proof = (f"every reachable state is known (exact reachability: no new state after "
-                 f"{steps(searched)})")
+        proof = (
+            f"every reachable state is known (exact reachability: no new state after "
+            f"{steps(searched)})"
+        )
         if best is None:
             return BestReachable(PROVEN, proof + "; none is in the set asked for", None, searched)
         return BestReachable(PROVEN, proof, _state(variables, best), searched)
     if "diagram nodes" in stopped and not budget.expired():
         return None  # the exact engine gave up: optimisation takes over
-    return BestReachable(BOUNDED, f"searched the states reached within {steps(searched)}; "
-                                  f"stopped: {stopped}",
-                         _state(variables, best) if best else None, searched)
+    return BestReachable(
+        BOUNDED,
+        f"searched the states reached within {steps(searched)}; stopped: {stopped}",
+        _state(variables, best) if best else None,
+        searched,
+    )
 
 
 def _goal_first(r: Reachability, states, utility: int | None = None):
@@ -391,8 +434,7 @@ def _goal_first(r: Reachability, states, utility: int | None = None):
     return goal_states if best_goal is not None and best_goal.utility == utility else states
 
 
-def _better_state(planner: Planner, utility: int, budget: Budget,
-                  max_horizon: int) -> Comparison:
+def _better_state(planner: Planner, utility: int, budget: Budget, max_horizon: int) -> Comparison:
     """:func:`better_state`, under the planner's lock."""
     bound = upper_bound(planner)
     if bound <= utility:
@@ -401,30 +443,39 @@ def _better_state(planner: Planner, utility: int, budget: Budget,
     if known is not None and known.found is not None:
         # A best reachable state is known (proven): it decides.
         if known.utility > utility:
-            return Comparison(PROVEN, f"a state of utility {known.utility} is reachable within "
-                                      f"{steps(known.found.distance)} (a best one)",
-                              better=known.found, best=known)
+            return Comparison(
+                PROVEN,
+                f"a state of utility {known.utility} is reachable within "
+                f"{steps(known.found.distance)} (a best one)",
+                better=known.found,
+                best=known,
+            )
         return Comparison(PROVEN, f"no reachable state is better: {known.proof}", best=known)
     if len(planner.get("variable", 1)) > PROBE_VARIABLES and planner.reachability_pending():
         # Large models: a few short searches first, each with a share of the time;
         # a better state near the initial one decides before any diagram is built.
         for horizon in PROBE_HORIZONS:
-            outcome = planner.solve(horizon, Setting(goal=False, at_least=utility + 1),
-                                    budget.share(PROBE_SECONDS))
+            outcome = planner.solve(
+                horizon, Setting(goal=False, at_least=utility + 1), budget.share(PROBE_SECONDS)
+            )
             if outcome.satisfiable:
                 return _found_better(planner, outcome, horizon)
             if outcome.satisfiable is None and budget.expired():
                 return Comparison(BOUNDED, f"{budget.why_stopped()} at horizon {horizon}")
     if not planner.exact_reachability:
         compared = _better_explicit(planner, utility, budget, max_horizon)
-        return compared if compared is not None else \
-            _better_by_search(planner, utility, budget, max_horizon)
+        return (
+            compared
+            if compared is not None
+            else _better_by_search(planner, utility, budget, max_horizon)
+        )
     found: list[Best] = []
 
     def decided(r: Reachability, k: int) -> bool:
         best = r.best_in_layer(k)
-        budget.report("a better reachable state", horizon=k,
-                      best=best.utility if best else None, bound=bound)
+        budget.report(
+            "a better reachable state", horizon=k, best=best.utility if best else None, bound=bound
+        )
         if best is not None and best.utility > utility:
             found.append(best)
             return True
@@ -434,24 +485,33 @@ def _better_state(planner: Planner, utility: int, budget: Budget,
     variables = planner.ground_model().variables
     if found:
         state = _state(variables, found[0])
-        return Comparison(PROVEN, f"a state of utility {state.utility} is reachable in "
-                                  f"{steps(state.distance)}", better=state)
+        return Comparison(
+            PROVEN,
+            f"a state of utility {state.utility} is reachable in {steps(state.distance)}",
+            better=state,
+        )
     searched = len(r.layers) - 1
     if not stopped:
         reached = r.prefix(searched)
         best = r.best_of(reached)
         best = r.best_of(_goal_first(r, reached, best.utility)) or best
-        result = BestReachable(PROVEN, f"every reachable state is known (exact reachability: "
-                                       f"no new state after {steps(searched)})",
-                               _state(variables, best), searched)
+        result = BestReachable(
+            PROVEN,
+            f"every reachable state is known (exact reachability: "
+            f"no new state after {steps(searched)})",
+            _state(variables, best),
+            searched,
+        )
         return Comparison(PROVEN, f"no reachable state is better: {result.proof}", best=result)
     if "diagram nodes" in stopped and not budget.expired():
         return _better_by_search(planner, utility, budget, max_horizon)
-    return Comparison(BOUNDED, f"no better state among those reached within {steps(searched)}; "
-                               f"stopped: {stopped}")
+    return Comparison(
+        BOUNDED, f"no better state among those reached within {steps(searched)}; stopped: {stopped}"
+    )
 
 
 # -- the fallback: optimisation and threshold searches in ASP ---------------------------
+
 
 def _horizons(max_horizon: int) -> list[int]:
     """0, 1, 2, 4, 8, ... up to max_horizon, and max_horizon itself."""
@@ -468,8 +528,9 @@ def _read_state(symbols, horizon: int) -> list[tuple[clingo.Symbol, bool]]:
     # The state at the time checked: the horizon, or the last event's step when
     # it is later (Planner.solve); at_horizon/3 holds at that one time only.
     atoms = unify([AtHorizon], symbols).query(AtHorizon).all()
-    return sorted(((a.variable.symbol, a.value == "true") for a in atoms),
-                  key=lambda pair: str(pair[0]))
+    return sorted(
+        ((a.variable.symbol, a.value == "true") for a in atoms), key=lambda pair: str(pair[0])
+    )
 
 
 def _lower(cost: list[int], other: list[int]) -> bool:
@@ -479,8 +540,9 @@ def _lower(cost: list[int], other: list[int]) -> bool:
     return cost + [0] * (width - len(cost)) < other + [0] * (width - len(other))
 
 
-def _best_by_optimisation(planner: Planner, budget: Budget, max_horizon: int, within: str,
-                          other_than) -> BestReachable:
+def _best_by_optimisation(
+    planner: Planner, budget: Budget, max_horizon: int, within: str, other_than
+) -> BestReachable:
     bound = upper_bound(planner)
     other = planner.avoid(other_than) if other_than is not None else None
     setting = Setting(goal=within == "goal", other_state=other, optimize=True)
@@ -488,41 +550,58 @@ def _best_by_optimisation(planner: Planner, budget: Budget, max_horizon: int, wi
     best_cost: list[int] | None = None
     horizon = 0
     for horizon in _horizons(max_horizon):
-        budget.report("best reachable state (optimisation)", horizon=horizon,
-                      best=best.utility if best else None, bound=bound)
+        budget.report(
+            "best reachable state (optimisation)",
+            horizon=horizon,
+            best=best.utility if best else None,
+            bound=bound,
+        )
         outcome = planner.solve(horizon, setting, budget)
-        if outcome.symbols and outcome.cost and (best_cost is None
-                                                 or _lower(outcome.cost, best_cost)):
-            best = ReachableState(_read_state(outcome.symbols, horizon), -outcome.cost[0],
-                                  horizon)
+        if (
+            outcome.symbols
+            and outcome.cost
+            and (best_cost is None or _lower(outcome.cost, best_cost))
+        ):
+            best = ReachableState(_read_state(outcome.symbols, horizon), -outcome.cost[0], horizon)
             best_cost = outcome.cost
         if outcome.satisfiable is None:
-            return BestReachable(BOUNDED, f"{budget.why_stopped()} at horizon {horizon}",
-                                 best, horizon)
+            return BestReachable(
+                BOUNDED, f"{budget.why_stopped()} at horizon {horizon}", best, horizon
+            )
         if best is not None and best.utility >= bound:
             return BestReachable(PROVEN, UB_PROOF.format(u=bound), best, horizon)
         exists = planner.simple_path_exists(horizon + 1, Setting(), budget)
         if exists is None:
-            return BestReachable(BOUNDED, f"{budget.why_stopped()} at horizon {horizon}",
-                                 best, horizon)
+            return BestReachable(
+                BOUNDED, f"{budget.why_stopped()} at horizon {horizon}", best, horizon
+            )
         if not exists:
-            return BestReachable(PROVEN, f"every reachable state was searched (no path of "
-                                         f"{steps(horizon + 1)} without a repeated state)",
-                                 best, horizon)
-    return BestReachable(BOUNDED, f"searched up to horizon {horizon} (the maximal horizon)",
-                         best, horizon)
+            return BestReachable(
+                PROVEN,
+                f"every reachable state was searched (no path of "
+                f"{steps(horizon + 1)} without a repeated state)",
+                best,
+                horizon,
+            )
+    return BestReachable(
+        BOUNDED, f"searched up to horizon {horizon} (the maximal horizon)", best, horizon
+    )
 
 
 def _found_better(planner: Planner, outcome, horizon: int) -> Comparison:
     """The better state of a satisfiable search for one, at ``horizon``."""
     facts = _read_state(outcome.symbols, horizon)
     worth = planner.ground_model().utility(v for v, b in facts if b)
-    return Comparison(PROVEN, f"a state of utility {worth} is reachable within {steps(horizon)}",
-                      better=ReachableState(facts, worth, horizon))
+    return Comparison(
+        PROVEN,
+        f"a state of utility {worth} is reachable within {steps(horizon)}",
+        better=ReachableState(facts, worth, horizon),
+    )
 
 
-def _better_by_search(planner: Planner, utility: int, budget: Budget,
-                      max_horizon: int) -> Comparison:
+def _better_by_search(
+    planner: Planner, utility: int, budget: Budget, max_horizon: int
+) -> Comparison:
     setting = Setting(goal=False, at_least=utility + 1)
     horizon = 0
     for horizon in _horizons(max_horizon):
@@ -536,15 +615,22 @@ def _better_by_search(planner: Planner, utility: int, budget: Budget,
         if exists is None:
             return Comparison(BOUNDED, f"{budget.why_stopped()} at horizon {horizon}")
         if not exists:
-            return Comparison(PROVEN, f"no reachable state is better: every reachable state "
-                                      f"was searched (no path of {steps(horizon + 1)} without "
-                                      "a repeated state)")
+            return Comparison(
+                PROVEN,
+                f"no reachable state is better: every reachable state "
+                f"was searched (no path of {steps(horizon + 1)} without "
+                "a repeated state)",
+            )
     return Comparison(BOUNDED, f"no better state within {steps(horizon)} (the maximal horizon)")
 
 
-def best_reachable(planner: Planner, budget: Budget | None = None,
-                   max_horizon: int = DEFAULT_MAX_HORIZON, within: str = "all",
-                   other_than: list[tuple[clingo.Symbol, bool]] | None = None) -> BestReachable:
+def best_reachable(
+    planner: Planner,
+    budget: Budget | None = None,
+    max_horizon: int = DEFAULT_MAX_HORIZON,
+    within: str = "all",
+    other_than: list[tuple[clingo.Symbol, bool]] | None = None,
+) -> BestReachable:
     """A best state reachable from the initial state (``within="goal"``: a best
     goal state), other than the state ``other_than`` if given; among equally
     good states, goal states first, then the nearest.  (``planner`` may also
@@ -554,12 +640,15 @@ def best_reachable(planner: Planner, budget: Budget | None = None,
     """
     planner = getattr(planner, "planner", planner)
     with planner.lock:
-        return _best_reachable(planner, budget or Budget(), max_horizon, within,
-                                        other_than)
+        return _best_reachable(planner, budget or Budget(), max_horizon, within, other_than)
 
 
-def better_state(planner: Planner, utility: int, budget: Budget | None = None,
-                 max_horizon: int = DEFAULT_MAX_HORIZON) -> Comparison:
+def better_state(
+    planner: Planner,
+    utility: int,
+    budget: Budget | None = None,
+    max_horizon: int = DEFAULT_MAX_HORIZON,
+) -> Comparison:
     """Is a reachable state better than ``utility``?  Stops at the first layer
     that has one (that state is then at its shortest distance)."""
     planner = getattr(planner, "planner", planner)

@@ -19,8 +19,8 @@ reasons of the two side by side (step 5).
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Sequence
 
 import clingo
 from clorm import unify
@@ -34,8 +34,11 @@ from ethasp.planning.search import BOUNDED, DEFAULT_MAX_HORIZON, FOUND, NONE
 from ethasp.planning.validation import static_failures, validate
 from ethasp.principles.judgement import Judgement
 from ethasp.principles.principle import GROUPS, available_principles, select_principles
-from ethasp.principles.restriction import (HPlanResult, one_restricting_principle,
-                                           plan_with_principles)
+from ethasp.principles.restriction import (
+    HPlanResult,
+    one_restricting_principle,
+    plan_with_principles,
+)
 from ethasp.questions.question import EITHER, Question
 from ethasp.reasons import words
 from ethasp.reasons.reasons import DEFAULT_LIMIT, judge
@@ -43,8 +46,14 @@ from ethasp.vocabulary import Met
 
 QUESTIONS = "questions/questions.lp"
 # A given plan's states, for questions about facts (questions/given.lp).
-GIVEN = ("planning/model.lp", "planning/trace.lp", "planning/trace_events.lp",
-         "planning/steps.lp", "questions/given.lp", QUESTIONS)
+GIVEN = (
+    "planning/model.lp",
+    "planning/trace.lp",
+    "planning/trace_events.lp",
+    "planning/steps.lp",
+    "questions/given.lp",
+    QUESTIONS,
+)
 # Constraint terms about the plan's actions only (no states needed to check them).
 ACTION_TERMS = ("used", "unused", "before", "at", "not_at", "within", "not_within", "at_most")
 DEFAULT_PRINCIPLE = "deontology"
@@ -70,8 +79,10 @@ def _unknown_action(model: Model, question: Question, term: clingo.Symbol, also:
     failing = static_failures(model, [term])
     if failing:
         facts = ", ".join(map(model.naming.fact, failing[term]))
-        return (f"question '{question}': action {model.naming.action(term)} never applies: "
-                f"precondition {facts} does not hold and no action changes it")
+        return (
+            f"question '{question}': action {model.naming.action(term)} never applies: "
+            f"precondition {facts} does not hold and no action changes it"
+        )
     return f"question '{question}': unknown action {model.naming.action(term)}{also}"
 
 
@@ -85,25 +96,33 @@ def resolve(model: Model, question: Question) -> Resolved:
         is_action = model.planner.defines("action", subject)
         is_variable = _is_variable(model, subject)
         if question.what is None and is_action and is_variable:
-            raise InputError(f"question '{question}': {question.action} is both an action and a "
-                             f"state variable; say which: '{question.about_fact(False)}' or "
-                             f"'{question.about_fact(True)}'")
+            raise InputError(
+                f"question '{question}': {question.action} is both an action and a "
+                f"state variable; say which: '{question.about_fact(False)}' or "
+                f"'{question.about_fact(True)}'"
+            )
         if question.what == "fact" or (question.what is None and is_variable and not is_action):
             if not is_variable:
                 raise InputError(f"question '{question}': unknown state variable {subject}")
             fact = True
         elif not is_action:
-            raise InputError(_unknown_action(model, question, subject,
-                                             "" if question.what else " (nor a state variable)"))
+            raise InputError(
+                _unknown_action(
+                    model, question, subject, "" if question.what else " (nor a state variable)"
+                )
+            )
         if fact and question.within is not None:
-            raise InputError(f"question '{question}': {question.action} is a state variable; a "
-                             "window of steps applies to actions (ask: why [not] F at T)")
+            raise InputError(
+                f"question '{question}': {question.action} is a state variable; a "
+                "window of steps applies to actions (ask: why [not] F at T)"
+            )
     else:
         for term in (subject, other):
             if term is not None and not model.planner.defines("action", term):
                 raise InputError(_unknown_action(model, question, term))
-    return Resolved(question, fact, question.contrasts(subject, other, fact),
-                    question.presupposes(subject))
+    return Resolved(
+        question, fact, question.contrasts(subject, other, fact), question.presupposes(subject)
+    )
 
 
 def constraints_of(model: Model, questions: Sequence[Question], first: int = 1) -> list[Constraint]:
@@ -126,8 +145,9 @@ def _met(model: Model, plan: Plan, terms: Sequence[clingo.Symbol]) -> set[clingo
         facts = [f"time(0..{horizon}).", f"horizon({horizon})."]
         if horizon:
             facts += [f"step(1..{horizon}).", f"acted(1..{horizon})."]
-        ctl = model.planner.program([QUESTIONS], "\n".join(facts) + "\n",
-                                    symbols=symbols + occurrences(plan))
+        ctl = model.planner.program(
+            [QUESTIONS], "\n".join(facts) + "\n", symbols=symbols + occurrences(plan)
+        )
     else:
         ctl = model.planner.program(GIVEN, symbols=symbols + occurrences(plan))
     found: list[clingo.Symbol] = []
@@ -164,10 +184,8 @@ def _already(model: Model, resolved: Resolved, plan: Plan) -> str:
     if resolved.fact:
         value = "false" if negative else "true"
         if question.at is not None and question.at > length:
-            return (f"{name} is {value} at the end of the plan, which has only "
-                    f"{steps(length)}")
-        where = f"after step {question.at}" if question.at is not None \
-            else "at the end of the plan"
+            return f"{name} is {value} at the end of the plan, which has only {steps(length)}"
+        where = f"after step {question.at}" if question.at is not None else "at the end of the plan"
         return f"{name} is {'already ' if not negative else ''}{value} {where}"
     if question.at is not None:
         if negative:
@@ -181,8 +199,9 @@ def _already(model: Model, resolved: Resolved, plan: Plan) -> str:
         if negative:
             return f"the plan does not use {name} at any step from {first} to {last}"
         term = parse_action(question.action)
-        at = next(step for step in range(first, min(last, length) + 1)
-                  if plan.actions[step - 1] == term)
+        at = next(
+            step for step in range(first, min(last, length) + 1) if plan.actions[step - 1] == term
+        )
         return f"the plan already uses {name} at step {at}"
     return f"the plan does not use {name}" if negative else f"the plan already uses {name}"
 
@@ -201,25 +220,33 @@ def check_question(model: Model, question: Question, plan: Plan) -> list[Constra
     met = _met(model, plan, resolved.terms + resolved.presupposed)
     for term in resolved.presupposed:
         if term not in met:
-            raise InputError(f"question '{question}': the plan does not use "
-                             f"{_subject_words(model, resolved)}; ask about what the plan does")
+            raise InputError(
+                f"question '{question}': the plan does not use "
+                f"{_subject_words(model, resolved)}; ask about what the plan does"
+            )
     if all(term in met for term in resolved.terms):
-        raise InputError(f"question '{question}': {_already(model, resolved, plan)} (the plan "
-                         f"already meets its contrast "
-                         f"{', '.join(model.naming.constraint(t) for t in resolved.terms)}); "
-                         "ask about what the plan does")
+        raise InputError(
+            f"question '{question}': {_already(model, resolved, plan)} (the plan "
+            f"already meets its contrast "
+            f"{', '.join(model.naming.constraint(t) for t in resolved.terms)}); "
+            "ask about what the plan does"
+        )
     return [Constraint(clingo.Function("q", [clingo.Number(1)]), term) for term in resolved.terms]
 
 
 def longest(constraints: Sequence[Constraint]) -> int | None:
     """The most steps a plan meeting the constraints may have (their
     ``at_most(N)``), or None."""
-    bounds = [c.term.arguments[0].number for c in constraints
-              if c.term.name == "at_most" and len(c.term.arguments) == 1]
+    bounds = [
+        c.term.arguments[0].number
+        for c in constraints
+        if c.term.name == "at_most" and len(c.term.arguments) == 1
+    ]
     return min(bounds) if bounds else None
 
 
 # -- the contrast plan -------------------------------------------------------------
+
 
 @dataclass
 class ContrastSearch:
@@ -242,8 +269,9 @@ class ContrastSearch:
     impermissible: bool = False
 
 
-def minimal_conflict(model: Model, constraints: Sequence[Constraint], max_horizon: int,
-                     budget: Budget) -> list[Constraint]:
+def minimal_conflict(
+    model: Model, constraints: Sequence[Constraint], max_horizon: int, budget: Budget
+) -> list[Constraint]:
     """A subset-minimal set of constraints under which the model has no plan (proven).
 
     Deletion-based: a constraint is left out whenever the others still have no
@@ -254,15 +282,25 @@ def minimal_conflict(model: Model, constraints: Sequence[Constraint], max_horizo
     core = list(constraints)
     for constraint in list(core):
         trial = [c for c in core if c != constraint]
-        if plan_with_principles(model, [], max_horizon, constraints=trial, budget=budget,
-                                max_length=longest(trial)).status == NONE:
+        if (
+            plan_with_principles(
+                model, [], max_horizon, constraints=trial, budget=budget, max_length=longest(trial)
+            ).status
+            == NONE
+        ):
             core = trial
     return core
 
 
-def contrast_plan(model: Model, constraints: Sequence[Constraint], under: str,
-                  max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
-                  budget: Budget | None = None, satisficing: bool = False) -> ContrastSearch:
+def contrast_plan(
+    model: Model,
+    constraints: Sequence[Constraint],
+    under: str,
+    max_horizon: int = DEFAULT_MAX_HORIZON,
+    time_limit: float | None = None,
+    budget: Budget | None = None,
+    satisficing: bool = False,
+) -> ContrastSearch:
     """The HPlan of the constraints and the principle ``under`` (steps 2 and 3);
     with ``satisficing`` any such plan, not proven shortest.
 
@@ -273,37 +311,63 @@ def contrast_plan(model: Model, constraints: Sequence[Constraint], under: str,
     """
     budget = budget or Budget(time_limit)
     length = longest(constraints)
-    result = plan_with_principles(model, [under], max_horizon, constraints=constraints,
-                                  budget=budget, satisficing=satisficing, max_length=length)
+    result = plan_with_principles(
+        model,
+        [under],
+        max_horizon,
+        constraints=constraints,
+        budget=budget,
+        satisficing=satisficing,
+        max_length=length,
+    )
     if result.status == FOUND:
         return ContrastSearch(result, False)
     if result.status == BOUNDED and budget.expired():
         return ContrastSearch(result, False)
     # Without the principle: a plan to judge when the principle is proven to stand in
     # the way, or the proof that no plan meets the question at all.
-    dropped = plan_with_principles(model, [], max_horizon, constraints=constraints,
-                                   budget=budget, satisficing=satisficing, max_length=length)
+    dropped = plan_with_principles(
+        model,
+        [],
+        max_horizon,
+        constraints=constraints,
+        budget=budget,
+        satisficing=satisficing,
+        max_length=length,
+    )
     if dropped.status == NONE:
         # No plan meets the question at all: the principle is not what stands in
         # the way, and is not said to be dropped.
-        return ContrastSearch(dropped, False,
-                              minimal_conflict(model, constraints, max_horizon, budget))
+        return ContrastSearch(
+            dropped, False, minimal_conflict(model, constraints, max_horizon, budget)
+        )
     if result.status == NONE:
         if dropped.status == FOUND:
             return ContrastSearch(dropped, True, [], result.proof)
-        return ContrastSearch(HPlanResult(
-            BOUNDED, [], None, dropped.horizon,
-            f"{result.proof}; without {under}, {dropped.proof}"), False, impermissible=True)
+        return ContrastSearch(
+            HPlanResult(
+                BOUNDED,
+                [],
+                None,
+                dropped.horizon,
+                f"{result.proof}; without {under}, {dropped.proof}",
+            ),
+            False,
+            impermissible=True,
+        )
     note = ""
     if dropped.status == FOUND and result.plan is None:
-        note = (f"a plan meeting the question exists without {under} "
-                f"({model.naming.actions(dropped.plan) or 'the empty plan'}), but the search "
-                f"under {under} was cut short, so {under} is kept: it is dropped only when "
-                "no plan meeting the question is proven permissible under it")
+        note = (
+            f"a plan meeting the question exists without {under} "
+            f"({model.naming.actions(dropped.plan) or 'the empty plan'}), but the search "
+            f"under {under} was cut short, so {under} is kept: it is dropped only when "
+            "no plan meeting the question is proven permissible under it"
+        )
     return ContrastSearch(result, False, note=note)
 
 
 # -- answers -----------------------------------------------------------------------
+
 
 @dataclass
 class Side:
@@ -386,10 +450,15 @@ class Answer:
 
 def _difference(original: Side, contrast: Side | None) -> dict[str, list[str]]:
     mine = original.judgement.explanation.chosen_reason if original.judgement.explanation else []
-    theirs = (contrast.judgement.explanation.chosen_reason
-              if contrast and contrast.judgement.explanation else [])
-    return {"original_only": [lit for lit in mine if lit not in theirs],
-            "contrast_only": [lit for lit in theirs if lit not in mine]}
+    theirs = (
+        contrast.judgement.explanation.chosen_reason
+        if contrast and contrast.judgement.explanation
+        else []
+    )
+    return {
+        "original_only": [lit for lit in mine if lit not in theirs],
+        "contrast_only": [lit for lit in theirs if lit not in mine],
+    }
 
 
 def _side_sentences(side: Side, modal: str, opening: str, alternatively: bool) -> str:
@@ -403,8 +472,14 @@ def _side_sentences(side: Side, modal: str, opening: str, alternatively: bool) -
     return f"{option} {verdict}"
 
 
-def contrastive_text(original: Side, contrast: Side | None, conflict: Sequence[Constraint],
-                     status: str, under: str = "", impermissible: bool = False) -> str:
+def contrastive_text(
+    original: Side,
+    contrast: Side | None,
+    conflict: Sequence[Constraint],
+    status: str,
+    under: str = "",
+    impermissible: bool = False,
+) -> str:
     """The words of a contrastive explanation (step 5).  Without a contrast
     plan: why not (``conflict``: the constraints no plan meets together;
     ``impermissible``: no plan meeting them is permissible under ``under``,
@@ -416,30 +491,41 @@ def contrastive_text(original: Side, contrast: Side | None, conflict: Sequence[C
     if status == NONE:
         if conflict:
             phrases = [words.constraint_phrase(labels, c.term) for c in conflict]
-            return (f"{text} There is no alternative plan: no plan can "
-                    f"{words.join(phrases)}.")
+            return f"{text} There is no alternative plan: no plan can {words.join(phrases)}."
         return f"{text} There is no alternative plan: no plan reaches the goal."
     principle = f" under {words.principle_phrase(under)}" if under else ""
     if impermissible:
-        return (f"{text} There is no alternative plan that is permissible{principle}, and "
-                "none without it was found within the search bounds (one may exist).")
-    return (f"{text} No alternative plan permissible{principle} was found within the search "
-            "bounds (one may exist).")
+        return (
+            f"{text} There is no alternative plan that is permissible{principle}, and "
+            "none without it was found within the search bounds (one may exist)."
+        )
+    return (
+        f"{text} No alternative plan permissible{principle} was found within the search "
+        "bounds (one may exist)."
+    )
 
 
-def _judge_side(model: Model, plan: Plan, principle: str, max_horizon: int,
-                budget: Budget, reasons_limit: int) -> Side:
-    report = judge(model, plan, [principle], max_horizon, reasons_limit=reasons_limit,
-                   budget=budget)
+def _judge_side(
+    model: Model, plan: Plan, principle: str, max_horizon: int, budget: Budget, reasons_limit: int
+) -> Side:
+    report = judge(
+        model, plan, [principle], max_horizon, reasons_limit=reasons_limit, budget=budget
+    )
     return Side(plan, principle, report.judgements[0])
 
 
-def original_plan(model: Model, principle: str, max_horizon: int = DEFAULT_MAX_HORIZON,
-                  time_limit: float | None = None, budget: Budget | None = None,
-                  satisficing: bool = False) -> Plan:
+def original_plan(
+    model: Model,
+    principle: str,
+    max_horizon: int = DEFAULT_MAX_HORIZON,
+    time_limit: float | None = None,
+    budget: Budget | None = None,
+    satisficing: bool = False,
+) -> Plan:
     """The plan that plan search under the principle makes (the plan asked about)."""
-    result = plan_with_principles(model, [principle], max_horizon, time_limit, budget=budget,
-                                  satisficing=satisficing)
+    result = plan_with_principles(
+        model, [principle], max_horizon, time_limit, budget=budget, satisficing=satisficing
+    )
     if result.plan is None:
         raise InputError(f"no plan to ask about: {result.proof}")
     return result.plan
@@ -451,17 +537,27 @@ def one_principle(name: str) -> str:
     key = name.strip().lower()
     if key == "all" or key in GROUPS:
         known = ", ".join(p.name for p in available_principles())
-        raise InputError(f"principle {name!r} names a group; a plan asked about is judged "
-                         f"under one principle: {known}")
+        raise InputError(
+            f"principle {name!r} names a group; a plan asked about is judged "
+            f"under one principle: {known}"
+        )
     return select_principles([name])[0].name
 
 
-def answer_questions(model: Model, questions: Sequence[Question], plan: Plan,
-                     principle: str, under: str, previous: Sequence[Constraint] = (),
-                     max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
-                     reasons_limit: int = DEFAULT_LIMIT, budget: Budget | None = None,
-                     satisficing: bool = False,
-                     conflicting: Sequence[Constraint] = ()) -> Answer:
+def answer_questions(
+    model: Model,
+    questions: Sequence[Question],
+    plan: Plan,
+    principle: str,
+    under: str,
+    previous: Sequence[Constraint] = (),
+    max_horizon: int = DEFAULT_MAX_HORIZON,
+    time_limit: float | None = None,
+    reasons_limit: int = DEFAULT_LIMIT,
+    budget: Budget | None = None,
+    satisficing: bool = False,
+    conflicting: Sequence[Constraint] = (),
+) -> Answer:
     """Answer the questions about ``plan`` (judged under ``principle``) with a
     contrast plan under ``under``; ``previous`` constraints stay imposed.
     With ``satisficing`` the contrast plan is any such plan, not proven
@@ -480,30 +576,60 @@ def answer_questions(model: Model, questions: Sequence[Question], plan: Plan,
     constraints = list(dict.fromkeys(list(previous) + new))
     original = _judge_side(model, plan, principle, max_horizon, budget, reasons_limit)
     if conflicting and set(conflicting) <= set(previous):
-        search = ContrastSearch(HPlanResult(NONE, [], None, 0, (
-            "no plan meets the constraints imposed by the questions before "
-            f"({', '.join(map(str, conflicting))}: proven when they were asked)")),
-            False, list(conflicting))
+        search = ContrastSearch(
+            HPlanResult(
+                NONE,
+                [],
+                None,
+                0,
+                (
+                    "no plan meets the constraints imposed by the questions before "
+                    f"({', '.join(map(str, conflicting))}: proven when they were asked)"
+                ),
+            ),
+            False,
+            list(conflicting),
+        )
     else:
-        search = contrast_plan(model, constraints, under, max_horizon, budget=budget,
-                               satisficing=satisficing)
+        search = contrast_plan(
+            model, constraints, under, max_horizon, budget=budget, satisficing=satisficing
+        )
     contrast = None
     if search.result.plan is not None:
-        contrast = _judge_side(model, search.result.plan, under, max_horizon, budget,
-                               reasons_limit)
-    return Answer(list(questions), principle, under, original, contrast, search.result.status,
-                  search.result.proof, search.principle_dropped, constraints, search.conflict,
-                  _difference(original, contrast),
-                  contrastive_text(original, contrast, search.conflict, search.result.status,
-                                   under, search.impermissible),
-                  search.dropped_because, search.result.optimal, search.note)
+        contrast = _judge_side(model, search.result.plan, under, max_horizon, budget, reasons_limit)
+    return Answer(
+        list(questions),
+        principle,
+        under,
+        original,
+        contrast,
+        search.result.status,
+        search.result.proof,
+        search.principle_dropped,
+        constraints,
+        search.conflict,
+        _difference(original, contrast),
+        contrastive_text(
+            original, contrast, search.conflict, search.result.status, under, search.impermissible
+        ),
+        search.dropped_because,
+        search.result.optimal,
+        search.note,
+    )
 
 
-def ask(model: Model, question: str | Question | Sequence[str | Question],
-        plan: Plan | None = None, principle: str = DEFAULT_PRINCIPLE, under: str | None = None,
-        max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
-        reasons_limit: int = DEFAULT_LIMIT, budget: Budget | None = None,
-        satisficing: bool = False) -> Answer:
+def ask(
+    model: Model,
+    question: str | Question | Sequence[str | Question],
+    plan: Plan | None = None,
+    principle: str = DEFAULT_PRINCIPLE,
+    under: str | None = None,
+    max_horizon: int = DEFAULT_MAX_HORIZON,
+    time_limit: float | None = None,
+    reasons_limit: int = DEFAULT_LIMIT,
+    budget: Budget | None = None,
+    satisficing: bool = False,
+) -> Answer:
     """Ask "why A rather than B?" (or any form of :mod:`ethasp.questions.question`)
     about a plan.
 
@@ -527,8 +653,15 @@ def ask(model: Model, question: str | Question | Sequence[str | Question],
     if plan is None:
         plan = model.own_plan()
     if plan is None:
-        plan = original_plan(model, principle, max_horizon, budget=budget,
-                             satisficing=satisficing)
-    return answer_questions(model, questions, plan, principle, under or principle,
-                            max_horizon=max_horizon, reasons_limit=reasons_limit, budget=budget,
-                            satisficing=satisficing)
+        plan = original_plan(model, principle, max_horizon, budget=budget, satisficing=satisficing)
+    return answer_questions(
+        model,
+        questions,
+        plan,
+        principle,
+        under or principle,
+        max_horizon=max_horizon,
+        reasons_limit=reasons_limit,
+        budget=budget,
+        satisficing=satisficing,
+    )

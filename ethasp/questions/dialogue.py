@@ -16,23 +16,27 @@ JSON and loaded again (loading asks the saved questions anew).
 from __future__ import annotations
 
 import json
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Callable, Sequence
 
-from ethasp.questions.contrast import (Answer, Constraint, answer_questions, one_principle,
-                                       original_plan)
 from ethasp.errors import InputError
-from ethasp.principles.judgement import JudgementReport
-from ethasp.reasons.reasons import judge
 from ethasp.planning.budget import Budget, Progress
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan, parse_action
-from ethasp.planning.terms import read_text
-from ethasp.principles.restriction import one_restricting_principle
-from ethasp.questions.question import Question
-from ethasp.reasons.reasons import DEFAULT_LIMIT
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
+from ethasp.planning.terms import read_text
+from ethasp.principles.judgement import JudgementReport
+from ethasp.principles.restriction import one_restricting_principle
+from ethasp.questions.contrast import (
+    Answer,
+    Constraint,
+    answer_questions,
+    one_principle,
+    original_plan,
+)
+from ethasp.questions.question import Question
+from ethasp.reasons.reasons import DEFAULT_LIMIT, judge
 
 FORMAT = "ethasp-dialogue"
 VERSION = 1
@@ -77,10 +81,18 @@ class Dialogue:
         return Budget(self.time_limit, self.on_progress)
 
     @classmethod
-    def start(cls, model: Model, principle: str, plan: Plan | None = None,
-              model_files: Sequence[str] = (), max_horizon: int = DEFAULT_MAX_HORIZON,
-              time_limit: float | None = None, reasons_limit: int = DEFAULT_LIMIT,
-              budget: Budget | None = None, satisficing: bool = False) -> "Dialogue":
+    def start(
+        cls,
+        model: Model,
+        principle: str,
+        plan: Plan | None = None,
+        model_files: Sequence[str] = (),
+        max_horizon: int = DEFAULT_MAX_HORIZON,
+        time_limit: float | None = None,
+        reasons_limit: int = DEFAULT_LIMIT,
+        budget: Budget | None = None,
+        satisficing: bool = False,
+    ) -> Dialogue:
         """A dialogue about ``plan``, or else about the plan the model comes
         with (a HERA situation's), or else about the plan made under
         ``principle``, which is also the principle the contrast plans must
@@ -88,15 +100,27 @@ class Dialogue:
         the plans searched (the first one, and every contrast plan) come from
         any-plan searches, not proven shortest."""
         principle = one_restricting_principle(
-            principle, "a dialogue starts under the principle that its contrast plans "
-                       "must satisfy, one of")
+            principle,
+            "a dialogue starts under the principle that its contrast plans must satisfy, one of",
+        )
         if plan is None:
             plan = model.own_plan()
         if plan is None:
-            plan = original_plan(model, principle, max_horizon, time_limit, budget=budget,
-                                 satisficing=satisficing)
-        return cls(model, principle, plan, principle, [], list(model_files), max_horizon,
-                   time_limit, reasons_limit, satisficing=satisficing)
+            plan = original_plan(
+                model, principle, max_horizon, time_limit, budget=budget, satisficing=satisficing
+            )
+        return cls(
+            model,
+            principle,
+            plan,
+            principle,
+            [],
+            list(model_files),
+            max_horizon,
+            time_limit,
+            reasons_limit,
+            satisficing=satisficing,
+        )
 
     # -- state --------------------------------------------------------------------
 
@@ -143,8 +167,14 @@ class Dialogue:
 
     def current(self, budget: Budget | None = None) -> JudgementReport:
         """The current plan, judged and explained under its principle."""
-        return judge(self.model, self.current_plan, [self.current_principle], self.max_horizon,
-                     reasons_limit=self.reasons_limit, budget=budget or self.budget())
+        return judge(
+            self.model,
+            self.current_plan,
+            [self.current_principle],
+            self.max_horizon,
+            reasons_limit=self.reasons_limit,
+            budget=budget or self.budget(),
+        )
 
     # -- moves --------------------------------------------------------------------
 
@@ -157,12 +187,19 @@ class Dialogue:
         if not isinstance(question, Question):
             question = Question.parse(question)
         blocked = self.unmeetable
-        answer = answer_questions(self.model, [question], self.current_plan,
-                                  self.current_principle, self.under, self.constraints,
-                                  self.max_horizon, reasons_limit=self.reasons_limit,
-                                  budget=budget or self.budget(),
-                                  satisficing=self.satisficing,
-                                  conflicting=blocked.conflict if blocked else ())
+        answer = answer_questions(
+            self.model,
+            [question],
+            self.current_plan,
+            self.current_principle,
+            self.under,
+            self.constraints,
+            self.max_horizon,
+            reasons_limit=self.reasons_limit,
+            budget=budget or self.budget(),
+            satisficing=self.satisficing,
+            conflicting=blocked.conflict if blocked else (),
+        )
         self.steps.append(Step(question, self.under, answer))
         return answer
 
@@ -187,8 +224,10 @@ class Dialogue:
 
         plan = self.current_plan
         if not 1 <= step <= len(plan):
-            raise InputError(f"why step {step}: the current plan has "
-                             f"{'no steps' if not len(plan) else f'steps 1 to {len(plan)}'}")
+            raise InputError(
+                f"why step {step}: the current plan has "
+                f"{'no steps' if not len(plan) else f'steps 1 to {len(plan)}'}"
+            )
         return explain_steps(self.model, plan)
 
     # -- saving -------------------------------------------------------------------
@@ -201,8 +240,14 @@ class Dialogue:
             "principle": self.principle,
             "plan": self.plan.to_list(),
             "under": self.under,
-            "steps": [{"question": step.question.to_json(), "under": step.under,
-                       "answer": step.answer.to_json()} for step in self.steps],
+            "steps": [
+                {
+                    "question": step.question.to_json(),
+                    "under": step.under,
+                    "answer": step.answer.to_json(),
+                }
+                for step in self.steps
+            ],
         }
 
     def save(self, path: str | Path) -> None:
@@ -215,10 +260,17 @@ class Dialogue:
             raise InputError(f"{path}: the dialogue cannot be saved ({reason})") from None
 
     @classmethod
-    def from_json(cls, data: dict, model: Model | None = None,
-                  max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
-                  reasons_limit: int = DEFAULT_LIMIT, source: str = "saved dialogue",
-                  budget: Budget | None = None, satisficing: bool = False) -> "Dialogue":
+    def from_json(
+        cls,
+        data: dict,
+        model: Model | None = None,
+        max_horizon: int = DEFAULT_MAX_HORIZON,
+        time_limit: float | None = None,
+        reasons_limit: int = DEFAULT_LIMIT,
+        source: str = "saved dialogue",
+        budget: Budget | None = None,
+        satisficing: bool = False,
+    ) -> Dialogue:
         """Rebuild a saved dialogue, asking its questions again in order (under
         ``budget`` if given, else each under the dialogue's time limit).
 
@@ -236,9 +288,18 @@ class Dialogue:
             model = Model.load(data["model"])
         try:
             plan = Plan(tuple(parse_action(action) for action in data["plan"]))
-            dialogue = cls(model, one_principle(data["principle"]), plan,
-                           data["principle"], [], list(data.get("model", [])), max_horizon,
-                           time_limit, reasons_limit, satisficing=satisficing)
+            dialogue = cls(
+                model,
+                one_principle(data["principle"]),
+                plan,
+                data["principle"],
+                [],
+                list(data.get("model", [])),
+                max_horizon,
+                time_limit,
+                reasons_limit,
+                satisficing=satisficing,
+            )
             for step in data.get("steps", []):
                 dialogue.switch_principle(step["under"])
                 dialogue.ask(Question.from_json(step["question"]), budget)
@@ -248,7 +309,7 @@ class Dialogue:
         return dialogue
 
     @classmethod
-    def load(cls, path: str | Path, model: Model | None = None, **options) -> "Dialogue":
+    def load(cls, path: str | Path, model: Model | None = None, **options) -> Dialogue:
         """Load a dialogue saved with :meth:`save`."""
         text = read_text(Path(path))
         try:
@@ -261,11 +322,12 @@ class Dialogue:
 
 def _check_saved(data) -> None:
     """Raise InputError unless ``data`` has the shape :meth:`Dialogue.to_json` writes."""
+
     def wrong(what: str) -> InputError:
         return InputError(what)
 
     if not isinstance(data, dict) or data.get("format") != FORMAT:
-        raise InputError("not a saved ethasp dialogue (no \"format\": \"ethasp-dialogue\")")
+        raise InputError('not a saved ethasp dialogue (no "format": "ethasp-dialogue")')
     version = data.get("version", VERSION)
     if not isinstance(version, int) or isinstance(version, bool) or version > VERSION:
         raise wrong(f"version {version!r} is not one this ethasp reads (up to {VERSION})")
@@ -287,20 +349,29 @@ def _check_saved(data) -> None:
     if len(steps) > MAX_STEPS:
         raise wrong(f"{len(steps)} questions, more than {MAX_STEPS} (the limit of ethasp)")
     for number, step in enumerate(steps, start=1):
-        if not isinstance(step, dict) or not isinstance(step.get("under"), str) \
-                or not isinstance(step.get("question"), dict):
-            raise wrong(f"step {number} must have 'question' (an object) and 'under' "
-                        "(a principle's name)")
+        if (
+            not isinstance(step, dict)
+            or not isinstance(step.get("under"), str)
+            or not isinstance(step.get("question"), dict)
+        ):
+            raise wrong(
+                f"step {number} must have 'question' (an object) and 'under' (a principle's name)"
+            )
         question = step["question"]
         for key in ("kind", "action", "other", "what"):
-            if key in question and question[key] is not None \
-                    and not isinstance(question[key], str):
+            if key in question and question[key] is not None and not isinstance(question[key], str):
                 raise wrong(f"step {number}: the question's '{key}' must be a string")
         for key in ("at", "steps"):
-            if key in question and question[key] is not None and (
-                    not isinstance(question[key], int) or isinstance(question[key], bool)):
+            if (
+                key in question
+                and question[key] is not None
+                and (not isinstance(question[key], int) or isinstance(question[key], bool))
+            ):
                 raise wrong(f"step {number}: the question's '{key}' must be a whole number")
         window = question.get("within")
-        if window is not None and (not isinstance(window, list) or len(window) != 2 or not all(
-                isinstance(t, int) and not isinstance(t, bool) for t in window)):
+        if window is not None and (
+            not isinstance(window, list)
+            or len(window) != 2
+            or not all(isinstance(t, int) and not isinstance(t, bool) for t in window)
+        ):
             raise wrong(f"step {number}: the question's 'within' must be two whole numbers")

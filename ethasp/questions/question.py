@@ -57,9 +57,11 @@ WHAT = ("action", "fact")
 # 32-bit; no search goes anywhere near).
 MAX_STEP = 1_000_000
 
-FORMS = ("why A | why not A | why A rather than B | why A before B | why A after B | "
-         "why [not] A at T | why [not] A within T1..T2 | why [not] F | why [not] F at T | "
-         "why not in N steps")
+FORMS = (
+    "why A | why not A | why A rather than B | why A before B | why A after B | "
+    "why [not] A at T | why [not] A within T1..T2 | why [not] F | why [not] F at T | "
+    "why not in N steps"
+)
 
 _WINDOW = re.compile(r"(\d+)\s*\.\.\s*(\d+)")
 _STEP_QUESTION = re.compile(r"\s*why\s+step\s+(\S+?)\s*\??\s*", re.IGNORECASE)
@@ -67,12 +69,14 @@ _STEP_QUESTION = re.compile(r"\s*why\s+step\s+(\S+?)\s*\??\s*", re.IGNORECASE)
 
 def _number(text: str, what: str, question: str, least: int = 1) -> int:
     if not re.fullmatch(r"\d+", text):
-        raise InputError(f"question: expected {what} (a whole number), got {text!r} "
-                         f"in {question!r}")
+        raise InputError(
+            f"question: expected {what} (a whole number), got {text!r} in {question!r}"
+        )
     value = int(text)
     if value < least or value > MAX_STEP:
-        raise InputError(f"question: {what} {value} in {question!r} must be from {least} to "
-                         f"{MAX_STEP:,}")
+        raise InputError(
+            f"question: {what} {value} in {question!r} must be from {least} to {MAX_STEP:,}"
+        )
     return value
 
 
@@ -110,19 +114,27 @@ class Question:
         if self.what is not None and self.what not in WHAT:
             raise InputError(f"question: 'what' must be action or fact, not {self.what!r}")
         if self.kind == "length":
-            if self.steps is None or self.action is not None or self.other is not None \
-                    or self.at is not None or self.within is not None:
-                raise InputError("question: kind length needs 'steps' (a number) and nothing "
-                                 "else")
+            if (
+                self.steps is None
+                or self.action is not None
+                or self.other is not None
+                or self.at is not None
+                or self.within is not None
+            ):
+                raise InputError("question: kind length needs 'steps' (a number) and nothing else")
             self._check_step(self.steps, "the number of steps", 0)
             return
         if self.action is None or self.steps is not None:
-            raise InputError(f"question: kind {self.kind} needs an action"
-                             + (" or a state variable" if self.kind in EITHER else "")
-                             + " and no 'steps'")
+            raise InputError(
+                f"question: kind {self.kind} needs an action"
+                + (" or a state variable" if self.kind in EITHER else "")
+                + " and no 'steps'"
+            )
         if (self.kind in PAIRS) != (self.other is not None):
-            raise InputError(f"question: kind {self.kind} needs "
-                             f"{'two actions' if self.other is None else 'one action'}")
+            raise InputError(
+                f"question: kind {self.kind} needs "
+                f"{'two actions' if self.other is None else 'one action'}"
+            )
         if self.kind in PAIRS and (self.at is not None or self.within is not None):
             raise InputError(f"question: kind {self.kind} takes no step")
         if self.kind in PAIRS and self.what == "fact":
@@ -138,22 +150,28 @@ class Question:
             self._check_step(first, "step", 1)
             self._check_step(last, "step", 1)
             if first > last:
-                raise InputError(f"question: the window {first}..{last} is empty (the first "
-                                 "step comes after the last)")
+                raise InputError(
+                    f"question: the window {first}..{last} is empty (the first "
+                    "step comes after the last)"
+                )
             if self.what == "fact":
-                raise InputError("question: a window of steps applies to actions; ask about a "
-                                 "fact after one step: why [not] F at T")
+                raise InputError(
+                    "question: a window of steps applies to actions; ask about a "
+                    "fact after one step: why [not] F at T"
+                )
 
     @staticmethod
     def _check_step(value, what: str, least: int) -> None:
         if not isinstance(value, int) or isinstance(value, bool) or not least <= value <= MAX_STEP:
-            raise InputError(f"question: {what} must be a whole number from {least} to "
-                             f"{MAX_STEP:,}, not {value!r}")
+            raise InputError(
+                f"question: {what} must be a whole number from {least} to "
+                f"{MAX_STEP:,}, not {value!r}"
+            )
 
     # -- text -----------------------------------------------------------------
 
     @classmethod
-    def parse(cls, text: str) -> "Question":
+    def parse(cls, text: str) -> Question:
         """Read a typed question such as ``why refrain rather than pull`` (see
         the module docstring for the grammar)."""
         shown = text.strip()
@@ -162,9 +180,11 @@ class Question:
         if not words or words[0].lower() != "why" or len(words) < 2:
             raise InputError(f"question: expected 'why ...', got {shown!r} (forms: {FORMS})")
         if step_question(shown) is not None:
-            raise InputError(f"question {shown!r} asks for the causal explanation of a step "
-                             "(ethasp explain, or 'why step T' in the dialogue), not for a "
-                             "contrast")
+            raise InputError(
+                f"question {shown!r} asks for the causal explanation of a step "
+                "(ethasp explain, or 'why step T' in the dialogue), not for a "
+                "contrast"
+            )
         tokens = split_terms(words[1])
         lower = [token.lower() for token in tokens]
         negated = lower[0] == "not"
@@ -174,10 +194,12 @@ class Question:
                 raise InputError(f"question: missing action after 'why not' in {shown!r}")
             if len(tokens) == 3 and lower[0] == "in" and lower[2] in ("steps", "step"):
                 return cls("length", steps=_number(tokens[1], "a number of steps", shown, 0))
+
         def keyword_at(position: int) -> bool:
             word = lower[position]
-            return word in ("before", "after", "at", "within") or \
-                (word == "rather" and lower[position + 1:position + 2] == ["than"])
+            return word in ("before", "after", "at", "within") or (
+                word == "rather" and lower[position + 1 : position + 2] == ["than"]
+            )
 
         # The subject comes first, so keywords are looked for after it (an
         # action may be named "at": why at at 2).
@@ -201,24 +223,33 @@ class Question:
             kind = "why-not" if negated else "why"
             if keyword == "at":
                 if len(rest) != 1:
-                    raise InputError(f"question: expected one step number after 'at' in "
-                                     f"{shown!r}")
+                    raise InputError(f"question: expected one step number after 'at' in {shown!r}")
                 return cls(kind, subject, at=_number(rest[0], "a step number", shown), what=what)
             window = _WINDOW.fullmatch("".join(rest))
             if window is None:
-                raise InputError(f"question: expected a window of steps T1..T2 after "
-                                 f"'within' in {shown!r}")
-            return cls(kind, subject, what=what,
-                       within=(_number(window.group(1), "a step number", shown),
-                               _number(window.group(2), "a step number", shown)))
+                raise InputError(
+                    f"question: expected a window of steps T1..T2 after 'within' in {shown!r}"
+                )
+            return cls(
+                kind,
+                subject,
+                what=what,
+                within=(
+                    _number(window.group(1), "a step number", shown),
+                    _number(window.group(2), "a step number", shown),
+                ),
+            )
         kind = "rather-than" if keyword == "rather" else keyword
         if negated:
-            raise InputError(f"question: 'why not' does not go with '{PAIRS[kind]}' "
-                             f"(in {shown!r}); forms: {FORMS}")
+            raise InputError(
+                f"question: 'why not' does not go with '{PAIRS[kind]}' "
+                f"(in {shown!r}); forms: {FORMS}"
+            )
         other_what, other = cls._subject(rest, shown)
         if "fact" in (what, other_what):
-            raise InputError(f"question: '{PAIRS[kind]}' compares actions, not facts "
-                             f"(in {shown!r})")
+            raise InputError(
+                f"question: '{PAIRS[kind]}' compares actions, not facts (in {shown!r})"
+            )
         return cls(kind, subject, other, what="action" if what else None)
 
     @staticmethod
@@ -231,8 +262,10 @@ class Question:
         if not tokens:
             raise InputError(f"question: missing action in {shown!r}")
         if len(tokens) > 1:
-            raise InputError(f"question: expected one action or state variable, got "
-                             f"{' '.join(tokens)!r} in {shown!r} (forms: {FORMS})")
+            raise InputError(
+                f"question: expected one action or state variable, got "
+                f"{' '.join(tokens)!r} in {shown!r} (forms: {FORMS})"
+            )
         return what, tokens[0]
 
     def __str__(self) -> str:
@@ -265,7 +298,7 @@ class Question:
         return data
 
     @classmethod
-    def from_json(cls, data: dict) -> "Question":
+    def from_json(cls, data: dict) -> Question:
         if not isinstance(data, dict) or "kind" not in data:
             raise InputError("question: a JSON question needs 'kind'")
         if data["kind"] != "length" and "action" not in data:
@@ -280,19 +313,27 @@ class Question:
             if not isinstance(within, list) or len(within) != 2:
                 raise InputError("question: 'within' must be a list of two steps")
             within = tuple(within)
-        return cls(str(data["kind"]), text("action"), text("other"), data.get("at"), within,
-                   data.get("steps"), text("what"))
+        return cls(
+            str(data["kind"]),
+            text("action"),
+            text("other"),
+            data.get("at"),
+            within,
+            data.get("steps"),
+            text("what"),
+        )
 
     # -- constraints ----------------------------------------------------------
 
-    def about_fact(self, fact: bool) -> "Question":
+    def about_fact(self, fact: bool) -> Question:
         """The question with ``what`` decided (for a question that did not say)."""
         from dataclasses import replace
 
         return replace(self, what="fact" if fact else "action")
 
-    def contrasts(self, subject: clingo.Symbol | None, other: clingo.Symbol | None = None,
-                  fact: bool = False) -> list[clingo.Symbol]:
+    def contrasts(
+        self, subject: clingo.Symbol | None, other: clingo.Symbol | None = None, fact: bool = False
+    ) -> list[clingo.Symbol]:
         """The constraint terms C of ``contrast(Q,C)`` for resolved terms
         (``fact``: the subject is a state variable)."""
         fn, num = clingo.Function, clingo.Number

@@ -30,10 +30,16 @@ from ethasp.planning.validation import read_validation
 from ethasp.reasons import words
 from ethasp.reasons.explanation import Labels
 from ethasp.reasons.reasons import model_labels
-from ethasp.vocabulary import (Chain, Link, Removable, ServesGoal, StepCauses, StepUtility)
+from ethasp.vocabulary import Chain, Link, Removable, ServesGoal, StepCauses, StepUtility
 
-ENCODINGS = ("planning/model.lp", "planning/trace.lp", "planning/trace_events.lp",
-             "planning/steps.lp", "questions/links.lp", "questions/removable.lp")
+ENCODINGS = (
+    "planning/model.lp",
+    "planning/trace.lp",
+    "planning/trace_events.lp",
+    "planning/steps.lp",
+    "questions/links.lp",
+    "questions/removable.lp",
+)
 
 # Removable steps are found by tracing the plan once without each step: the
 # work grows with the square of the length, so longer plans are refused.
@@ -50,7 +56,7 @@ class Node:
     event: clingo.Symbol | None = None
 
     @classmethod
-    def of(cls, term: clingo.Symbol) -> "Node":
+    def of(cls, term: clingo.Symbol) -> Node:
         if term.name == "step":
             return cls("step", term.arguments[0].number)
         if term.name == "event":
@@ -86,9 +92,12 @@ class CausalLink:
         return str(self.variable) if self.value else f"-{self.variable}"
 
     def to_json(self, naming=None) -> dict:
-        data = {"variable": str(self.variable), "value": self.value,
-                "to": self.consumer.step if self.consumer.kind != "goal" else "goal",
-                "kind": self.kind}
+        data = {
+            "variable": str(self.variable),
+            "value": self.value,
+            "to": self.consumer.step if self.consumer.kind != "goal" else "goal",
+            "kind": self.kind,
+        }
         if naming is not None:
             data["shown"] = naming.fact(self.literal())
         if self.consumer.kind == "event":
@@ -125,22 +134,27 @@ class StepExplanation:
 
     def to_json(self, naming=None) -> dict:
         def facts(sign: int) -> list[dict]:
-            return [{"variable": str(v), "value": b, "utility": u}
-                    for v, b, u in self.causes if (u < 0) == (sign < 0)]
+            return [
+                {"variable": str(v), "value": b, "utility": u}
+                for v, b, u in self.causes
+                if (u < 0) == (sign < 0)
+            ]
 
         data = {"step": self.step, "action": str(self.action)}
         if naming is not None:
             data["shown"] = naming.action(self.action)
-        data.update({
-            "links": [link.to_json(naming) for link in self.links],
-            "removable": self.removable,
-            "utility": self.utility,
-            "bad": self.bad,
-            "harms": facts(-1),
-            "goods": facts(1),
-            "serves_goal": self.serves_goal,
-            "chain": [node.to_json() for node in self.chain],
-        })
+        data.update(
+            {
+                "links": [link.to_json(naming) for link in self.links],
+                "removable": self.removable,
+                "utility": self.utility,
+                "bad": self.bad,
+                "harms": facts(-1),
+                "goods": facts(1),
+                "serves_goal": self.serves_goal,
+                "chain": [node.to_json() for node in self.chain],
+            }
+        )
         return data
 
 
@@ -153,8 +167,11 @@ class EventExplanation:
     links: list[CausalLink]
 
     def to_json(self, naming=None) -> dict:
-        return {"step": self.step, "event": str(self.event),
-                "links": [link.to_json(naming) for link in self.links]}
+        return {
+            "step": self.step,
+            "event": str(self.event),
+            "links": [link.to_json(naming) for link in self.links],
+        }
 
 
 @dataclass
@@ -168,10 +185,12 @@ class StepsExplanation:
     text: str = ""
 
     def to_json(self, naming=None) -> dict:
-        return {"plan": self.plan.to_list(),
-                "steps": [step.to_json(naming) for step in self.steps],
-                "events": [event.to_json(naming) for event in self.events if event.links],
-                "explanation": self.text}
+        return {
+            "plan": self.plan.to_list(),
+            "steps": [step.to_json(naming) for step in self.steps],
+            "events": [event.to_json(naming) for event in self.events if event.links],
+            "explanation": self.text,
+        }
 
     def lines(self) -> list[str]:
         """The explanation in words, one sentence per step (and per event
@@ -189,15 +208,19 @@ class StepsExplanation:
         """``why step T``: the step's links, its chain to the goal, whether it
         is needed and its moral side, in words."""
         if not 1 <= step <= len(self.steps):
-            raise InputError(f"why step {step}: the plan has "
-                             f"{'no steps' if not self.steps else f'steps 1 to {len(self.steps)}'}")
+            raise InputError(
+                f"why step {step}: the plan has "
+                f"{'no steps' if not self.steps else f'steps 1 to {len(self.steps)}'}"
+            )
         explained = self.steps[step - 1]
         text = step_sentence(self.labels, self.plan, explained)
         if explained.chain:
             middle = [node for node in explained.chain[1:] if node.kind != "goal"]
             if middle:
-                text += (" It serves the goal through "
-                         f"{words.join([_node_words(self.labels, self.plan, n) for n in middle])}.")
+                text += (
+                    " It serves the goal through "
+                    f"{words.join([_node_words(self.labels, self.plan, n) for n in middle])}."
+                )
             else:
                 text += " It serves the goal directly."
         else:
@@ -216,6 +239,7 @@ def _link_order(link: CausalLink):
 
 
 # -- words ---------------------------------------------------------------------------
+
 
 def _node_words(labels: Labels, plan: Plan, node: Node) -> str:
     if node.kind == "goal":
@@ -244,8 +268,9 @@ def _clause(labels: Labels, plan: Plan, consumer: Node, links: list[CausalLink])
     kinds = {link.kind for link in links}
     if kinds == {"condition"}:
         effects = words.join(sorted({str(link.effect) for link in links}))
-        return (f"makes the conditional effect {effects} of step {consumer.step} "
-                f"({phrase}) fire{facts}")
+        return (
+            f"makes the conditional effect {effects} of step {consumer.step} ({phrase}) fire{facts}"
+        )
     return f"lets step {consumer.step} {phrase}{facts}"
 
 
@@ -253,35 +278,37 @@ def _moral_words(labels: Labels, explained: StepExplanation) -> str:
     parts = []
     if explained.utility != 0:
         value = "inherently bad" if explained.utility < 0 else "inherently good"
-        parts.append(f"{words.gerund(labels, explained.action)} is {value} "
-                     f"(utility {explained.utility})")
+        parts.append(
+            f"{words.gerund(labels, explained.action)} is {value} (utility {explained.utility})"
+        )
     for variable, value, utility in explained.causes:
         verb = "causes" if utility < 0 else "brings about"
-        parts.append(f"it {verb} {words.fact_phrase(labels, variable, value)} "
-                     f"(utility {utility})")
+        parts.append(f"it {verb} {words.fact_phrase(labels, variable, value)} (utility {utility})")
     return words.capitalize("; ".join(parts)) + "." if parts else ""
 
 
 def step_sentence(labels: Labels, plan: Plan, explained: StepExplanation) -> str:
     """One step in words: what it lets later steps, events and the goal do,
     whether it is needed, and its moral side."""
-    head = (f"Step {explained.step}, "
-            f"{words.action_phrase(labels, explained.action)},")
+    head = f"Step {explained.step}, {words.action_phrase(labels, explained.action)},"
     consumers: dict[Node, list[CausalLink]] = {}
     for link in explained.links:
         consumers.setdefault(link.consumer, []).append(link)
     if consumers:
-        clauses = [_clause(labels, plan, consumer, links)
-                   for consumer, links in sorted(consumers.items(),
-                                                 key=lambda item: _node_order(item[0]))]
+        clauses = [
+            _clause(labels, plan, consumer, links)
+            for consumer, links in sorted(consumers.items(), key=lambda item: _node_order(item[0]))
+        ]
         text = f"{head} {words.join(clauses)}."
         if explained.removable:
             text += " It is not needed, though: the plan without it is still a plan."
     elif explained.removable:
         text = f"{head} is not needed: the plan without it is still a plan."
     else:
-        text = (f"{head} is needed (the plan without it is no plan), though no later step, "
-                "event or goal fact needs a value it sets.")
+        text = (
+            f"{head} is needed (the plan without it is no plan), though no later step, "
+            "event or goal fact needs a value it sets."
+        )
     moral = _moral_words(labels, explained)
     return f"{text} {moral}" if moral else text
 
@@ -290,21 +317,23 @@ def event_sentence(labels: Labels, plan: Plan, event: EventExplanation) -> str:
     consumers: dict[Node, list[CausalLink]] = {}
     for link in event.links:
         consumers.setdefault(link.consumer, []).append(link)
-    clauses = [_clause(labels, plan, consumer, links)
-               for consumer, links in sorted(consumers.items(),
-                                             key=lambda item: _node_order(item[0]))]
-    return (f"The event {words.term_words(event.event)} of step {event.step} "
-            f"{words.join(clauses)}.")
+    clauses = [
+        _clause(labels, plan, consumer, links)
+        for consumer, links in sorted(consumers.items(), key=lambda item: _node_order(item[0]))
+    ]
+    return f"The event {words.term_words(event.event)} of step {event.step} {words.join(clauses)}."
 
 
-def plan_text(labels: Labels, plan: Plan, steps: list[StepExplanation],
-              events: list[EventExplanation]) -> str:
+def plan_text(
+    labels: Labels, plan: Plan, steps: list[StepExplanation], events: list[EventExplanation]
+) -> str:
     """The whole plan in words, step by step (events with links in their place)."""
     return " ".join(plan_lines(labels, plan, steps, events))
 
 
-def plan_lines(labels: Labels, plan: Plan, steps: list[StepExplanation],
-               events: list[EventExplanation]) -> list[str]:
+def plan_lines(
+    labels: Labels, plan: Plan, steps: list[StepExplanation], events: list[EventExplanation]
+) -> list[str]:
     """The sentences of :func:`plan_text`."""
     if not steps and not any(event.links for event in events):
         return ["The plan has no steps: the goal holds without any action."]
@@ -313,7 +342,7 @@ def plan_lines(labels: Labels, plan: Plan, steps: list[StepExplanation],
     for event in events:
         if event.links:
             by_step.setdefault(event.step, []).append(event)
-    last = max([len(steps)] + list(by_step))  # events after the plan's end come last
+    last = max([len(steps), *list(by_step)])  # events after the plan's end come last
     for number in range(1, last + 1):
         if number <= len(steps):
             sentences.append(step_sentence(labels, plan, steps[number - 1]))
@@ -323,13 +352,16 @@ def plan_lines(labels: Labels, plan: Plan, steps: list[StepExplanation],
 
 # -- the API -------------------------------------------------------------------------
 
+
 def explain_steps(model: Model, plan: Plan) -> StepsExplanation:
     """The causal explanation of a plan, step by step (one clingo call on its
     trace); InputError if it is not a plan or has more than
     :data:`MAX_STEPS` steps."""
     if len(plan) > MAX_STEPS:
-        raise InputError(f"the plan has {len(plan)} steps; step-by-step explanations are made "
-                         f"for plans of at most {MAX_STEPS} steps")
+        raise InputError(
+            f"the plan has {len(plan)} steps; step-by-step explanations are made "
+            f"for plans of at most {MAX_STEPS} steps"
+        )
     ctl = model.planner.program(ENCODINGS, symbols=occurrences(plan))
     symbols: list[clingo.Symbol] = []
     with ctl.solve(yield_=True) as handle:
@@ -343,11 +375,15 @@ def explain_steps(model: Model, plan: Plan) -> StepsExplanation:
     by_provider: dict[Node, list[CausalLink]] = {}
     for atom in atoms.query(Link).all():
         kind = atom.kind.symbol
-        link = CausalLink(Node.of(atom.provider.symbol), Node.of(atom.consumer.symbol),
-                          atom.variable.symbol, atom.value == "true",
-                          "condition" if kind.name == "condition" else kind.name,
-                          kind.arguments[0] if kind.name == "condition" else None,
-                          None if atom.via.symbol.name == "none" else atom.via.symbol)
+        link = CausalLink(
+            Node.of(atom.provider.symbol),
+            Node.of(atom.consumer.symbol),
+            atom.variable.symbol,
+            atom.value == "true",
+            "condition" if kind.name == "condition" else kind.name,
+            kind.arguments[0] if kind.name == "condition" else None,
+            None if atom.via.symbol.name == "none" else atom.via.symbol,
+        )
         by_provider.setdefault(link.provider, []).append(link)
     chains: dict[int, list[tuple[int, Node]]] = {}
     for atom in atoms.query(Chain).all():
@@ -355,19 +391,28 @@ def explain_steps(model: Model, plan: Plan) -> StepsExplanation:
     utilities = {atom.step: atom.utility for atom in atoms.query(StepUtility).all()}
     causes: dict[int, list[tuple[clingo.Symbol, bool, int]]] = {}
     for atom in atoms.query(StepCauses).all():
-        causes.setdefault(atom.step, []).append((atom.variable.symbol, atom.value == "true",
-                                                 atom.utility))
+        causes.setdefault(atom.step, []).append(
+            (atom.variable.symbol, atom.value == "true", atom.utility)
+        )
     removable = {atom.step for atom in atoms.query(Removable).all()}
     steps = []
     for number, action in enumerate(plan, start=1):
         node = Node("step", number)
-        steps.append(StepExplanation(
-            number, action, sorted(by_provider.get(node, []), key=_link_order),
-            number in removable, utilities.get(number, 0),
-            sorted(causes.get(number, []), key=lambda c: (str(c[0]), c[1])),
-            [n for _, n in sorted(chains.get(number, []), key=lambda item: item[0])]))
-    events = [EventExplanation(node.step, node.event, sorted(links, key=_link_order))
-              for node, links in sorted(by_provider.items(), key=lambda i: _node_order(i[0]))
-              if node.kind == "event"]
+        steps.append(
+            StepExplanation(
+                number,
+                action,
+                sorted(by_provider.get(node, []), key=_link_order),
+                number in removable,
+                utilities.get(number, 0),
+                sorted(causes.get(number, []), key=lambda c: (str(c[0]), c[1])),
+                [n for _, n in sorted(chains.get(number, []), key=lambda item: item[0])],
+            )
+        )
+    events = [
+        EventExplanation(node.step, node.event, sorted(links, key=_link_order))
+        for node, links in sorted(by_provider.items(), key=lambda i: _node_order(i[0]))
+        if node.kind == "event"
+    ]
     labels = model_labels(model)
     return StepsExplanation(plan, steps, events, labels, plan_text(labels, plan, steps, events))

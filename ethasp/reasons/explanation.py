@@ -82,15 +82,15 @@ class Explanation:
     labels: Labels = field(default_factory=Labels)
 
     def to_json(self) -> dict:
-        data = {"sufficient_reasons": self.sufficient_reasons,
-                "necessary_reasons": self.necessary_reasons,
-                "chosen_reason": self.chosen_reason,
-                "explanation": self.text,
-                "reasons_truncated": self.truncated,
-                "necessary_reasons_truncated": self.necessary_truncated,
-                "sufficient_reasons_truncated": self.sufficient_truncated}
+        data = {
+            "sufficient_reasons": self.sufficient_reasons,
+            "necessary_reasons": self.necessary_reasons,
+            "chosen_reason": self.chosen_reason,
+            "explanation": self.text,
+            "reasons_truncated": self.truncated,
+            "necessary_reasons_truncated": self.necessary_truncated,
+            "sufficient_reasons_truncated": self.sufficient_truncated,
+        }
         if self.alternative is not None:
             data["compared_state"] = self.alternative
         return data
-
-

@@ -32,12 +32,11 @@ this one comparison.
 
 from __future__ import annotations
 
-from typing import Iterable, Sequence
+from collections.abc import Iterable
 
 import clingo
 from clorm import unify
 
-from ethasp.principles.memo import results
 from ethasp.errors import InputError
 from ethasp.planning.budget import Budget
 from ethasp.planning.model import Model
@@ -45,21 +44,34 @@ from ethasp.planning.plan import Plan
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
 from ethasp.planning.validation import validate
 from ethasp.principles.formula import format_literal
-from ethasp.principles.judgement import (Judgement, JudgementReport, evaluate, evaluation,
-                                         require_plan)
+from ethasp.principles.judgement import (
+    JudgementReport,
+    evaluate,
+    evaluation,
+    require_plan,
+)
 from ethasp.principles.judgement import judge as judge_verdicts
+from ethasp.principles.memo import results
 from ethasp.principles.principle import Principle, select_principles
 from ethasp.principles.utilitarianism import ReachableState, best_reachable
 from ethasp.reasons import DEFAULT_LIMIT
 from ethasp.reasons.explanation import Comparison, Explanation, Labels, Literal
 from ethasp.reasons.words import non_contrastive
-from ethasp.vocabulary import (ActionLabel, AgentLabel, ComparisonAtom, Conjunct, FactLabel,
-                               Mention, PatientLabel, ReasonAtom, Verdict)
-
+from ethasp.vocabulary import (
+    ActionLabel,
+    AgentLabel,
+    ComparisonAtom,
+    Conjunct,
+    FactLabel,
+    Mention,
+    PatientLabel,
+    ReasonAtom,
+    Verdict,
+)
 
 REASONS = ("reasons/literals.lp", "reasons/theory.lp", "reasons/evaluate.lp")
-NECESSARY = REASONS + ("reasons/necessary.lp", "reasons/relevance.lp")
-SUFFICIENT = REASONS + ("reasons/shape.lp", "reasons/sufficient.lp", "reasons/comparison.lp")
+NECESSARY = (*REASONS, "reasons/necessary.lp", "reasons/relevance.lp")
+SUFFICIENT = (*REASONS, "reasons/shape.lp", "reasons/sufficient.lp", "reasons/comparison.lp")
 # Core-guided optimisation for the relevant reason: the relevance criteria count
 # literals, and each violated conjunct is a core; model-guided optimisation
 # stalls on large ones.  Domain heuristics make enumerations subset-minimal.
@@ -71,14 +83,24 @@ OTHER = clingo.Function("other")
 LABELS = (("agent_label", 2), ("action_label", 3), ("fact_label", 3), ("patient_label", 2))
 
 # The atoms of an evaluation that the reasons' programs read (judgement/evidence.lp).
-EVIDENCE = (("formula", 2), ("member", 2), ("conj", 3), ("conj_worth", 2), ("term_value", 2),
-            ("verdict", 2), ("satisfied", 1), ("weight", 2))
+EVIDENCE = (
+    ("formula", 2),
+    ("member", 2),
+    ("conj", 3),
+    ("conj_worth", 2),
+    ("term_value", 2),
+    ("verdict", 2),
+    ("satisfied", 1),
+    ("weight", 2),
+)
 
 
 def _literals(symbols: Iterable[clingo.Symbol]) -> list[Literal]:
     atoms = unify([ReasonAtom], symbols).query(ReasonAtom).all()
-    return sorted((Literal(a.atom.symbol, a.value == "true") for a in atoms),
-                  key=lambda lit: (str(lit.atom), lit.value))
+    return sorted(
+        (Literal(a.atom.symbol, a.value == "true") for a in atoms),
+        key=lambda lit: (str(lit.atom), lit.value),
+    )
 
 
 def _kind(literal: Literal) -> tuple:
@@ -143,6 +165,7 @@ def _comparisons(symbols: Iterable[clingo.Symbol]) -> dict[clingo.Symbol, Compar
 
 # -- the API --------------------------------------------------------------------
 
+
 def _labels_of(model: Model) -> Labels:
     planner = model.planner
     labels = _labels([symbol for signature in LABELS for symbol in planner.get(*signature)])
@@ -155,16 +178,18 @@ def model_labels(model: Model) -> Labels:
     return _labels_of(model)
 
 
-def other_state(model: Model, plan: Plan, budget: Budget,
-                max_horizon: int = DEFAULT_MAX_HORIZON) -> ReachableState | None:
+def other_state(
+    model: Model, plan: Plan, budget: Budget, max_horizon: int = DEFAULT_MAX_HORIZON
+) -> ReachableState | None:
     """A best reachable state that differs from the plan's final state in a
     morally valued variable (one whose two values are worth differently), so
     that the comparison speaks of what matters; else a best state that differs
     at all.  Goal states first among equally good ones; None if there is none
     or none was found."""
     planner = model.planner
-    final = [(s.arguments[0], s.arguments[1].name == "true")
-             for s in planner.trace(plan).get("final", 2)]
+    final = [
+        (s.arguments[0], s.arguments[1].name == "true") for s in planner.trace(plan).get("final", 2)
+    ]
     weights = planner.ground_model().weights
     valued = [(v, b) for v, b in final if weights.get((v, True), 0) != weights.get((v, False), 0)]
     if valued:
@@ -174,10 +199,16 @@ def other_state(model: Model, plan: Plan, budget: Budget,
     return best_reachable(planner, budget, max_horizon, other_than=final).found
 
 
-def explain(model: Model, plan: Plan, principle: str | Principle, limit: int = DEFAULT_LIMIT,
-            alternative: ReachableState | None = None,
-            max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
-            budget: Budget | None = None) -> Explanation:
+def explain(
+    model: Model,
+    plan: Plan,
+    principle: str | Principle,
+    limit: int = DEFAULT_LIMIT,
+    alternative: ReachableState | None = None,
+    max_horizon: int = DEFAULT_MAX_HORIZON,
+    time_limit: float | None = None,
+    budget: Budget | None = None,
+) -> Explanation:
     """Sufficient and necessary reasons for the verdict of one principle on a
     plan, at most ``limit`` of each, and the explanation text.
 
@@ -191,8 +222,13 @@ def explain(model: Model, plan: Plan, principle: str | Principle, limit: int = D
     budget = budget or Budget(time_limit)
     chosen = principle if isinstance(principle, Principle) else select_principles([principle])[0]
     require_plan(model, validate(model, plan))
-    key = ("explain", plan, chosen.asp_name, limit,
-           None if alternative is None else tuple(alternative.facts))
+    key = (
+        "explain",
+        plan,
+        chosen.asp_name,
+        limit,
+        None if alternative is None else tuple(alternative.facts),
+    )
     memo = results(model.planner)
     if key in memo:
         return memo[key]
@@ -204,15 +240,20 @@ def explain(model: Model, plan: Plan, principle: str | Principle, limit: int = D
         if alternative is not None:
             facts = alternative.asp_facts(OTHER)
             compared = alternative.literals
-    answer = (evaluate(model, plan, [chosen.encoding], facts) if chosen.reads_alternatives
-              else evaluation(model, plan, [chosen], budget, max_horizon))
-    program = (answer.text(EVIDENCE) + model.planner.vocabulary_text(LABELS)
-               + f"explain({chosen.asp_name}).\n")
+    answer = (
+        evaluate(model, plan, [chosen.encoding], facts)
+        if chosen.reads_alternatives
+        else evaluation(model, plan, [chosen], budget, max_horizon)
+    )
+    program = (
+        answer.text(EVIDENCE)
+        + model.planner.vocabulary_text(LABELS)
+        + f"explain({chosen.asp_name}).\n"
+    )
     necessary_ctl = model.planner.program(NECESSARY, program, OPTIONS, model=False)
     best = _optimum(necessary_ctl)
     literals = _literals(best) if best is not None else []
-    necessary, necessary_done = (_enumerate(necessary_ctl, limit) if best is not None
-                                 else ([], True))
+    necessary, necessary_done = _enumerate(necessary_ctl, limit) if best is not None else ([], True)
     sufficient_ctl = model.planner.program(SUFFICIENT, program, OPTIONS, model=False)
     # One more than the limit allows: whether a single sufficient reason is the only one.
     sufficient, sufficient_done = _enumerate(sufficient_ctl, max(limit, 2))
@@ -228,8 +269,10 @@ def explain(model: Model, plan: Plan, principle: str | Principle, limit: int = D
         whole = _literals(sufficient[0])
         if len(whole) > 1 and len({_kind(literal) for literal in whole}) == 1:
             spoken = whole
-    permissible = any(v.value == "true" and str(v.name.symbol) == chosen.asp_name
-                      for v in unify([Verdict], answer.get("verdict", 2)).query(Verdict).all())
+    permissible = any(
+        v.value == "true" and str(v.name.symbol) == chosen.asp_name
+        for v in unify([Verdict], answer.get("verdict", 2)).query(Verdict).all()
+    )
     conj: dict[clingo.Symbol, list[tuple[clingo.Symbol, str]]] = {}
     for member in unify([Conjunct], words).query(Conjunct).all():
         conj.setdefault(member.name.symbol, []).append((member.variable.symbol, member.value))
@@ -240,23 +283,36 @@ def explain(model: Model, plan: Plan, principle: str | Principle, limit: int = D
         return [format_literal(lit.term(), conj, model.naming) for lit in reason]
 
     explanation = Explanation(
-        principle=chosen.name, plan=plan, permissible=permissible,
+        principle=chosen.name,
+        plan=plan,
+        permissible=permissible,
         sufficient_reasons=[texts(_literals(s)) for s in sufficient],
         necessary_reasons=[texts(_literals(s)) for s in necessary],
-        chosen_reason=texts(literals), text="",
+        chosen_reason=texts(literals),
+        text="",
         truncated=not (necessary_done and sufficient_done),
-        necessary_truncated=not necessary_done, sufficient_truncated=not sufficient_done,
-        alternative=compared, literals=spoken, comparisons=_comparisons(words),
-        labels=_labels_of(model))
+        necessary_truncated=not necessary_done,
+        sufficient_truncated=not sufficient_done,
+        alternative=compared,
+        literals=spoken,
+        comparisons=_comparisons(words),
+        labels=_labels_of(model),
+    )
     explanation.text = non_contrastive(explanation)
     memo[key] = explanation
     return explanation
 
 
-def judge(model: Model, plan: Plan, principles: Iterable[str] | None = None,
-          max_horizon: int = DEFAULT_MAX_HORIZON, time_limit: float | None = None,
-          reasons_limit: int | None = DEFAULT_LIMIT, budget: Budget | None = None,
-          best: bool = False) -> JudgementReport:
+def judge(
+    model: Model,
+    plan: Plan,
+    principles: Iterable[str] | None = None,
+    max_horizon: int = DEFAULT_MAX_HORIZON,
+    time_limit: float | None = None,
+    reasons_limit: int | None = DEFAULT_LIMIT,
+    budget: Budget | None = None,
+    best: bool = False,
+) -> JudgementReport:
     """Judge a plan under the principles (the paper's three when None) and
     explain each verdict.
 
@@ -267,11 +323,12 @@ def judge(model: Model, plan: Plan, principles: Iterable[str] | None = None,
     budget = budget or Budget(time_limit)
     report = judge_verdicts(model, plan, principles, max_horizon, budget=budget, best=best)
     chosen = select_principles(principles)
-    for principle, judgement in zip(chosen, report.judgements):
+    for principle, judgement in zip(chosen, report.judgements, strict=True):
         if reasons_limit:
             # An impermissible utilitarian plan is explained against the better
             # state that decided it; a permissible one against a best other state.
             other = judgement.compared if not judgement.permissible else None
-            judgement.explanation = explain(model, plan, principle, reasons_limit, other,
-                                            max_horizon, budget=budget)
+            judgement.explanation = explain(
+                model, plan, principle, reasons_limit, other, max_horizon, budget=budget
+            )
     return report

@@ -43,7 +43,7 @@ form for PDDL models (``action (move kitchen hall)``, ``the fact (not
 
 from __future__ import annotations
 
-from typing import Sequence
+from collections.abc import Sequence
 
 import clingo
 
@@ -63,7 +63,7 @@ def capitalize(text: str) -> str:
 
 
 def join(parts: Sequence[str], word: str = "and") -> str:
-    """"a", "a and b", "a, b and c"."""
+    """ "a", "a and b", "a, b and c"."""
     parts = list(parts)
     if len(parts) <= 1:
         return "".join(parts)
@@ -71,6 +71,7 @@ def join(parts: Sequence[str], word: str = "and") -> str:
 
 
 # -- names ------------------------------------------------------------------------
+
 
 def agent(labels: Labels) -> str:
     """The agent as a noun phrase, e.g. "the man"."""
@@ -146,6 +147,7 @@ def verdict_word(permissible: bool) -> str:
 
 # -- reasons ----------------------------------------------------------------------
 
+
 def _element_phrase(labels: Labels, element: clingo.Symbol) -> tuple[str, bool]:
     """The phrase of an element of L and whether it is an action."""
     if element.name == "action":
@@ -154,9 +156,13 @@ def _element_phrase(labels: Labels, element: clingo.Symbol) -> tuple[str, bool]:
     return fact_phrase(labels, variable, value.name == "true"), False
 
 
-def literal_clause(literal: Literal, labels: Labels,
-                   comparisons: dict[clingo.Symbol, Comparison] | None = None,
-                   pronoun: bool = False, actions: int = 1) -> str:
+def literal_clause(
+    literal: Literal,
+    labels: Labels,
+    comparisons: dict[clingo.Symbol, Comparison] | None = None,
+    pronoun: bool = False,
+    actions: int = 1,
+) -> str:
     """The words of one literal, e.g. "pulling a lever is not inherently bad".
 
     ``pronoun`` uses the possessive pronoun ("his action") instead of the
@@ -173,16 +179,14 @@ def literal_clause(literal: Literal, labels: Labels,
         variable, truth = atom.arguments
         fact = fact_phrase(labels, variable, truth.name == "true")
         noun = "action" if actions <= 1 else "actions"
-        return (f"this way {fact} is {negation}caused by "
-                f"{possessive(labels, pronoun)} {noun}")
+        return f"this way {fact} is {negation}caused by {possessive(labels, pronoun)} {noun}"
     if atom.name in _HERA_FACTS:
         variable, truth = atom.arguments
         fact = fact_phrase(labels, variable, truth.name == "true")
         noun = "action" if actions <= 1 else "actions"
         return _HERA_FACTS[atom.name](fact, possessive(labels, pronoun), noun, value)
     if atom.name in _HERA_PATIENTS:
-        patient = labels.patients.get(atom.arguments[0]) or _term_words(atom.arguments[0],
-                                                                         labels)
+        patient = labels.patients.get(atom.arguments[0]) or _term_words(atom.arguments[0], labels)
         noun = "action" if actions <= 1 else "actions"
         return _HERA_PATIENTS[atom.name](patient, possessive(labels, pronoun), noun, value)
     if atom.name == "ucompare":
@@ -206,29 +210,40 @@ def literal_clause(literal: Literal, labels: Labels,
 
 
 _HERA_FACTS = {
-    "goal_fact": lambda fact, poss, noun, value:
-        f"{fact} is {'' if value else 'not '}one of {poss} goals",
-    "finally": lambda fact, poss, noun, value:
-        f"{fact} {'holds' if value else 'does not hold'} in the end",
-    "but_for": lambda fact, poss, noun, value:
-        (f"but for {poss} {noun}, {fact} would not come about" if value
-         else f"{fact} would come about even without {poss} {noun}"),
-    "instrumental": lambda fact, poss, noun, value:
-        f"{fact} is {'' if value else 'not '}a means to {poss} goal",
-    "avoidable": lambda fact, poss, noun, value:
-        f"{fact} could {'' if value else 'not '}be avoided",
+    "goal_fact": lambda fact, poss, noun, value: (
+        f"{fact} is {'' if value else 'not '}one of {poss} goals"
+    ),
+    "finally": lambda fact, poss, noun, value: (
+        f"{fact} {'holds' if value else 'does not hold'} in the end"
+    ),
+    "but_for": lambda fact, poss, noun, value: (
+        f"but for {poss} {noun}, {fact} would not come about"
+        if value
+        else f"{fact} would come about even without {poss} {noun}"
+    ),
+    "instrumental": lambda fact, poss, noun, value: (
+        f"{fact} is {'' if value else 'not '}a means to {poss} goal"
+    ),
+    "avoidable": lambda fact, poss, noun, value: (
+        f"{fact} could {'' if value else 'not '}be avoided"
+    ),
 }
 _HERA_PATIENTS = {
-    "means": lambda patient, poss, noun, value:
-        f"{patient} is {'' if value else 'not '}used as a means",
-    "means2": lambda patient, poss, noun, value:
-        f"{patient} is {'' if value else 'not '}affected by {poss} {noun}",
-    "end": lambda patient, poss, noun, value:
-        f"{patient} is {'' if value else 'not '}treated as an end",
+    "means": lambda patient, poss, noun, value: (
+        f"{patient} is {'' if value else 'not '}used as a means"
+    ),
+    "means2": lambda patient, poss, noun, value: (
+        f"{patient} is {'' if value else 'not '}affected by {poss} {noun}"
+    ),
+    "end": lambda patient, poss, noun, value: (
+        f"{patient} is {'' if value else 'not '}treated as an end"
+    ),
 }
-_RELATIONS = {"gt": ("is greater than", "is not greater than"),
-              "geq": ("is at least", "is less than"),
-              "eq": ("equals", "does not equal")}
+_RELATIONS = {
+    "gt": ("is greater than", "is not greater than"),
+    "geq": ("is at least", "is less than"),
+    "eq": ("equals", "does not equal"),
+}
 
 
 def _utility_words(term: clingo.Symbol, labels: Labels) -> str:
@@ -238,7 +253,7 @@ def _utility_words(term: clingo.Symbol, labels: Labels) -> str:
         word = "plus" if term.name == "add" else "minus"
         parts.append(f"{word} {_utility_primary_words(term.arguments[1])}")
         term = term.arguments[0]
-    return " ".join([_utility_primary_words(term)] + list(reversed(parts)))
+    return " ".join([_utility_primary_words(term), *list(reversed(parts))])
 
 
 def _utility_primary_words(term: clingo.Symbol) -> str:
@@ -271,20 +286,28 @@ def _group(literal: Literal) -> tuple | None:
 
 
 def _none_of(subjects: list[str]) -> str:
-    """"neither a nor b", "none of a, b and c"."""
+    """ "neither a nor b", "none of a, b and c"."""
     if len(subjects) == 2:
         return f"neither {subjects[0]} nor {subjects[1]}"
     return f"none of {join(subjects)}"
 
 
-def _group_clause(key: tuple, literals: list[Literal], labels: Labels, pronoun: bool,
-                  actions: int, plan: Plan | None) -> str:
+def _group_clause(
+    key: tuple,
+    literals: list[Literal],
+    labels: Labels,
+    pronoun: bool,
+    actions: int,
+    plan: Plan | None,
+) -> str:
     """The words of several literals of one group (see :func:`_group`), e.g.
     "none of his 8 actions is inherently bad"."""
     whose = possessive(labels, pronoun)
     if key[0] == "caused":
-        facts = [fact_phrase(labels, lit.atom.arguments[0], lit.atom.arguments[1].name == "true")
-                 for lit in literals]
+        facts = [
+            fact_phrase(labels, lit.atom.arguments[0], lit.atom.arguments[1].name == "true")
+            for lit in literals
+        ]
         noun = "action" if actions <= 1 else "actions"
         if key[1]:
             return f"this way {join(facts)} are caused by {whose} {noun}"
@@ -295,15 +318,19 @@ def _group_clause(key: tuple, literals: list[Literal], labels: Labels, pronoun: 
     if value:
         return f"{join(subjects)} are {degree}{VALUATIONS[name]}"
     elements = {lit.atom.arguments[0].arguments[0] for lit in literals}
-    if element == "action" and plan is not None and len(elements) > 3 \
-            and elements == set(plan):
+    if element == "action" and plan is not None and len(elements) > 3 and elements == set(plan):
         return f"none of {whose} {len(plan)} actions is {degree}{VALUATIONS[name]}"
     return f"{_none_of(subjects)} is {degree}{VALUATIONS[name]}"
 
 
-def reason_clause(literals: Sequence[Literal], labels: Labels,
-                  comparisons: dict[clingo.Symbol, Comparison] | None = None,
-                  pronoun: bool = False, actions: int = 1, plan: Plan | None = None) -> str:
+def reason_clause(
+    literals: Sequence[Literal],
+    labels: Labels,
+    comparisons: dict[clingo.Symbol, Comparison] | None = None,
+    pronoun: bool = False,
+    actions: int = 1,
+    plan: Plan | None = None,
+) -> str:
     """The words of a reason: its literals' clauses joined by "and"; literals
     of one group share a clause ("neither pulling a lever nor pushing a man is
     inherently bad", or with the ``plan`` whose every action they name, "none
@@ -324,8 +351,7 @@ def reason_clause(literals: Sequence[Literal], labels: Labels,
         if isinstance(item, Literal):
             clauses.append(literal_clause(item, labels, comparisons, pronoun, actions))
         elif len(groups[item]) == 1:
-            clauses.append(literal_clause(groups[item][0], labels, comparisons, pronoun,
-                                          actions))
+            clauses.append(literal_clause(groups[item][0], labels, comparisons, pronoun, actions))
         else:
             clauses.append(_group_clause(item, groups[item], labels, pronoun, actions, plan))
     return join(clauses)
@@ -333,20 +359,31 @@ def reason_clause(literals: Sequence[Literal], labels: Labels,
 
 def explanation_clause(explanation: Explanation, pronoun: bool = False) -> str:
     """The chosen reason of an explanation in words ("because ..." follows)."""
-    return reason_clause(explanation.literals, explanation.labels, explanation.comparisons,
-                         pronoun, len(explanation.plan), explanation.plan)
+    return reason_clause(
+        explanation.literals,
+        explanation.labels,
+        explanation.comparisons,
+        pronoun,
+        len(explanation.plan),
+        explanation.plan,
+    )
 
 
 # -- sentences --------------------------------------------------------------------
 
+
 def option_sentence(labels: Labels, plan: Plan, modal: str = "can") -> str:
-    """"The man can pull the lever." (``modal`` "could" for alternatives)."""
+    """ "The man can pull the lever." (``modal`` "could" for alternatives)."""
     return f"{capitalize(agent(labels))} {modal} {plan_phrase(labels, plan)}."
 
 
-def verdict_sentence(explanation: Explanation, opening: str = "Doing so is",
-                     principle: bool = False, pronoun: bool = False) -> str:
-    """"Doing so is permissible because ..." (``opening`` e.g. "This would be";
+def verdict_sentence(
+    explanation: Explanation,
+    opening: str = "Doing so is",
+    principle: bool = False,
+    pronoun: bool = False,
+) -> str:
+    """ "Doing so is permissible because ..." (``opening`` e.g. "This would be";
     ``principle`` adds "under the ... principle")."""
     words = f"{opening} {verdict_word(explanation.permissible)}"
     if principle:
@@ -358,11 +395,13 @@ def verdict_sentence(explanation: Explanation, opening: str = "Doing so is",
 
 def non_contrastive(explanation: Explanation) -> str:
     """The non-contrastive explanation: the plan and why it is (im)permissible."""
-    return (f"{option_sentence(explanation.labels, explanation.plan)} "
-            f"{verdict_sentence(explanation)}")
+    return (
+        f"{option_sentence(explanation.labels, explanation.plan)} {verdict_sentence(explanation)}"
+    )
 
 
 # -- questions ------------------------------------------------------------------
+
 
 def _steps_words(count: int) -> str:
     return f"{count} step" if count == 1 else f"{count} steps"

@@ -23,12 +23,12 @@ from ethasp.interfaces.web.workspace import Refused, Workspace
 
 LOOPBACK_NAMES = {"127.0.0.1", "localhost", "::1"}
 MAX_BODY = 2_000_000  # bytes of one request
-WAIT = 0.3            # seconds a move waits for its job before answering "running"
+WAIT = 0.3  # seconds a move waits for its job before answering "running"
 
 SECURITY_HEADERS = {
     "Content-Security-Policy": "default-src 'self'; img-src 'self' data: blob:; "
-                               "object-src 'none'; base-uri 'none'; frame-ancestors 'none'; "
-                               "form-action 'self'",
+    "object-src 'none'; base-uri 'none'; frame-ancestors 'none'; "
+    "form-action 'self'",
     "X-Content-Type-Options": "nosniff",
     "Referrer-Policy": "no-referrer",
     "X-Frame-Options": "DENY",
@@ -55,8 +55,9 @@ def create_app(workspace: Workspace, loopback: bool = True) -> Flask:
     @app.before_request
     def guard():
         if loopback and _hostname(request.host) not in LOOPBACK_NAMES:
-            return _error(403, f"forbidden host {request.host!r}: the page is served on "
-                               "loopback only")
+            return _error(
+                403, f"forbidden host {request.host!r}: the page is served on loopback only"
+            )
         if request.method == "POST":
             origin = request.headers.get("Origin")
             if origin is not None and urlsplit(origin).netloc.lower() != request.host.lower():
@@ -136,14 +137,16 @@ def create_app(workspace: Workspace, loopback: bool = True) -> Flask:
     @app.get("/api/sessions/<key>/job")
     def job(key: str):
         session = workspace.session(key)
-        return jsonify({"session": session.id,
-                        "job": session.job.to_json() if session.job else None})
+        return jsonify(
+            {"session": session.id, "job": session.job.to_json() if session.job else None}
+        )
 
     @app.post("/api/sessions/<key>/start")
     def start(key: str):
         session, data = workspace.session(key), body()
-        return moved(session, workspace.start(session, data.get("principle"),
-                                              data.get("plan") or ""))
+        return moved(
+            session, workspace.start(session, data.get("principle"), data.get("plan") or "")
+        )
 
     @app.post("/api/sessions/<key>/ask")
     def ask(key: str):
@@ -159,8 +162,10 @@ def create_app(workspace: Workspace, loopback: bool = True) -> Flask:
     @app.post("/api/sessions/<key>/load")
     def load(key: str):
         session, data = workspace.session(key), body()
-        return moved(session, workspace.load(session, data.get("dialogue", ""),
-                                             data.get("name") or "dialogue.json"))
+        return moved(
+            session,
+            workspace.load(session, data.get("dialogue", ""), data.get("name") or "dialogue.json"),
+        )
 
     @app.post("/api/sessions/<key>/principle")
     def principle(key: str):
@@ -188,23 +193,27 @@ def create_app(workspace: Workspace, loopback: bool = True) -> Flask:
     def current_picture(key: str):
         dialogue = workspace.session(key).require()
         report = workspace.report(dialogue.current_plan)
-        return _svg(workspace.pictures.report(
-            report, f"current plan: {workspace.model.naming.actions(report.plan) or '(empty)'}",
-            words=_words()))
+        return _svg(
+            workspace.pictures.report(
+                report,
+                f"current plan: {workspace.model.naming.actions(report.plan) or '(empty)'}",
+                words=_words(),
+            )
+        )
 
     @app.get("/api/sessions/<key>/explain.svg")
     def explain_picture(key: str):
         dialogue = workspace.session(key).require()
-        return _svg(workspace.pictures.explained(workspace.explained(dialogue.current_plan),
-                                                 words=_words()))
+        return _svg(
+            workspace.pictures.explained(workspace.explained(dialogue.current_plan), words=_words())
+        )
 
     @app.get("/api/sessions/<key>/steps/<int:number>.svg")
     def step_picture(key: str, number: int):
         dialogue = workspace.session(key).require()
         if not 1 <= number <= len(dialogue.steps):
             raise Refused(404, f"no question {number} in this dialogue")
-        return _svg(workspace.pictures.answer(dialogue.steps[number - 1].answer,
-                                              words=_words()))
+        return _svg(workspace.pictures.answer(dialogue.steps[number - 1].answer, words=_words()))
 
     return app
 

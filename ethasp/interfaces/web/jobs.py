@@ -12,8 +12,9 @@ from __future__ import annotations
 import threading
 import time
 import traceback
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any, Callable
+from typing import Any
 
 from ethasp.errors import InputError
 from ethasp.planning.budget import Budget, Progress
@@ -49,7 +50,7 @@ class Job:
     def record(self, progress: Progress) -> None:
         """The budget's progress callback: keep the last few lines."""
         with self.lock:
-            self.progress = (self.progress + [progress.line()])[-5:]
+            self.progress = ([*self.progress, progress.line()])[-5:]
 
     def finish(self, state: str, error: str = "", note: str = "") -> bool:
         """End the job, unless it has ended already (cancelled); True if it ended now."""
@@ -81,10 +82,16 @@ class Job:
 
     def to_json(self) -> dict:
         with self.lock:
-            return {"id": self.id, "kind": self.kind, "description": self.description,
-                    "state": self.state, "elapsed": round(self.elapsed(), 1),
-                    "progress": self.progress[-1] if self.progress else "",
-                    "error": self.error, "note": self.note}
+            return {
+                "id": self.id,
+                "kind": self.kind,
+                "description": self.description,
+                "state": self.state,
+                "elapsed": round(self.elapsed(), 1),
+                "progress": self.progress[-1] if self.progress else "",
+                "error": self.error,
+                "note": self.note,
+            }
 
 
 def start(job: Job, work: Callable[[Budget], Callable[[], str]]) -> Job:

@@ -21,8 +21,7 @@ import threading
 import webbrowser
 from typing import TextIO
 
-from werkzeug.serving import WSGIRequestHandler, get_sockaddr, make_server, \
-    select_address_family
+from werkzeug.serving import WSGIRequestHandler, get_sockaddr, make_server, select_address_family
 
 from ethasp.errors import InputError
 from ethasp.interfaces.web.app import create_app
@@ -44,8 +43,9 @@ def is_loopback(host: str) -> bool:
         addresses = {info[4][0] for info in socket.getaddrinfo(host, None)}
     except (socket.gaierror, UnicodeError):
         return False
-    return bool(addresses) and all(ipaddress.ip_address(a.split("%")[0]).is_loopback
-                                   for a in addresses)
+    return bool(addresses) and all(
+        ipaddress.ip_address(a.split("%")[0]).is_loopback for a in addresses
+    )
 
 
 def page_url(host: str, port: int) -> str:
@@ -82,29 +82,38 @@ def listen(host: str, port: int) -> socket.socket:
         sock = socket.socket(family, socket.SOCK_STREAM)
     except (OSError, UnicodeError, ValueError) as error:
         reason = getattr(error, "strerror", None) or str(error)
-        raise InputError(f"cannot serve on {shown}: unknown host name or address ({reason}); "
-                         "--host takes a name or address of this machine") from None
+        raise InputError(
+            f"cannot serve on {shown}: unknown host name or address ({reason}); "
+            "--host takes a name or address of this machine"
+        ) from None
     try:
-        sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)   # as werkzeug does
+        sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)  # as werkzeug does
         sock.bind(address)
         sock.listen(64)
     except OSError as error:
         sock.close()
         if isinstance(error, socket.gaierror):
-            raise InputError(f"cannot serve on {shown}: unknown host name "
-                             f"({error.strerror or error}); --host takes a name or address "
-                             "of this machine") from None
+            raise InputError(
+                f"cannot serve on {shown}: unknown host name "
+                f"({error.strerror or error}); --host takes a name or address "
+                "of this machine"
+            ) from None
         if error.errno == errno.EADDRINUSE:
-            raise InputError(f"{where} is in use (by another program, or another ethasp "
-                             "serve); choose another port with --port N, or --port 0 for a "
-                             "free one") from None
+            raise InputError(
+                f"{where} is in use (by another program, or another ethasp "
+                "serve); choose another port with --port N, or --port 0 for a "
+                "free one"
+            ) from None
         if error.errno == errno.EACCES:
-            raise InputError(f"cannot serve on {where}: permission denied (ports below 1024 "
-                             "need privileges); choose another port with --port N, or "
-                             "--port 0 for a free one") from None
+            raise InputError(
+                f"cannot serve on {where}: permission denied (ports below 1024 "
+                "need privileges); choose another port with --port N, or "
+                "--port 0 for a free one"
+            ) from None
         if error.errno == errno.EADDRNOTAVAIL:
-            raise InputError(f"cannot serve on {shown}: not an address of this machine "
-                             "(see --host)") from None
+            raise InputError(
+                f"cannot serve on {shown}: not an address of this machine (see --host)"
+            ) from None
         raise InputError(f"cannot serve on {where} ({error.strerror or error})") from None
     return sock
 
@@ -112,8 +121,14 @@ def listen(host: str, port: int) -> socket.socket:
 class Server:
     """A running web server for a workspace (``serve_forever`` / ``shutdown``)."""
 
-    def __init__(self, workspace: Workspace, host: str | None = None, port: int = DEFAULT_PORT,
-                 log_requests: bool = False, quiet: bool = False):
+    def __init__(
+        self,
+        workspace: Workspace,
+        host: str | None = None,
+        port: int = DEFAULT_PORT,
+        log_requests: bool = False,
+        quiet: bool = False,
+    ):
         """Bind ``host`` (None: 127.0.0.1; an explicit choice otherwise) and ``port``
         (0: any free port); InputError in one line if that cannot be done.
         ``log_requests``: a line per HTTP request on standard error (werkzeug's);
@@ -125,9 +140,14 @@ class Server:
         try:
             # werkzeug serves a duplicate of the bound socket (its own binding
             # would print a message and exit when the port is in use).
-            self.httpd = make_server(host.strip("[]"), port, self.app, threaded=True,
-                                     request_handler=_handler(log_requests, quiet),
-                                     fd=sock.fileno())
+            self.httpd = make_server(
+                host.strip("[]"),
+                port,
+                self.app,
+                threaded=True,
+                request_handler=_handler(log_requests, quiet),
+                fd=sock.fileno(),
+            )
         finally:
             sock.close()
         self.host = host
@@ -153,8 +173,12 @@ def browser_problem() -> str | None:
         browser = webbrowser.get()
     except webbrowser.Error:
         return "no web browser found"
-    graphical = (sys.platform in ("darwin", "win32") or os.environ.get("DISPLAY")
-                 or os.environ.get("WAYLAND_DISPLAY") or os.environ.get("BROWSER"))
+    graphical = (
+        sys.platform in ("darwin", "win32")
+        or os.environ.get("DISPLAY")
+        or os.environ.get("WAYLAND_DISPLAY")
+        or os.environ.get("BROWSER")
+    )
     if not graphical and not isinstance(browser, webbrowser.BackgroundBrowser):
         return "no display for a web browser"
     return None
@@ -165,36 +189,49 @@ def open_page(url: str, err: TextIO = sys.stderr) -> threading.Thread | None:
     a while to start); one line on ``err`` when that cannot be done."""
     problem = browser_problem()
     if problem is not None:
-        print(f"ethasp: --open: {problem}; open {url} in a browser yourself", file=err,
-              flush=True)
+        print(f"ethasp: --open: {problem}; open {url} in a browser yourself", file=err, flush=True)
         return None
 
     def run() -> None:
         try:
             opened = webbrowser.open(url)
-        except Exception as error:  # noqa: BLE001 (a browser that fails to start)
+        except Exception as error:
             opened, problem = False, f" ({error})"
         else:
             problem = ""
         if not opened:
-            print(f"ethasp: --open: the web browser did not start{problem}; open {url} in "
-                  "a browser yourself", file=err, flush=True)
+            print(
+                f"ethasp: --open: the web browser did not start{problem}; open {url} in "
+                "a browser yourself",
+                file=err,
+                flush=True,
+            )
 
     thread = threading.Thread(target=run, name="ethasp-browser", daemon=True)
     thread.start()
     return thread
 
 
-def serve(workspace: Workspace, host: str | None = None, port: int = DEFAULT_PORT,
-          open_browser: bool = False, out: TextIO = sys.stdout, log_requests: bool = False,
-          quiet: bool = False) -> int:
+def serve(
+    workspace: Workspace,
+    host: str | None = None,
+    port: int = DEFAULT_PORT,
+    open_browser: bool = False,
+    out: TextIO = sys.stdout,
+    log_requests: bool = False,
+    quiet: bool = False,
+) -> int:
     """Serve the page until interrupted (Ctrl-C); see :class:`Server`."""
     server = Server(workspace, host, port, log_requests=log_requests, quiet=quiet)
     names = " ".join(workspace.files)
     print(f"ethasp: serving {names} at {server.url}", file=out, flush=True)
     if not server.loopback:
-        print(f"ethasp: warning: {server.host} is not a loopback address: anyone who can "
-              "reach it can use the page", file=out, flush=True)
+        print(
+            f"ethasp: warning: {server.host} is not a loopback address: anyone who can "
+            "reach it can use the page",
+            file=out,
+            flush=True,
+        )
     print("ethasp: press Ctrl-C to stop", file=out, flush=True)
     if open_browser:
         open_page(server.url)

@@ -18,10 +18,14 @@ def model_json(workspace: Workspace) -> dict:
     names = [Path(path).name for path in workspace.files]
     # The page keeps its dialogue under this key: the files' paths, and the text
     # of a model read from standard input (which has no path).
-    texts = [source.text for source in workspace.model.sources
-             if source.path is None and not source.generated]
-    key = hashlib.sha256("\n".join([str(Path(p).resolve()) for p in workspace.files] + texts)
-                         .encode()).hexdigest()[:16]
+    texts = [
+        source.text
+        for source in workspace.model.sources
+        if source.path is None and not source.generated
+    ]
+    key = hashlib.sha256(
+        "\n".join([str(Path(p).resolve()) for p in workspace.files] + texts).encode()
+    ).hexdigest()[:16]
     limits = workspace.limits
     principles = available_principles()
     return {
@@ -33,11 +37,12 @@ def model_json(workspace: Workspace) -> dict:
         "principles": [p.name for p in principles],
         "restricting": restricting_principles(),
         "model": workspace.pictures.valuation.to_json(workspace.model.naming),
-        "limits": {"question": limits.question, "plan": limits.plan,
-                   "questions": limits.questions},
-        "options": {"max_horizon": workspace.options.max_horizon,
-                    "time_limit": workspace.options.time_limit,
-                    "reasons_limit": workspace.options.reasons_limit},
+        "limits": {"question": limits.question, "plan": limits.plan, "questions": limits.questions},
+        "options": {
+            "max_horizon": workspace.options.max_horizon,
+            "time_limit": workspace.options.time_limit,
+            "reasons_limit": workspace.options.reasons_limit,
+        },
     }
 
 
@@ -55,18 +60,28 @@ def _step_json(workspace: Workspace, number: int, step: Step) -> dict:
     naming = workspace.model.naming
     data["constraints_shown"] = [naming.constraint(c.term) for c in answer.constraints]
     data["conflict_shown"] = [naming.constraint(c.term) for c in answer.conflict]
-    own = [str(c) for c in answer.constraints
-           if answer.constraints and c.question == answer.constraints[-1].question]
-    return {"number": number, "question": str(step.question), "under": step.under,
-            "own_constraints": own, "answer": data}
+    own = [
+        str(c)
+        for c in answer.constraints
+        if answer.constraints and c.question == answer.constraints[-1].question
+    ]
+    return {
+        "number": number,
+        "question": str(step.question),
+        "under": step.under,
+        "own_constraints": own,
+        "answer": data,
+    }
 
 
 def state_json(workspace: Workspace, session: Session) -> dict:
     """A session's dialogue: the current plan judged under every principle,
     the questions asked with their answers, and the job running (if any)."""
-    data: dict = {"session": session.id,
-                  "job": session.job.to_json() if session.job is not None else None,
-                  "dialogue": None}
+    data: dict = {
+        "session": session.id,
+        "job": session.job.to_json() if session.job is not None else None,
+        "dialogue": None,
+    }
     dialogue = session.dialogue
     if dialogue is None:
         return data
@@ -81,18 +96,23 @@ def state_json(workspace: Workspace, session: Session) -> dict:
     # it was made without the principle (dropped on a proof).
     source = dialogue.current_step
     current["from_question"] = source
-    current["made_without_principle"] = (source > 0 and
-                                         dialogue.steps[source - 1].answer.principle_dropped)
-    data.update({
-        "dialogue": dialogue.to_json(),
-        "principle": dialogue.principle,
-        "under": dialogue.under,
-        "first_plan": _actions(workspace, dialogue.plan),
-        "current": current,
-        "steps": [_step_json(workspace, number, step)
-                  for number, step in enumerate(dialogue.steps, start=1)],
-        "unmeetable": dialogue.unmeetable is not None,
-    })
+    current["made_without_principle"] = (
+        source > 0 and dialogue.steps[source - 1].answer.principle_dropped
+    )
+    data.update(
+        {
+            "dialogue": dialogue.to_json(),
+            "principle": dialogue.principle,
+            "under": dialogue.under,
+            "first_plan": _actions(workspace, dialogue.plan),
+            "current": current,
+            "steps": [
+                _step_json(workspace, number, step)
+                for number, step in enumerate(dialogue.steps, start=1)
+            ],
+            "unmeetable": dialogue.unmeetable is not None,
+        }
+    )
     return data
 
 

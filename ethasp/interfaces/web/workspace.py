@@ -14,9 +14,9 @@ import json
 import secrets
 import threading
 from collections import OrderedDict
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Callable
 
 from ethasp.errors import InputError
 from ethasp.interfaces.pictures import Pictures
@@ -50,21 +50,24 @@ class Options:
     reasons_limit: int = DEFAULT_LIMIT
 
     def dialogue(self) -> dict:
-        return {"max_horizon": self.max_horizon, "time_limit": self.time_limit,
-                "reasons_limit": self.reasons_limit}
+        return {
+            "max_horizon": self.max_horizon,
+            "time_limit": self.time_limit,
+            "reasons_limit": self.reasons_limit,
+        }
 
 
 @dataclass(frozen=True)
 class Limits:
     """Limits on what the page may send and keep."""
 
-    question: int = 500        # characters of a typed question
-    plan: int = 10_000         # characters of a typed plan
-    name: int = 100            # characters of a principle name or file name
+    question: int = 500  # characters of a typed question
+    plan: int = 10_000  # characters of a typed plan
+    name: int = 100  # characters of a principle name or file name
     dialogue: int = 1_000_000  # characters of a saved dialogue to load
-    questions: int = 100       # questions in one dialogue
-    sessions: int = 32         # dialogues kept (the least recently used idle one goes)
-    running: int = 2           # searches running at once (cancelled ones until they end)
+    questions: int = 100  # questions in one dialogue
+    sessions: int = 32  # dialogues kept (the least recently used idle one goes)
+    running: int = 2  # searches running at once (cancelled ones until they end)
 
     def check(self, what: str, text: object, limit: int) -> str:
         if not isinstance(text, str):
@@ -95,13 +98,21 @@ class Session:
 class Workspace:
     """The served model, its dialogues, and caches of judgements and pictures."""
 
-    def __init__(self, model: Model, files: list[str], principle: str = "deontology",
-                 options: Options = Options(), limits: Limits = Limits()):
+    def __init__(
+        self,
+        model: Model,
+        files: list[str],
+        principle: str = "deontology",
+        options: Options = Options(),
+        limits: Limits = Limits(),
+    ):
         self.model = model
         self.files = list(files)
         self.principle = one_restricting_principle(
-            principle, "the page starts dialogues under the principle that their contrast "
-                       "plans must satisfy, one of")
+            principle,
+            "the page starts dialogues under the principle that their contrast "
+            "plans must satisfy, one of",
+        )
         self.options = options
         self.limits = limits
         self.pictures = Pictures(model)
@@ -121,8 +132,16 @@ class Workspace:
                 self._reports.move_to_end(key)
                 return self._reports[key]
         budget = budget or Budget(self.options.time_limit)
-        report = searching(judge, budget, self.model, plan, None, self.options.max_horizon,
-                           self.options.time_limit, self.options.reasons_limit)
+        report = searching(
+            judge,
+            budget,
+            self.model,
+            plan,
+            None,
+            self.options.max_horizon,
+            self.options.time_limit,
+            self.options.reasons_limit,
+        )
         if any(judgement.status != "proven" for judgement in report.judgements):
             return report  # cut short: judge it again next time
         with self._lock:
@@ -173,9 +192,10 @@ class Workspace:
         with self._lock:
             session = self._sessions.get(key)
             if session is None:
-                raise Refused(404, "unknown session (the server was restarted, or the "
-                                   "dialogue was closed)")
-            self._sessions.move_to_end(key)   # the least recently used idle one goes first
+                raise Refused(
+                    404, "unknown session (the server was restarted, or the dialogue was closed)"
+                )
+            self._sessions.move_to_end(key)  # the least recently used idle one goes first
             return session
 
     # -- jobs ---------------------------------------------------------------------------
@@ -190,18 +210,27 @@ class Workspace:
     def free(session: Session) -> Session:
         """The session, if no request of it is running."""
         if session.busy:
-            raise Refused(409, "busy: a request of this dialogue is running; wait for it or "
-                               "cancel it")
+            raise Refused(
+                409, "busy: a request of this dialogue is running; wait for it or cancel it"
+            )
         return session
 
-    def submit(self, session: Session, kind: str, description: str,
-               work: Callable[[Budget], Callable[[], str]]) -> Job:
+    def submit(
+        self,
+        session: Session,
+        kind: str,
+        description: str,
+        work: Callable[[Budget], Callable[[], str]],
+    ) -> Job:
         """Start a job for the session (one at a time; a few in the server)."""
         self.free(session)
         if self.running() >= self.limits.running:
-            raise Refused(503, f"busy: {self.limits.running} searches are still running "
-                               "(cancelled searches end with their current solver call); "
-                               "try again shortly")
+            raise Refused(
+                503,
+                f"busy: {self.limits.running} searches are still running "
+                "(cancelled searches end with their current solver call); "
+                "try again shortly",
+            )
         job = Job(secrets.token_hex(8), kind, description, Budget(self.options.time_limit))
         job.budget.on_progress = job.record
         session.job = job
@@ -216,24 +245,37 @@ class Workspace:
         self.free(session)
         name = self.limits.check("principle", principle or self.principle, self.limits.name)
         chosen = one_restricting_principle(
-            name, "a dialogue starts under the principle that its contrast plans must "
-                  "satisfy, one of")
+            name,
+            "a dialogue starts under the principle that its contrast plans must satisfy, one of",
+        )
         plan_text = self.limits.check("plan", plan_text or "", self.limits.plan)
         plan = Plan.parse(plan_text) if plan_text.strip() else None
 
         def work(budget: Budget) -> Callable[[], str]:
-            dialogue = searching(Dialogue.start, budget, self.model, chosen, plan, self.files,
-                                 **self.options.dialogue())
+            dialogue = searching(
+                Dialogue.start,
+                budget,
+                self.model,
+                chosen,
+                plan,
+                self.files,
+                **self.options.dialogue(),
+            )
             self._prepare(dialogue, budget)
 
             def commit() -> str:
                 session.dialogue = dialogue
                 return f"a new dialogue under {chosen}"
+
             return commit
 
-        what = (f"judging the plan under {chosen}" if plan is not None
-                else f"making a plan under {chosen}" if self.model.own_plan() is None
-                else f"judging the model's own plan under {chosen}")
+        what = (
+            f"judging the plan under {chosen}"
+            if plan is not None
+            else f"making a plan under {chosen}"
+            if self.model.own_plan() is None
+            else f"judging the model's own plan under {chosen}"
+        )
         return self.submit(session, "start", what, work)
 
     def ask(self, session: Session, text: str) -> Job:
@@ -242,14 +284,18 @@ class Workspace:
         self.free(session)
         text = self.limits.check("question", text, self.limits.question)
         if step_question(text) is not None:
-            raise InputError(f"'{text.strip()}' asks how a step serves the goal, not for a "
-                             "contrast: the page shows it without a search (GET "
-                             f"/api/sessions/ID/explain?step={step_question(text)})")
+            raise InputError(
+                f"'{text.strip()}' asks how a step serves the goal, not for a "
+                "contrast: the page shows it without a search (GET "
+                f"/api/sessions/ID/explain?step={step_question(text)})"
+            )
         question = Question.parse(text)
         dialogue = session.require()
         if len(dialogue.steps) >= self.limits.questions:
-            raise InputError(f"at most {self.limits.questions} questions in one dialogue; "
-                             "undo some, or save it and start anew")
+            raise InputError(
+                f"at most {self.limits.questions} questions in one dialogue; "
+                "undo some, or save it and start anew"
+            )
 
         def work(budget: Budget) -> Callable[[], str]:
             copy = replace(dialogue, steps=list(dialogue.steps))
@@ -259,6 +305,7 @@ class Workspace:
             def commit() -> str:
                 session.dialogue = copy
                 return f"answered: {question}"
+
             return commit
 
         return self.submit(session, "ask", f"answering '{question}'", work)
@@ -277,6 +324,7 @@ class Workspace:
             def commit() -> str:
                 session.dialogue = copy
                 return f"took back: {step.question}"
+
             return commit
 
         return self.submit(session, "undo", "taking back the last question", work)
@@ -284,15 +332,15 @@ class Workspace:
     def switch(self, session: Session, principle: str) -> str:
         """The principle later contrast plans must satisfy (no search)."""
         dialogue = self.free(session).require()
-        return dialogue.switch_principle(self.limits.check("principle", principle,
-                                                           self.limits.name))
+        return dialogue.switch_principle(
+            self.limits.check("principle", principle, self.limits.name)
+        )
 
     def load(self, session: Session, text: str, name: str = "dialogue.json") -> Job:
         """Load a dialogue saved by the page or by ``ethasp dialogue`` (its
         questions are asked anew, about the served model)."""
         self.free(session)
-        name = Path(self.limits.check("file name", name or "dialogue.json",
-                                      self.limits.name)).name
+        name = Path(self.limits.check("file name", name or "dialogue.json", self.limits.name)).name
         text = self.limits.check(name, text, self.limits.dialogue)
         try:
             data = json.loads(text)
@@ -305,22 +353,25 @@ class Workspace:
             saved = sorted(Path(str(path)).name for path in data["model"])
             served = sorted(Path(path).name for path in self.files)
             if saved and saved != served:
-                note = (f"; it was saved for {', '.join(saved)} and was replayed with the "
-                        f"served model {', '.join(served)}")
+                note = (
+                    f"; it was saved for {', '.join(saved)} and was replayed with the "
+                    f"served model {', '.join(served)}"
+                )
 
         def work(budget: Budget) -> Callable[[], str]:
-            dialogue = searching(Dialogue.from_json, budget, data, self.model,
-                                 **self.options.dialogue())
+            dialogue = searching(
+                Dialogue.from_json, budget, data, self.model, **self.options.dialogue()
+            )
             dialogue.model_files = list(self.files)
             self._prepare(dialogue, budget)
 
             def commit() -> str:
                 session.dialogue = dialogue
                 return f"loaded {name} ({len(dialogue.steps)} questions){note}"
+
             return commit
 
-        return self.submit(session, "load", f"loading {name} (asking its questions again)",
-                           work)
+        return self.submit(session, "load", f"loading {name} (asking its questions again)", work)
 
     def cancel(self, session: Session) -> Job | None:
         job = session.job
