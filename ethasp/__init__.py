@@ -6,7 +6,7 @@ Generated Explanations" (IEEE CASE 2021).
 """
 
 from importlib import import_module
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 # Names are imported on first use, so that a command (ethasp plan) loads only
 # the modules it needs.
@@ -34,6 +34,19 @@ _HOMES = {
     "validate": "ethasp.planning.validation",
     "batch": "ethasp.batch.run",
 }
+
+if TYPE_CHECKING:  # the same names for type checkers, which do not run __getattr__
+    from ethasp.batch.run import batch
+    from ethasp.errors import InputError
+    from ethasp.planning.model import Model
+    from ethasp.planning.plan import Plan
+    from ethasp.planning.search import SearchResult, find_plan
+    from ethasp.planning.validation import Validation, validate
+    from ethasp.principles.formula import Formula, format_formula, format_literal, parse_formula
+    from ethasp.principles.judgement import Judgement, JudgementReport, QueryResult, query
+    from ethasp.principles.restriction import HPlanResult, plan_with_principles
+    from ethasp.questions.steps import explain_steps
+    from ethasp.reasons.reasons import Explanation, explain, judge
 
 
 def __getattr__(name: str) -> Any:

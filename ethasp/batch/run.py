@@ -14,12 +14,16 @@ import os
 import time
 from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from ethasp.batch.cases import Case, discover, read_inputs
 from ethasp.batch.output import Output, line_hash
 from ethasp.batch.pool import OVERRUN_GRACE, LocalPool, default_workers
-from ethasp.batch.task import ASK, CASE, TASKS, Settings, Work, version
+from ethasp.batch.task import ASK, CASE, TASKS, Key, Settings, Work, version
 from ethasp.errors import InputError
+
+if TYPE_CHECKING:
+    from ethasp.batch.cluster import DaskCluster
 
 # The order of the first fields of a line (the others follow as computed).
 FIRST = ("case", "task", "principle", "question", "permissible", "status", "plan", "utility")
@@ -31,8 +35,8 @@ class _Planned:
     """A case, its lines' hashes by key, and the keys still to compute."""
 
     case: Case
-    hashes: dict
-    missing: tuple
+    hashes: dict[Key, str]
+    missing: tuple[Key, ...]
     failed_before: bool
 
 
@@ -61,7 +65,7 @@ class Batch:
         self.workers = workers
         self.scheduler = scheduler
         self.grace = grace
-        self.backend = None
+        self.backend: LocalPool | DaskCluster | None = None
         self.lines_written = 0
         self.seconds = 0.0
         self._closed = False
@@ -101,9 +105,8 @@ class Batch:
         failed = hashes[CASE] in present or any(
             "error" in present[hashes[key]] for key in keys if hashes[key] in present
         )
-        if hashes[CASE] in present:
-            missing = ()
-        else:
+        missing: tuple[Key, ...] = ()
+        if hashes[CASE] not in present:
             missing = tuple(key for key in keys if hashes[key] not in present)
             if case.problem is not None and not keys:
                 missing = (CASE,)
@@ -111,18 +114,19 @@ class Batch:
 
     # -- running ------------------------------------------------------------------
 
-    def _backend(self):
+    def _backend(self) -> LocalPool | DaskCluster:
         if self.scheduler is not None:
             from ethasp.batch.cluster import DaskCluster
 
             return DaskCluster(self.scheduler, self.settings, self.grace)
         return LocalPool(self.workers, self.settings, self.grace)
 
-    def start(self) -> None:
+    def start(self) -> LocalPool | DaskCluster:
         """Connect to the cluster (or prepare the local pool) before iterating;
         a scheduler that cannot be reached is an InputError here."""
         if self.backend is None:
             self.backend = self._backend()
+        return self.backend
 
     def __iter__(self) -> Iterator[dict]:
         started = time.monotonic()
@@ -135,8 +139,8 @@ class Batch:
         try:
             if not works:
                 return
-            self.start()
-            for work, lines in self.backend.run(works):
+            backend = self.start()
+            for work, lines in backend.run(works):
                 item = by_case[id(work.case)]
                 failed = False
                 for line in lines:

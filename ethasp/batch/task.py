@@ -40,8 +40,9 @@ JUDGE, PLAN, ASK = "judge", "plan", "ask"
 TASKS = (JUDGE, PLAN, ASK)
 ERROR = "error"
 
-# The key of a line: (principle, question); (None, None) for a whole case's error line.
-CASE = (None, None)
+# The key of a line: (principle, question); CASE = (None, None) for a whole case's error line.
+Key = tuple[str | None, str | None]
+CASE: Key = (None, None)
 
 
 @dataclass(frozen=True)

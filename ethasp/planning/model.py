@@ -155,15 +155,14 @@ class Model:
         """
         from ethasp.planning.situation import situation_paths, translate
 
-        paths = [Path(path) for path in paths]
         sources, naming = [], Naming()
-        situations, paths = situation_paths(paths)
+        situations, files = situation_paths(Path(path) for path in paths)
         for path in situations:
             sources.append(Source(str(path), translate(path), generated=True, kind="situation"))
-        if any(path.suffix.lower() == ".pddl" for path in paths):
+        if any(path.suffix.lower() == ".pddl" for path in files):
             from ethasp.planning.pddl import split_paths, translate_files
 
-            pddl_paths, paths = split_paths(paths)
+            pddl_paths, files = split_paths(files)
             try:
                 program, name = translate_files(pddl_paths)
             except RecursionError:
@@ -179,7 +178,7 @@ class Model:
                 )
             )
             naming = PddlNaming()
-        for path in paths:
+        for path in files:
             text = read_text(path)
             scan_file(path, text)
             sources.append(Source(str(path), text, path))

@@ -23,7 +23,9 @@ def steps(count: int) -> str:
 
 def split_terms(text: str) -> list[str]:
     """Split "a1 push(man, bridge) a3" at spaces outside parentheses and strings."""
-    terms, depth, current, quoted, escaped = [], 0, [], False, False
+    terms: list[str] = []
+    current: list[str] = []
+    depth, quoted, escaped = 0, False, False
     for char in text:
         if quoted:
             quoted = escaped or char != '"'

@@ -178,6 +178,13 @@ def add_facts(ctl: clingo.Control, facts: Iterable) -> None:
                 backend.add_rule([backend.add_atom(symbol)])
 
 
+def solve_configuration(ctl: clingo.Control) -> clingo.Configuration:
+    """The ``solve`` group of a control's configuration (models, enum_mode...)."""
+    config = ctl.configuration.solve
+    assert isinstance(config, clingo.Configuration)
+    return config
+
+
 def occurrences(plan) -> list[clingo.Symbol]:
     """A plan's ``occurs(A,T)`` atoms."""
     return [
@@ -341,7 +348,7 @@ class Planner:
         the model's base part: a model must have exactly one."""
         if self._searching:
             raise RuntimeError("the model is checked before any search")
-        self.ctl.configuration.solve.models = "2"
+        solve_configuration(self.ctl).models = "2"
         answers: list[list[clingo.Symbol]] = []
         with self.ctl.solve(yield_=True) as handle:
             for answer in handle:
@@ -877,7 +884,7 @@ class Planner:
             self._settle(budget)
         except GroundingStopped:
             return Outcome(None)
-        config = self.ctl.configuration.solve
+        config = solve_configuration(self.ctl)
         config.opt_mode = "opt" if optimize else "ignore"
         config.models = "0" if optimize else str(models)
         found: list[list[clingo.Symbol]] = []
@@ -910,7 +917,7 @@ class Planner:
         promise the same answer every time (restrictions, questions) keep one."""
         if count != self._threads:
             self._settle(None)
-            self.ctl.configuration.solve.parallel_mode = str(count)
+            solve_configuration(self.ctl).parallel_mode = str(count)
             self._threads = count
 
     @_locked

@@ -727,10 +727,14 @@ def _any_plan(
         began = time.monotonic()
         end = began + slice_
         watch = exact.watch(horizon)
+
+        def past(end: float = end) -> bool:
+            return time.monotonic() > end
+
         outcome = planner.solve(
             horizon,
             setting,
-            watch.until(lambda end=end: time.monotonic() > end),
+            watch.until(past),
             models=1,
             mutex_after=exact.mutex_after(),
             moot=exact.done,

@@ -78,7 +78,7 @@ class Validation:
         """
         if self.valid:
             return ""
-        if self.failure_step is not None:
+        if self.failure_step is not None and self.failure_action is not None:
             unmet = self.unmet_preconditions
             static = (
                 f" and no action changes {'it' if len(unmet) == 1 else 'them'}"

@@ -51,6 +51,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
+from typing import Any, NoReturn
 
 import clingo
 from clorm import Raw
@@ -175,7 +176,7 @@ class _Parser:
 
     # -- scanning ---------------------------------------------------------------
 
-    def fail(self, message: str, pos: int | None = None):
+    def fail(self, message: str, pos: int | None = None) -> NoReturn:
         column = (self.pos if pos is None else pos) + 1
         raise InputError(f"formula: column {column}: {message}")
 
@@ -274,12 +275,19 @@ class _Parser:
             )
         operands.append((Function(name, [term for term, _ in arguments]), depth))
 
+    def not_a_formula(self) -> NoReturn:
+        self.fail(
+            f"expected a formula (Good, Bad, Neutral, Caused, GEq, Goal, Finally, "
+            f"ButFor, Instrumental, Avoidable, Means, Means2, End, U, not, true, "
+            f"false or '('), found {self.found()}"
+        )
+
     def atom(self) -> clingo.Symbol:
         word = self.word()
         key = word.lower() if word else None
-        if key == "true" and self.accept(word):
+        if word and key == "true" and self.accept(word):
             return Function("all", [EMPTY])
-        if key == "false" and self.accept(word):
+        if word and key == "false" and self.accept(word):
             return Function("any", [EMPTY])
         self.skip()
         if key == "u" or (
@@ -288,6 +296,8 @@ class _Parser:
             and (self.text[self.pos].isdigit() or self.text[self.pos] == "-")
         ):
             return self.comparison()
+        if word is None or key is None:
+            self.not_a_formula()
         if key in FACT_OPERATORS or key in PATIENT_OPERATORS:
             self.accept(word)
             self.expect("(")
@@ -299,11 +309,7 @@ class _Parser:
             self.expect(")")
             return term
         if key not in ATOMS or key in ("ucompare", "goal_fact", "but_for"):
-            self.fail(
-                f"expected a formula (Good, Bad, Neutral, Caused, GEq, Goal, Finally, "
-                f"ButFor, Instrumental, Avoidable, Means, Means2, End, U, not, true, "
-                f"false or '('), found {self.found()}"
-            )
+            self.not_a_formula()
         self.accept(word)
         self.expect("(")
         if key == "geq":
@@ -489,8 +495,9 @@ def parse_formula(text: str, elements: Elements) -> Formula:
 # parentheses.
 _IMP, _OR, _AND, _NOT, _ATOM = range(1, 6)
 
-ConjMembers = Mapping[object, Iterable[tuple[object, object]]]
-Members = Mapping[object, Sequence[clingo.Symbol]]
+# Mappings read by name (a symbol or its text), so their keys are of any type.
+ConjMembers = Mapping[Any, Iterable[tuple[Any, Any]]]
+Members = Mapping[Any, Sequence[clingo.Symbol]]
 
 
 def _truth(value) -> bool:
@@ -531,7 +538,8 @@ def _element(term: clingo.Symbol, naming: Naming | None = None) -> str:
         action = term.arguments[0]
         return naming.action(action) if naming is not None and naming.pddl else str(action)
     if term.name == "fact" and len(term.arguments) == 2:
-        return format_fact(*term.arguments, naming)
+        variable, value = term.arguments
+        return format_fact(variable, value, naming)
     raise ValueError(f"not an element of L: {term}")
 
 
@@ -585,7 +593,7 @@ def _atom_text(term: clingo.Symbol, conj: _Lookup) -> str:
         name in ("caused", "goal_fact", "finally", "but_for", "instrumental", "avoidable")
         and len(args) == 2
     ):
-        return f"{ATOMS[name]}({format_fact(*args, conj.naming)})"
+        return f"{ATOMS[name]}({format_fact(args[0], args[1], conj.naming)})"
     if name in ("means", "means2", "end") and len(args) == 1:
         patient = conj.naming.name(args[0]) if conj.naming is not None else str(args[0])
         return f"{ATOMS[name]}({patient})"

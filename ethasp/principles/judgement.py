@@ -44,7 +44,12 @@ from ethasp.errors import InputError
 from ethasp.planning.budget import Budget
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
-from ethasp.planning.planner import TRACE_ENCODINGS, Answer, occurrences
+from ethasp.planning.planner import (
+    TRACE_ENCODINGS,
+    Answer,
+    occurrences,
+    solve_configuration,
+)
 from ethasp.planning.search import DEFAULT_MAX_HORIZON, FOUND, NONE, find_plan
 from ethasp.planning.validation import TRACE_ATOMS, Validation, read_validation, validate
 from ethasp.principles.formula import Elements, parse_formula
@@ -191,8 +196,9 @@ def counterfactuals(model: Model, plan: Plan) -> list[clingo.Symbol]:
     key = ("counterfactuals", plan)
     if key not in memo:
         ctl = model.planner.program(COUNTERFACTUAL, symbols=occurrences(plan))
-        ctl.configuration.solve.enum_mode = "brave"
-        ctl.configuration.solve.models = "0"
+        config = solve_configuration(ctl)
+        config.enum_mode = "brave"
+        config.models = "0"
         last: list[clingo.Symbol] = []
 
         def keep(answer: clingo.Model) -> None:

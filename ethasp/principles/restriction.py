@@ -26,6 +26,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 from ethasp.errors import InputError
 from ethasp.planning.budget import Budget
@@ -137,7 +138,7 @@ class HPlanResult:
     utility: int | None = None
 
     def to_json(self) -> dict:
-        data = {
+        data: dict[str, Any] = {
             "status": self.status,
             "plan": self.plan.to_list() if self.plan is not None else None,
             "optimal": self.optimal if self.plan is not None else None,
@@ -251,7 +252,8 @@ def plan_with_principles(
             threads=restricted is model,
         )
     )
-    if result.status == FOUND and best is not None and best.status != PROVEN:
+    found = result.plan if result.status == FOUND else None
+    if found is not None and best is not None and best.status != PROVEN:
         # A plan reaching the best utility found is no proof: a better state may
         # exist.  The plan is reported, bounded: permissible as far as searched.
         return HPlanResult(
@@ -261,11 +263,11 @@ def plan_with_principles(
             result.horizon,
             best=best,
             optimal=result.optimal,
-            utility=_final_utility(model, result.plan),
-            proof=f"a plan of {steps(len(result.plan))} reaches utility {best.utility}, but a "
+            utility=_final_utility(model, found),
+            proof=f"a plan of {steps(len(found))} reaches utility {best.utility}, but a "
             f"better reachable state is not excluded ({best.proof})",
         )
-    if result.status == FOUND:
+    if found is not None:
         kind = f"a shortest {plans}" if result.optimal else f"a {plans}"
         return HPlanResult(
             FOUND,
@@ -276,7 +278,7 @@ def plan_with_principles(
             result.plans,
             best,
             optimal=result.optimal,
-            utility=_final_utility(model, result.plan),
+            utility=_final_utility(model, found),
         )
     if result.status == NONE:
         # With utilitarianism the search asked for utility >= best.utility, a lower

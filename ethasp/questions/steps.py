@@ -49,10 +49,10 @@ MAX_STEPS = 400
 @dataclass(frozen=True)
 class Node:
     """Where a link starts or ends: the action of a step (``step``), an event
-    of a step (``event``), or the goal (``goal``)."""
+    of a step (``event``), or the goal (``goal``, step 0)."""
 
     kind: str
-    step: int | None = None
+    step: int = 0
     event: clingo.Symbol | None = None
 
     @classmethod
@@ -244,7 +244,7 @@ def _link_order(link: CausalLink):
 def _node_words(labels: Labels, plan: Plan, node: Node) -> str:
     if node.kind == "goal":
         return "the goal"
-    if node.kind == "event":
+    if node.kind == "event" and node.event is not None:
         return f"the event {words.term_words(node.event)} of step {node.step}"
     return f"step {node.step}"
 
@@ -277,9 +277,9 @@ def _clause(labels: Labels, plan: Plan, consumer: Node, links: list[CausalLink])
 def _moral_words(labels: Labels, explained: StepExplanation) -> str:
     parts = []
     if explained.utility != 0:
-        value = "inherently bad" if explained.utility < 0 else "inherently good"
+        quality = "inherently bad" if explained.utility < 0 else "inherently good"
         parts.append(
-            f"{words.gerund(labels, explained.action)} is {value} (utility {explained.utility})"
+            f"{words.gerund(labels, explained.action)} is {quality} (utility {explained.utility})"
         )
     for variable, value, utility in explained.causes:
         verb = "causes" if utility < 0 else "brings about"
@@ -386,15 +386,15 @@ def explain_steps(model: Model, plan: Plan) -> StepsExplanation:
         )
         by_provider.setdefault(link.provider, []).append(link)
     chains: dict[int, list[tuple[int, Node]]] = {}
-    for atom in atoms.query(Chain).all():
-        chains.setdefault(atom.step, []).append((atom.index, Node.of(atom.node.symbol)))
-    utilities = {atom.step: atom.utility for atom in atoms.query(StepUtility).all()}
+    for chain in atoms.query(Chain).all():
+        chains.setdefault(chain.step, []).append((chain.index, Node.of(chain.node.symbol)))
+    utilities = {u.step: u.utility for u in atoms.query(StepUtility).all()}
     causes: dict[int, list[tuple[clingo.Symbol, bool, int]]] = {}
-    for atom in atoms.query(StepCauses).all():
-        causes.setdefault(atom.step, []).append(
-            (atom.variable.symbol, atom.value == "true", atom.utility)
+    for cause in atoms.query(StepCauses).all():
+        causes.setdefault(cause.step, []).append(
+            (cause.variable.symbol, cause.value == "true", cause.utility)
         )
-    removable = {atom.step for atom in atoms.query(Removable).all()}
+    removable = {r.step for r in atoms.query(Removable).all()}
     steps = []
     for number, action in enumerate(plan, start=1):
         node = Node("step", number)
@@ -412,7 +412,7 @@ def explain_steps(model: Model, plan: Plan) -> StepsExplanation:
     events = [
         EventExplanation(node.step, node.event, sorted(links, key=_link_order))
         for node, links in sorted(by_provider.items(), key=lambda i: _node_order(i[0]))
-        if node.kind == "event"
+        if node.kind == "event" and node.event is not None
     ]
     labels = model_labels(model)
     return StepsExplanation(plan, steps, events, labels, plan_text(labels, plan, steps, events))

@@ -41,6 +41,7 @@ from ethasp.errors import InputError
 from ethasp.planning.budget import Budget
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
+from ethasp.planning.planner import solve_configuration
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
 from ethasp.planning.validation import validate
 from ethasp.principles.formula import format_literal
@@ -116,7 +117,7 @@ def _enumerate(ctl: clingo.Control, limit: int) -> tuple[list[list[clingo.Symbol
     they are all there are.  One more is asked for: clingo does not say
     ``exhausted`` when it stops at its model limit, so only an answer set
     beyond the ``limit`` proves that more exist."""
-    config = ctl.configuration.solve
+    config = solve_configuration(ctl)
     config.opt_mode = "ignore"
     config.enum_mode = "domRec"
     config.models = str(limit + 1)
@@ -129,7 +130,7 @@ def _enumerate(ctl: clingo.Control, limit: int) -> tuple[list[list[clingo.Symbol
 
 def _optimum(ctl: clingo.Control) -> list[clingo.Symbol] | None:
     """The shown atoms of an optimal answer set, None if there is none."""
-    config = ctl.configuration.solve
+    config = solve_configuration(ctl)
     config.opt_mode = "opt"
     config.models = "0"
     found: list[list[clingo.Symbol]] = []
