@@ -8,7 +8,7 @@ in explicit states (quantifiers over the objects of their types), derived
 predicates as the least fixpoint of their definitions, stratum by stratum,
 effects whose conditions are evaluated in the state before the action
 (deletes applied before adds), and breadth-first search.  Used only by tests,
-as an oracle for the translation into ASP (ethasp/planning/pddl.py) and the
+as an oracle for the translation into ASP (ethasp/planning/readers/pddl.py) and the
 encodings.
 
 Formulas are tuples: ("atom", p, terms), ("=", t1, t2), ("not", f),

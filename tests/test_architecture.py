@@ -11,7 +11,7 @@ PACKAGE = ROOT / "ethasp"
 
 # Lowest first: a group may import itself and the groups before it.
 LAYERS = ["core", "planning", "principles", "reasons", "questions", "batch", "interfaces"]
-CORE = {"ethasp", "ethasp.errors", "ethasp.resources", "ethasp.vocabulary"}
+CORE = {"ethasp", "ethasp.errors", "ethasp.memo", "ethasp.resources", "ethasp.vocabulary"}
 
 
 def _module(path: Path) -> str:

@@ -16,7 +16,7 @@ import pytest
 from conftest import MODELS, ROOT
 
 from ethasp.interfaces.cli import main
-from ethasp.planning.namespace import reserved, signature_text
+from ethasp.planning.driver.namespace import reserved, signature_text
 
 CORPUS = Path(__file__).resolve().parent / "bad_inputs"
 FIXTURES = CORPUS / "fixtures"

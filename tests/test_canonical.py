@@ -10,8 +10,8 @@ from oracle import features, random_model
 
 from ethasp import Model
 from ethasp.planning.budget import Budget
+from ethasp.planning.driver.planner import Setting
 from ethasp.planning.plan import Plan
-from ethasp.planning.planner import Setting
 from ethasp.planning.search import plans_of
 
 FILES = ["planning/plan.lp", "planning/canonical.lp"]

@@ -27,7 +27,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from ethasp.interfaces.cli import main
-from ethasp.planning.namespace import reserved
+from ethasp.planning.driver.namespace import reserved
 
 pytestmark = pytest.mark.slow  # every test of this file runs ethasp many times
 

@@ -1,5 +1,5 @@
 """Faster plan search: the greedy forward search of any-plan search
-(ethasp.planning.greedy), the trace of a plan over the facts of its own
+(ethasp.planning.engines.greedy), the trace of a plan over the facts of its own
 actions, and plans read from answer sets without the typed vocabulary;
 against the oracle and on IPC instances (exact layers started early:
 test_layers.py)."""
@@ -15,10 +15,10 @@ from test_layers import finished
 
 from ethasp import Model, find_plan, validate
 from ethasp.planning.budget import Budget
-from ethasp.planning.greedy import EXHAUSTED, Greedy, Task, greedy_plan
-from ethasp.planning.layers import Atoms, search_model
+from ethasp.planning.driver.planner import TRACE_ENCODINGS, occurrences
+from ethasp.planning.engines.greedy import EXHAUSTED, Greedy, Task, greedy_plan
+from ethasp.planning.engines.layers import Atoms, search_model
 from ethasp.planning.plan import Plan
-from ethasp.planning.planner import TRACE_ENCODINGS, occurrences
 
 IPC = Path(__file__).resolve().parent / "data" / "ipc"
 

@@ -32,8 +32,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from ethasp import Model, Plan
+from ethasp.planning.readers.situation import name_term
 from ethasp.planning.search import FOUND, find_plan
-from ethasp.planning.situation import name_term
 from ethasp.planning.validation import validate
 from ethasp.principles.judgement import judge
 

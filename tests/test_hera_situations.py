@@ -18,7 +18,7 @@ from hera_situations import situations
 from hypothesis import HealthCheck, assume, given, settings
 
 from ethasp import InputError, Model, Plan
-from ethasp.planning.situation import name_term, translate_data
+from ethasp.planning.readers.situation import name_term, translate_data
 from ethasp.planning.validation import validate
 from ethasp.principles.formula import Elements, parse_formula
 from ethasp.principles.judgement import counterfactuals, judge, query
@@ -591,7 +591,7 @@ def test_plan_search_sees_the_events_that_exact_reachability_does_not_model(
     plan works)."""
     from ethasp.planning import search
     from ethasp.planning.budget import Budget
-    from ethasp.planning.planner import Setting
+    from ethasp.planning.driver.planner import Setting
     from ethasp.planning.search import FOUND, find_plan
 
     monkeypatch.setattr(search, "LAYERS_AFTER", 0.0)

@@ -9,8 +9,8 @@ from conftest import MODELS, ROOT
 
 from ethasp import InputError, Model, Plan, judge, query
 from ethasp.planning.budget import Budget
+from ethasp.planning.engines.best_state import best_reachable
 from ethasp.principles.principle import available_principles, select_principles
-from ethasp.principles.utilitarianism import best_reachable
 
 TROLLEY = str(MODELS / "trolley.lp")
 FOOTBRIDGE = str(MODELS / "footbridge.lp")

@@ -1,4 +1,4 @@
-"""Exact layers beside plan search (ethasp.planning.layers) against the oracle.
+"""Exact layers beside plan search (ethasp.planning.engines.layers) against the oracle.
 
 The layers must only prove what is true: a lower bound on the length of every
 plan, the length of a shortest plan, a shortest plan (valid), or that no goal
@@ -14,11 +14,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from oracle import features, random_model
 
-import ethasp.planning.layers as layers_module
+import ethasp.planning.engines.layers as layers_module
 import ethasp.planning.search as search_module
 from ethasp import Model, find_plan, validate
 from ethasp.planning.budget import Budget
-from ethasp.planning.layers import Atoms, Layers, search_model
+from ethasp.planning.engines.layers import Atoms, Layers, search_model
 
 WAIT = 60.0  # seconds a test waits for the layers at most (they take milliseconds)
 
@@ -140,7 +140,7 @@ def test_models_with_events_get_explicit_layers():
     and the layers beside plan search are then explicit ones of configurations
     (state, time), which prove the same kinds of claims (checked against the
     oracle above, as plan search with the layers started early)."""
-    from ethasp.planning.reachability import Reachability
+    from ethasp.planning.engines.reachability import Reachability
 
     model = Model.from_string(
         "variable(a;b). action(go). eff(go,a,true). event(e). "

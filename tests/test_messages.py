@@ -125,7 +125,7 @@ def test_utilitarian_judgement_messages():
 def test_a_cancelled_budget_starts_no_solve(search):
     """A budget cancelled before the call stops every search before it solves
     (whatever the load of the machine: no solve runs, so none can finish)."""
-    from ethasp.principles.utilitarianism import best_reachable
+    from ethasp.planning.engines.best_state import best_reachable
 
     model = Model.load([MODELS / "rescue.lp"])
     planner = model.planner

@@ -1,4 +1,4 @@
-"""The model's namespace (ethasp.planning.namespace): what the encodings
+"""The model's namespace (ethasp.planning.driver.namespace): what the encodings
 define or read is reserved, derived from the encodings themselves; a model
 defines only its vocabulary and predicates of its own; no user text becomes
 rule text."""
@@ -17,7 +17,7 @@ from conftest import ENCODINGS, MODELS
 import ethasp.vocabulary
 from ethasp import Model, Plan, query
 from ethasp.errors import InputError
-from ethasp.planning.namespace import (
+from ethasp.planning.driver.namespace import (
     MODEL_VOCABULARY,
     PDDL_VOCABULARY,
     TRANSLATION_ONLY,
@@ -282,7 +282,7 @@ def test_the_encodings_predicates_are_kept_per_content_of_the_encodings(tmp_path
     """Grounding every encoding alone (to learn what it mentions) happens once
     per content of the encodings: the result is kept in the cache folder,
     read back at the next start, and recomputed when the file is unreadable."""
-    from ethasp.planning import namespace
+    from ethasp.planning.driver import namespace
 
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
     namespace._all_mentioned.cache_clear()

@@ -24,7 +24,7 @@ from ethasp.planning.naming import (
     pddl_name_to_asp,
     term_to_pddl,
 )
-from ethasp.planning.pddl import PddlFile, translate
+from ethasp.planning.readers.pddl import PddlFile, translate
 
 PDDL = MODELS / "pddl"
 TROLLEY_PDDL = [

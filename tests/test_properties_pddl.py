@@ -25,7 +25,7 @@ from hypothesis import strategies as st
 from pddl_oracle import PddlTask, asp_atom, random_task
 
 from ethasp import InputError, Model, Plan, find_plan, validate
-from ethasp.planning.pddl import PddlFile, translate
+from ethasp.planning.readers.pddl import PddlFile, translate
 from ethasp.vocabulary import Action
 
 SEEDS = st.integers(min_value=0, max_value=10**9)

@@ -17,9 +17,9 @@ from oracle import RandomModel, features, plan_through, random_model
 
 from ethasp import Model, Plan
 from ethasp.planning.budget import Budget
+from ethasp.planning.engines.best_state import best_reachable
 from ethasp.principles.judgement import judge
 from ethasp.principles.restriction import plan_with_principles
-from ethasp.principles.utilitarianism import best_reachable
 
 SEEDS = st.integers(min_value=0, max_value=10**9)
 
@@ -129,8 +129,8 @@ def test_the_fallback_without_diagrams_is_right_when_it_claims(seed, walk):
     """With a node limit of 1, exact reachability gives up at once and clingo
     optimisation (upper bound, loop-free threshold) answers: right whenever it
     claims a proof, else bounded."""
-    import ethasp.planning.explicit as explicit
-    import ethasp.planning.reachability as reachability
+    import ethasp.planning.engines.explicit as explicit
+    import ethasp.planning.engines.reachability as reachability
 
     spec = random_model(seed, max_variables=5, max_actions=5, **features(seed))
     plan = plan_through(spec, random.Random(seed), walk)

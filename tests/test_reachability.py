@@ -1,4 +1,4 @@
-"""The exact reachability engine (ethasp/planning/reachability.py) against
+"""The exact reachability engine (ethasp/planning/engines/reachability.py) against
 explicit breadth-first search (tests/oracle.py): layers, best states, goal
 distances and paths, on random models with conditional effects and derived
 variables; and the ground model it reads from the planner."""
@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 from oracle import random_model
 
 from ethasp import Model
-from ethasp.planning.reachability import Reachability, from_atoms
+from ethasp.planning.engines.reachability import Reachability, from_atoms
 
 S = clingo.Function
 
@@ -132,7 +132,7 @@ def test_every_state_has_a_shortest_path_and_each_layer_its_best(seed, cluster, 
     predecessor is looked for cluster by cluster) and the best state of each
     layer and each prefix, asked one after another (the engine remembers
     utilities between queries), against the oracle."""
-    import ethasp.planning.reachability as reachability
+    import ethasp.planning.engines.reachability as reachability
 
     spec = spec_of(seed)
     saved = reachability.CLUSTER_VARIABLES, reachability.MERGE_NODES

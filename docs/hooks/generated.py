@@ -35,7 +35,18 @@ PACKAGE = ROOT / "ethasp"
 PAPER = ["deontology", "utilitarianism", "do_no_harm"]
 # Encoding folders in the order a reader meets them.
 FOLDERS = ["planning", "judgement", "reasons", "questions"]
-PACKAGES = ["", "planning", "principles", "reasons", "questions", "interfaces", "interfaces/web"]
+PACKAGES = [
+    "",
+    "planning",
+    "planning/readers",
+    "planning/driver",
+    "planning/engines",
+    "principles",
+    "reasons",
+    "questions",
+    "interfaces",
+    "interfaces/web",
+]
 
 
 def header(path: Path) -> list[str]:
@@ -180,7 +191,17 @@ def modules_table() -> str:
     return "\n".join(rows)
 
 
+def engines_contract() -> str:
+    """The docstring of ethasp.planning.engines (the contract), in Markdown,
+    without its first line (the page has its own heading)."""
+    path = PACKAGE / "planning" / "engines" / "__init__.py"
+    doc = ast.get_docstring(ast.parse(path.read_text(encoding="utf-8"))) or ""
+    body = doc.split("\n\n", 1)[1]
+    return CODE.sub(lambda match: f"`{match.group(1)}`", body)
+
+
 PLACEHOLDERS = {
+    "<!-- engines: contract -->": engines_contract,
     "<!-- principles: table -->": principles_table,
     "<!-- principles: headers -->": principles_headers,
     "<!-- encodings: table -->": encodings_table,

@@ -12,14 +12,14 @@ import clingo.script
 from clingo import ast
 
 from ethasp.errors import InputError
+from ethasp.planning.driver.namespace import NamespaceCheck, misused_vocabulary
 from ethasp.planning.messages import Messages
-from ethasp.planning.namespace import NamespaceCheck, misused_vocabulary
 from ethasp.planning.naming import Naming, PddlNaming
 from ethasp.planning.terms import read_text, scan_file, scan_program
 from ethasp.resources import encoding
 
 if TYPE_CHECKING:
-    from ethasp.planning.planner import Planner
+    from ethasp.planning.driver.planner import Planner
 
 
 @dataclass(frozen=True)
@@ -147,20 +147,20 @@ class Model:
         """Load a model from ASP files, or a PDDL domain and problem plus ASP files.
 
         Files ending in ``.pddl`` are translated into rules (see
-        :mod:`ethasp.planning.pddl`); the model then shows actions in PDDL form.
+        :mod:`ethasp.planning.readers.pddl`); the model then shows actions in PDDL form.
         HERA situations (``.yaml``, ``.yml``, ``.json``) are translated into
-        facts (see :mod:`ethasp.planning.situation`).  ``texts`` are more ASP
+        facts (see :mod:`ethasp.planning.readers.situation`).  ``texts`` are more ASP
         sources given as (name, text), e.g. ``("<stdin>", text)`` read from
         standard input; messages name them by that name.
         """
-        from ethasp.planning.situation import situation_paths, translate
+        from ethasp.planning.readers.situation import situation_paths, translate
 
         sources, naming = [], Naming()
         situations, files = situation_paths(Path(path) for path in paths)
         for path in situations:
             sources.append(Source(str(path), translate(path), generated=True, kind="situation"))
         if any(path.suffix.lower() == ".pddl" for path in files):
-            from ethasp.planning.pddl import split_paths, translate_files
+            from ethasp.planning.readers.pddl import split_paths, translate_files
 
             pddl_paths, files = split_paths(files)
             try:
@@ -221,7 +221,7 @@ class Model:
 
     def _parse(self, source: Source) -> None:
         """Parse a source: syntax, #script blocks, and the model's namespace
-        (:mod:`ethasp.planning.namespace`) for the files users write."""
+        (:mod:`ethasp.planning.driver.namespace`) for the files users write."""
         messages = Messages()
         scripts: list[str] = []
         namespace = None if source.generated else NamespaceCheck(pddl=self.is_pddl)
@@ -284,10 +284,10 @@ class Model:
 
     @property
     def planner(self) -> Planner:
-        """The model's one grounding (:class:`ethasp.planning.planner.Planner`),
+        """The model's one grounding (:class:`ethasp.planning.driver.planner.Planner`),
         made on first use."""
         if self._planner is None:
-            from ethasp.planning.planner import Planner
+            from ethasp.planning.driver.planner import Planner
 
             self._planner = Planner(self)
         return self._planner

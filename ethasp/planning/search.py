@@ -1,7 +1,7 @@
 """Plan search: shortest plans by increasing horizon, over the planner's grounding.
 
 Every search runs on the model's one grounding (:class:`ethasp.planning.
-planner.Planner`) under a :class:`~ethasp.planning.planner.Setting` (the
+planner.Planner`) under a :class:`~ethasp.planning.driver.planner.Setting` (the
 goal, restrictions, question constraints, utility thresholds) and a
 :class:`~ethasp.planning.budget.Budget`.  Every result carries a status:
 
@@ -9,7 +9,7 @@ goal, restrictions, question constraints, utility thresholds) and a
   refuted, by a solve or by a proven lower bound on the length;
 * ``none``: there is no plan, with a proof: the goal is not even relaxed
   reachable (``encodings/planning/relaxed.lp``); or the exact reachable
-  states (:mod:`ethasp.planning.reachability`) hold no goal state; or at
+  states (:mod:`ethasp.planning.engines.reachability`) hold no goal state; or at
   some horizon no simple path of that length exists
   (``encodings/planning/loopfree.lp``), so every reachable state has been
   searched;
@@ -24,11 +24,11 @@ import time
 from dataclasses import dataclass, field, replace
 
 from ethasp.errors import InputError
-from ethasp.planning import layers as layers_module
 from ethasp.planning.budget import Budget
-from ethasp.planning.layers import Atoms, Layers, Status
+from ethasp.planning.driver.planner import MUTEX_AFTER, Planner, Setting
+from ethasp.planning.engines import layers as layers_module
+from ethasp.planning.engines.layers import Atoms, Layers, Status
 from ethasp.planning.plan import Plan, steps
-from ethasp.planning.planner import MUTEX_AFTER, Planner, Setting
 
 FOUND, NONE, BOUNDED = "found", "none", "bounded"
 
@@ -120,14 +120,14 @@ def plans_of(models: list) -> list[Plan]:
 
 
 class _Exact:
-    """Exact layers (:mod:`ethasp.planning.layers`) beside a search, started once
+    """Exact layers (:mod:`ethasp.planning.engines.layers`) beside a search, started once
     the solver has worked :data:`LAYERS_AFTER` seconds (with the search, for
     models of at least :data:`LAYERS_AT_ONCE_ACTIONS` ground actions or
     :data:`LAYERS_AT_ONCE_VARIABLES` state variables), for
     searches with the goal and without utility thresholds or states to avoid
     (the layers know the model's plans, and every plan a setting allows is one
     of them).  With ``greedy`` (any-plan search) and ``read_plan`` (plain
-    search), the greedy forward search (:mod:`ethasp.planning.greedy`) runs
+    search), the greedy forward search (:mod:`ethasp.planning.engines.greedy`) runs
     instead of the layers, started with the search."""
 
     def __init__(
@@ -155,7 +155,7 @@ class _Exact:
         if greedy and read_plan:
             # Any-plan search: a greedy forward search proposes a plan (or
             # proves that there is none) instead of the layers.
-            from ethasp.planning.greedy import Greedy
+            from ethasp.planning.engines.greedy import Greedy
 
             reader = (lambda: Atoms(planner)) if layers_module.can_fork() else Atoms(planner)
             self.greedy = Greedy(reader, budget, read_plan=True).start()
@@ -613,7 +613,7 @@ def any_plan(
     plans of at most h steps, so larger horizons leave it more room), the
     horizon and the slice growing by :data:`GROWTH`.  For plain plan search
     (no restriction, no question constraint) a greedy forward search
-    (:mod:`ethasp.planning.greedy`) runs beside it in a child process and
+    (:mod:`ethasp.planning.engines.greedy`) runs beside it in a child process and
     may deliver a plan (or the proof that none exists) first; otherwise exact
     layers run beside it as in :func:`shortest`.  A plan from either engine is
     checked by its trace.  ``none`` is proven as by :func:`shortest`: relaxed or exact

@@ -17,10 +17,10 @@ import clingo
 from clorm import unify
 
 from ethasp.errors import InputError
+from ethasp.planning.driver.planner import occurrences
 from ethasp.planning.model import Model
 from ethasp.planning.naming import ASP_NAMING, Naming
 from ethasp.planning.plan import Plan
-from ethasp.planning.planner import occurrences
 from ethasp.planning.validation import read_validation
 from ethasp.vocabulary import (
     Action,

@@ -1,7 +1,7 @@
 """Validation of a given action sequence against a model (encodings/planning/trace.lp).
 
 A PDDL task has only the action instances whose static preconditions hold
-(:mod:`ethasp.planning.pddl`); a plan naming another instance of an action
+(:mod:`ethasp.planning.readers.pddl`); a plan naming another instance of an action
 schema is told which static precondition fails, by a small program of its own
 (encodings/planning/static.lp over the translation's rules for candidates).
 """
@@ -15,12 +15,12 @@ from clingo import ast
 from clorm import unify
 
 from ethasp.errors import InputError
+from ethasp.planning.driver.planner import add_facts
 from ethasp.planning.messages import Messages
 from ethasp.planning.model import Model
 from ethasp.planning.naming import ASP_NAMING, Naming
-from ethasp.planning.pddl import SCHEMA_PREDICATES
 from ethasp.planning.plan import Plan
-from ethasp.planning.planner import add_facts
+from ethasp.planning.readers.pddl import SCHEMA_PREDICATES
 from ethasp.resources import encoding
 from ethasp.vocabulary import (
     Failure,

@@ -28,8 +28,8 @@ from dataclasses import dataclass
 
 import clingo
 
+from ethasp.memo import results
 from ethasp.planning.model import Model
-from ethasp.principles.memo import results
 
 HMODEL = "restrictions/hmodel.lp"
 QUESTIONS = "questions/restriction.lp"

@@ -4,7 +4,7 @@ Data flow, each step computed once: the plan's trace (the model's planner:
 validity, final state, Caused, the final state's utility,
 ``encodings/planning/trace.lp`` and ``encodings/judgement/judge.lp``); for
 principles that compare with reachable states, the state to compare with
-(:mod:`ethasp.principles.utilitarianism`); then one small program over the
+(:mod:`ethasp.planning.engines.best_state`); then one small program over the
 trace's facts evaluates the language L (``encodings/judgement/language.lp``)
 for the formula of every principle chosen (``encodings/principles/``).  This
 module reads the ``verdict/2`` atoms back, and keeps the atoms of the
@@ -41,19 +41,27 @@ import clingo
 from clorm import unify
 
 from ethasp.errors import InputError
+from ethasp.memo import results
 from ethasp.planning.budget import Budget
-from ethasp.planning.model import Model
-from ethasp.planning.plan import Plan
-from ethasp.planning.planner import (
+from ethasp.planning.driver.planner import (
     TRACE_ENCODINGS,
     Answer,
     occurrences,
     solve_configuration,
 )
+from ethasp.planning.engines.best_state import (
+    BOUNDED,
+    PROVEN,
+    BestReachable,
+    ReachableState,
+    best_reachable,
+    better_state,
+)
+from ethasp.planning.model import Model
+from ethasp.planning.plan import Plan
 from ethasp.planning.search import DEFAULT_MAX_HORIZON, FOUND, NONE, find_plan
 from ethasp.planning.validation import TRACE_ATOMS, Validation, read_validation, validate
 from ethasp.principles.formula import Elements, parse_formula
-from ethasp.principles.memo import results
 from ethasp.principles.principle import (
     COUNTERFACTUALS,
     DEFAULT,
@@ -61,14 +69,6 @@ from ethasp.principles.principle import (
     Principle,
     formula_needs,
     select_principles,
-)
-from ethasp.principles.utilitarianism import (
-    BOUNDED,
-    PROVEN,
-    BestReachable,
-    ReachableState,
-    best_reachable,
-    better_state,
 )
 from ethasp.vocabulary import UtilityOfFinal, Verdict
 

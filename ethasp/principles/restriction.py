@@ -11,7 +11,7 @@ search, with every engine and every proof: relaxed reachability, exact
 layers, the greedy search, mutexes, the loop-free threshold.
 
 Utilitarianism needs the best utility of a reachable state first
-(:func:`ethasp.principles.utilitarianism.best_reachable`, exact reachability
+(:func:`ethasp.planning.engines.best_state.best_reachable`, exact reachability
 or clingo optimisation), proven best or only a lower bound.  Its HModel's
 goal asks for a final state at least that good (``goal_utility/1``); when no
 goal state is that good, no plan is permissible (proven even where the bound
@@ -30,9 +30,10 @@ from typing import Any
 
 from ethasp.errors import InputError
 from ethasp.planning.budget import Budget
+from ethasp.planning.driver.planner import Constraint, Setting
+from ethasp.planning.engines.best_state import PROVEN, BestReachable, best_reachable
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan, steps
-from ethasp.planning.planner import Constraint, Setting
 from ethasp.planning.search import (
     BOUNDED,
     DEFAULT_MAX_HORIZON,
@@ -44,7 +45,6 @@ from ethasp.planning.search import (
 )
 from ethasp.principles.hmodel import Restriction, compiled, hmodel, impossible
 from ethasp.principles.principle import GROUPS, Principle, available_principles, select_principles
-from ethasp.principles.utilitarianism import PROVEN, BestReachable, best_reachable
 from ethasp.resources import ENCODINGS
 
 RESTRICTIONS = "restrictions"

@@ -27,9 +27,9 @@ from clorm import unify
 
 from ethasp.errors import InputError
 from ethasp.planning.budget import Budget
+from ethasp.planning.driver.planner import Constraint, occurrences
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan, parse_action, steps
-from ethasp.planning.planner import Constraint, occurrences
 from ethasp.planning.search import BOUNDED, DEFAULT_MAX_HORIZON, FOUND, NONE
 from ethasp.planning.validation import static_failures, validate
 from ethasp.principles.judgement import Judgement

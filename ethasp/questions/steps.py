@@ -23,9 +23,9 @@ import clingo
 from clorm import unify
 
 from ethasp.errors import InputError
+from ethasp.planning.driver.planner import occurrences
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
-from ethasp.planning.planner import occurrences
 from ethasp.planning.validation import read_validation
 from ethasp.reasons import words
 from ethasp.reasons.explanation import Labels

@@ -24,7 +24,7 @@ enumerated, in one control) and sufficient reasons with the words' choices.
 For utilitarianism, whose formula ranges over all reachable states, the
 formula is explained against one alternative: the better state that decided
 an impermissible verdict, or a best reachable state other than the final
-state (:func:`ethasp.principles.utilitarianism.best_reachable`, searched once
+state (:func:`ethasp.planning.engines.best_state.best_reachable`, searched once
 per model and state).  The conjunction over all reachable states has the
 same truth value as GEq(s_n, s) for that state s; its reasons are those of
 this one comparison.
@@ -38,10 +38,12 @@ import clingo
 from clorm import unify
 
 from ethasp.errors import InputError
+from ethasp.memo import results
 from ethasp.planning.budget import Budget
+from ethasp.planning.driver.planner import solve_configuration
+from ethasp.planning.engines.best_state import ReachableState, best_reachable
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
-from ethasp.planning.planner import solve_configuration
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
 from ethasp.planning.validation import validate
 from ethasp.principles.formula import format_literal
@@ -52,9 +54,7 @@ from ethasp.principles.judgement import (
     require_plan,
 )
 from ethasp.principles.judgement import judge as judge_verdicts
-from ethasp.principles.memo import results
 from ethasp.principles.principle import Principle, select_principles
-from ethasp.principles.utilitarianism import ReachableState, best_reachable
 from ethasp.reasons import DEFAULT_LIMIT
 from ethasp.reasons.explanation import Comparison, Explanation, Labels, Literal
 from ethasp.reasons.words import non_contrastive

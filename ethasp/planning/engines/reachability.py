@@ -39,6 +39,11 @@ from dataclasses import dataclass, field
 import clingo
 
 from ethasp.planning.budget import Budget
+from ethasp.planning.engines import CONDITIONAL_EFFECTS, DERIVED_VARIABLES
+
+# The model features this engine handles (ethasp.planning.engines).
+FEATURES = frozenset({CONDITIONAL_EFFECTS, DERIVED_VARIABLES})
+
 
 Literal = tuple[clingo.Symbol, bool]
 
@@ -103,8 +108,8 @@ class GroundModel:
     # An HModel's goal utility (goal_utility/1 of model.lp): goal states are
     # also worth at least this much (None: no such goal).
     goal_utility: int | None = None
-    # Exogenous events (ethasp.planning.explicit.GroundEvent): the engine of
-    # this module knows none; ethasp.planning.explicit serves models with them.
+    # Exogenous events (ethasp.planning.engines.explicit.GroundEvent): the engine of
+    # this module knows none; ethasp.planning.engines.explicit serves models with them.
     events: list = field(default_factory=list)
 
     def utility(self, state: Iterable[clingo.Symbol]) -> int:

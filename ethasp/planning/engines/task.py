@@ -14,8 +14,8 @@ becomes false once each of its axioms has a literal whose opposite is
 reached (every reachable state where it is false has such literals, so a
 relaxed dead end stays a real one).
 
-The greedy search (:mod:`ethasp.planning.greedy`) and the explicit layers
-of configurations (:mod:`ethasp.planning.explicit`) search over it.
+The greedy search (:mod:`ethasp.planning.engines.greedy`) and the explicit layers
+of configurations (:mod:`ethasp.planning.engines.explicit`) search over it.
 """
 
 from __future__ import annotations
@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 import clingo
 
-from ethasp.planning.reachability import dependency_groups
+from ethasp.planning.engines.reachability import dependency_groups
 
 # The step of a relaxed action that is an axiom (no action, no cost).
 AXIOM = -1

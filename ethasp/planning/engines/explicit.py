@@ -1,13 +1,13 @@
 """Explicit breadth-first layers over configurations: every model feature.
 
-The exact layers of :mod:`ethasp.planning.reachability` are symbolic and
+The exact layers of :mod:`ethasp.planning.engines.reachability` are symbolic and
 know actions, conditional effects and derived variables, not exogenous
 events.  With events the next state depends on the step as well (events are
 due at given steps, and happen after the plan too), so the layers here are
 layers of *configurations* (state, time), the time counted up to the last
 event (from there on no event lies ahead, and equal states are equal
 configurations), over explicit states: Python integers, one bit a state
-variable, as in the greedy search (:class:`ethasp.planning.greedy.Task`,
+variable, as in the greedy search (:class:`ethasp.planning.engines.greedy.Task`,
 whose actions and derived variables they use).  A configuration of layer k
 is reached by k actions; the final state of a plan that ends there is the
 state after the events still due (the steps between idle).
@@ -29,6 +29,11 @@ from dataclasses import dataclass
 import clingo
 
 from ethasp.planning.budget import Budget
+from ethasp.planning.engines import ALL_FEATURES
+
+# The model features this engine handles (ethasp.planning.engines).
+FEATURES = ALL_FEATURES
+
 
 # Configurations kept beyond which the layers give up (memory: a few hundred
 # bytes each).
@@ -169,7 +174,7 @@ class Configurations:
 
     def closed(self, budget: Budget | None = None) -> bool | None:
         """Is no configuration one step beyond the layers so far?  (As
-        :meth:`ethasp.planning.reachability.Reachability.closed`.)"""
+        :meth:`ethasp.planning.engines.reachability.Reachability.closed`.)"""
         if self.complete:
             return True
         if self._next is None:
@@ -200,7 +205,7 @@ class Configurations:
 
 def search(task, events: Events, budget: Budget, publish, stop, read_plan: bool = True) -> None:
     """Plan search over the layers, reporting as the exact layers do
-    (:class:`ethasp.planning.layers.Status`): bounds, a shortest plan (only
+    (:class:`ethasp.planning.engines.layers.Status`): bounds, a shortest plan (only
     with ``read_plan``: a search whose setting the layers do not know, such
     as question constraints imposed in ASP, must not take it), or that no
     goal state is reachable."""

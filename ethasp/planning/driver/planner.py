@@ -3,7 +3,7 @@
 One :class:`Planner` belongs to one loaded model (:attr:`Model.planner`).  It
 owns one clingo control that holds the model and every search encoding,
 grounded once, horizon by horizon (multi-shot solving, see
-:mod:`ethasp.planning.incremental`), and answers every search a command or
+:mod:`ethasp.planning.driver.incremental`), and answers every search a command or
 a dialogue needs from it: plans, HPlans under any set of principles, best
 reachable states, states of a given utility, contrast plans under any set of
 question constraints, and the loop-free completeness checks.  What a search
@@ -56,16 +56,16 @@ from typing import TYPE_CHECKING
 import clingo
 
 from ethasp.errors import InputError
-from ethasp.planning import incremental, namespace
 from ethasp.planning.budget import Budget
-from ethasp.planning.incremental import CHECK, STEP, TIME_MARKER
+from ethasp.planning.driver import incremental, namespace
+from ethasp.planning.driver.incremental import CHECK, STEP, TIME_MARKER
 from ethasp.planning.messages import Messages
 from ethasp.resources import encoding
 
 if TYPE_CHECKING:  # imported when used: plain plan search starts without them
     from clorm import FactBase
 
-    from ethasp.planning.reachability import GroundModel, Reachability
+    from ethasp.planning.engines.reachability import GroundModel, Reachability
 
 # What a model defines (encodings/planning/model.lp and reasons/labels.lp):
 # programs about a plan or a formula read these atoms of the ground model.
@@ -411,8 +411,8 @@ class Planner:
     def ground_model(self) -> GroundModel:
         """The model for the reachability engine, from the ground vocabulary."""
         if self._ground_model is None:
-            from ethasp.planning.layers import _events
-            from ethasp.planning.reachability import from_atoms
+            from ethasp.planning.engines.layers import _events
+            from ethasp.planning.engines.reachability import from_atoms
 
             def value(symbol: clingo.Symbol) -> bool:
                 return symbol.name == "true"
@@ -476,10 +476,26 @@ class Planner:
         return max(steps, default=0)
 
     @property
+    def features(self) -> frozenset[str]:
+        """The features of the ground model that not every engine handles
+        (:data:`ethasp.planning.engines.ALL_FEATURES`)."""
+        from ethasp.planning import engines
+
+        present = {
+            engines.EVENTS: self.has_events,
+            engines.CONDITIONAL_EFFECTS: bool(self.get("ceff", 4)),
+            engines.DERIVED_VARIABLES: bool(self.get("derived", 1)),
+        }
+        return frozenset(feature for feature, there in present.items() if there)
+
+    @property
     def exact_reachability(self) -> bool:
-        """Does the exact reachability engine apply?  It knows actions, not
-        exogenous events: models with events are searched in ASP alone."""
-        return not self.has_events
+        """Does the exact reachability engine apply?  It knows actions,
+        conditional effects and derived variables, not exogenous events:
+        models with events get the explicit layers instead."""
+        from ethasp.planning.engines import handles, reachability
+
+        return handles(reachability.FEATURES, self.features)
 
     @_locked
     def reachability(self) -> Reachability:
@@ -489,7 +505,7 @@ class Planner:
         if not self.exact_reachability:
             raise RuntimeError("exact reachability does not model exogenous events")
         if self._reachability is None:
-            from ethasp.planning import reachability
+            from ethasp.planning.engines import reachability
 
             self._reachability = reachability.Reachability(
                 self.ground_model(), reachability.DEFAULT_NODE_LIMIT

@@ -3,13 +3,13 @@
 Utilitarianism compares the final state of a plan with every reachable state
 (Definition 2 of the paper).  Three engines answer, the first that can:
 
-* exact reachability (:mod:`ethasp.planning.reachability`): breadth-first
+* exact reachability (:mod:`ethasp.planning.engines.reachability`): breadth-first
   layers of states, computed symbolically; every layer is exact, so a state
   better than a given utility is found at its shortest distance, and once no
   new state appears every reachable state is known (``proven``);
 * for models with exogenous events, which the diagrams do not model,
   explicit breadth-first layers of configurations (state, time)
-  (:mod:`ethasp.planning.explicit`), with the same claims, up to a limit on
+  (:mod:`ethasp.planning.engines.explicit`), with the same claims, up to a limit on
   the configurations;
 * when its diagrams outgrow their limit, clingo optimisation over the
   planner's grounding (``encodings/judgement/best.lp``, a search without the
@@ -31,13 +31,18 @@ from dataclasses import dataclass
 import clingo
 from clorm import Raw, unify
 
+from ethasp.memo import results
 from ethasp.planning.budget import Budget
+from ethasp.planning.driver.planner import Planner, Setting
+from ethasp.planning.engines import ALL_FEATURES
+from ethasp.planning.engines.reachability import Best, Reachability
 from ethasp.planning.plan import steps
-from ethasp.planning.planner import Planner, Setting
-from ethasp.planning.reachability import Best, Reachability
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
-from ethasp.principles.memo import results
 from ethasp.vocabulary import Alternative, AtHorizon, BestFact, Conj, UpperBound
+
+# The model features this engine handles (ethasp.planning.engines).
+FEATURES = ALL_FEATURES
+
 
 PROVEN, BOUNDED = "proven", "bounded"
 
@@ -238,8 +243,8 @@ def _bound_states(planner: Planner, r: Reachability):
 def _configurations(planner: Planner):
     """The explicit layers of the planner's ground model (events included), made once."""
     if "configurations" not in results(planner):
-        from ethasp.planning.explicit import Configurations, Events
-        from ethasp.planning.task import Task
+        from ethasp.planning.engines.explicit import Configurations, Events
+        from ethasp.planning.engines.task import Task
 
         ground = planner.ground_model()
         task = Task(ground)

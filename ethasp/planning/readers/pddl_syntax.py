@@ -4,7 +4,7 @@ PDDL is case-insensitive, so a file is read in lower case.  Reading has two
 stages: the text becomes nested lists of words (s-expressions, each with its
 offset in the text for messages), then :func:`read_domain` and
 :func:`read_problem` read the sections of PDDL from them.  Nothing here knows
-ASP: :mod:`ethasp.planning.pddl` translates the data into rules.
+ASP: :mod:`ethasp.planning.readers.pddl` translates the data into rules.
 
 What is read: requirements, types (with ``either`` parents), constants and
 objects (typed, ``either`` allowed), predicates, functions (only for action

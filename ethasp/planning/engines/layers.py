@@ -3,7 +3,7 @@
 A plan search over the encodings (:mod:`ethasp.planning.search`) refutes
 one horizon after the other; near the length of a shortest plan each
 refutation costs more than the one before.  Exact breadth-first layers of
-the reachable states (:class:`ethasp.planning.reachability.Reachability`)
+the reachable states (:class:`ethasp.planning.engines.reachability.Reachability`)
 prove the same bounds symbolically: no goal state in layers 0..k proves that
 every plan has more than k steps, and the first layer with a goal state is
 the length of a shortest plan, with a shortest path to read off.  Diagrams
@@ -13,7 +13,7 @@ computes them in a thread of its own while the solver works on the
 horizons, and the search takes whichever proof comes first.
 
 Models with exogenous events get explicit layers of configurations instead
-(:mod:`ethasp.planning.explicit`): the diagrams know no events.
+(:mod:`ethasp.planning.engines.explicit`): the diagrams know no events.
 
 The layers are computed over the *search model*: the actions that relaxed
 reachability finds usable (``usable/1`` of ``encodings/planning/
@@ -39,9 +39,14 @@ from typing import TYPE_CHECKING
 import clingo
 
 from ethasp.planning.budget import Budget
+from ethasp.planning.engines import ALL_FEATURES
 
 if TYPE_CHECKING:  # imported in the thread that computes the layers
-    from ethasp.planning.reachability import GroundModel
+    from ethasp.planning.engines.reachability import GroundModel
+
+# The model features this engine handles (ethasp.planning.engines).
+FEATURES = ALL_FEATURES
+
 
 # Live diagram nodes beyond which the layers give up (the search goes on
 # without them).
@@ -98,7 +103,7 @@ class Atoms:
 
 def search_model(atoms: Atoms) -> GroundModel:
     """The search model of a planner's ground atoms (see the module docstring)."""
-    from ethasp.planning.reachability import from_atoms
+    from ethasp.planning.engines.reachability import from_atoms
 
     # (A symbol's arguments are read once each: every read crosses into clingo.)
     usable = {atom.arguments[0] for atom in atoms.usable}
@@ -207,7 +212,7 @@ def _events(atoms, keeps=lambda variable, value: None, moving=None) -> list:
     never change decided (``keeps``), effects on them dropped (relaxed
     reachability counts what events may set, so an effect on a variable not
     ``moving`` keeps its value).  ``moving`` None: every variable."""
-    from ethasp.planning.explicit import GroundEvent
+    from ethasp.planning.engines.explicit import GroundEvent
 
     steps: dict = {}
     for atom in atoms.get("event_at", 2):
@@ -411,8 +416,8 @@ class Layers:
         self.model = search_model(atoms)
         if self.model.events:
             # Exogenous events: explicit layers of configurations (state, time).
-            from ethasp.planning import explicit
-            from ethasp.planning.task import Task
+            from ethasp.planning.engines import explicit
+            from ethasp.planning.engines.task import Task
 
             task = Task(self.model)
             explicit.search(
@@ -425,7 +430,7 @@ class Layers:
             )
             return
         _import_diagrams()
-        from ethasp.planning.reachability import Reachability
+        from ethasp.planning.engines.reachability import Reachability
 
         engine = Reachability(self.model, node_limit=self.node_limit)
         goal = engine.goal()

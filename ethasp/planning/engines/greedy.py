@@ -4,7 +4,7 @@ Any-plan search (:func:`ethasp.planning.search.any_plan`) asks the solver
 for plans at growing horizons; on tasks whose plans are long, proving that
 nothing fits a horizon costs more than finding a plan.  This engine runs
 beside it: a greedy best-first search over explicit states of the search
-model (:func:`ethasp.planning.layers.search_model`), guided by the FF
+model (:func:`ethasp.planning.engines.layers.search_model`), guided by the FF
 heuristic (the length of a relaxed plan that ignores delete effects) and
 trying first the actions of that relaxed plan applicable in the state
 (helpful actions), with lazy evaluation (a state is evaluated when it is
@@ -23,7 +23,7 @@ variables that never change).  It runs in a child process beside the
 solver (see :class:`Greedy`).
 
 States are explicit ones of the search model, as bit masks
-(:class:`ethasp.planning.task.Task`, which also gives the heuristic).
+(:class:`ethasp.planning.engines.task.Task`, which also gives the heuristic).
 """
 
 from __future__ import annotations
@@ -33,8 +33,13 @@ import heapq
 import clingo
 
 from ethasp.planning.budget import Budget
-from ethasp.planning.layers import Layers, search_model
-from ethasp.planning.task import Task
+from ethasp.planning.engines import ALL_FEATURES
+from ethasp.planning.engines.layers import Layers, search_model
+from ethasp.planning.engines.task import Task
+
+# The model features this engine handles (ethasp.planning.engines).
+FEATURES = ALL_FEATURES
+
 
 # States generated beyond which the search gives up (memory).
 STATE_LIMIT = 2_000_000
@@ -110,7 +115,7 @@ def _path(task: Task, parents: dict, state: int) -> list[clingo.Symbol]:
 
 class Greedy(Layers):
     """Greedy forward search (:func:`greedy_plan`) beside a search, run as the
-    exact layers are run (:class:`ethasp.planning.layers.Layers`: a child
+    exact layers are run (:class:`ethasp.planning.engines.layers.Layers`: a child
     process on Linux, else a thread); its :attr:`status` gets a ``plan`` (not
     a shortest one), ``complete`` (no goal state is reachable) or
     ``stopped``."""
@@ -122,7 +127,7 @@ class Greedy(Layers):
             # Exogenous events: the next state depends on the step, which the
             # greedy search does not track; explicit layers of configurations
             # (a shortest plan) instead.
-            from ethasp.planning import explicit
+            from ethasp.planning.engines import explicit
 
             task = Task(self.model)
             explicit.search(

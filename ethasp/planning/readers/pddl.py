@@ -1,6 +1,6 @@
 """PDDL input: a domain and problem as lifted ASP rules that clingo grounds.
 
-The files are read by :mod:`ethasp.planning.pddl_syntax`; this module writes
+The files are read by :mod:`ethasp.planning.readers.pddl_syntax`; this module writes
 rules over the model vocabulary of ``encodings/planning/model.lp`` and the
 typing vocabulary of ``encodings/planning/pddl.lp``.  Nothing is grounded in
 Python.  For a domain with ``(:types room robot)`` and
@@ -89,7 +89,7 @@ from pathlib import Path
 
 from ethasp.errors import InputError
 from ethasp.planning.naming import pddl_name_to_asp
-from ethasp.planning.pddl_syntax import (
+from ethasp.planning.readers.pddl_syntax import (
     FRAGMENT,
     IMPLIED,
     Action,
