@@ -546,6 +546,13 @@ def main() -> int:
     )
     parser.add_argument("--no-ask", action="store_true", help="no 'ask' without --plan")
     parser.add_argument(
+        "--reasons-limit",
+        type=int,
+        metavar="N",
+        help="pass --reasons-limit N to 'plan --principle' (0: the search and the verdict "
+        "without reasons) and, when N >= 1, to 'ask' (default: ethasp's own, 10)",
+    )
+    parser.add_argument(
         "--repeat", type=int, default=1, help="runs per process, the fastest kept (default 1)"
     )
     parser.add_argument("--only", help="instances whose DOMAIN/PROBLEM contains this text")
@@ -567,9 +574,11 @@ def main() -> int:
             }
             for row in data["rows"]
         ]
+        reasons = data.get("reasons_limit")
         print(
             f"{data['started']}; time limit {data['time_limit']:g} s; "
             f"question forms: {', '.join(data['forms'])}"
+            + (f"; --reasons-limit {reasons}" if reasons is not None else "")
         )
         for line in summary(rows, data["time_limit"]):
             print(line)
@@ -609,6 +618,10 @@ def main() -> int:
     )
     print(f"{'instance / search':44} {'status':12} {'s':>7} {'ratio':>6} {'MB':>7} {'cpu s':>7}")
     limit = ["--time-limit", f"{args.time_limit:g}", "--json"]
+    reasons = [] if args.reasons_limit is None else ["--reasons-limit", str(args.reasons_limit)]
+    asked = reasons if args.reasons_limit is not None and args.reasons_limit >= 1 else []
+    if reasons:
+        print(f"--reasons-limit {args.reasons_limit} (plan --principle{', ask' if asked else ''})")
     rows = []
     for instance in chosen:
         model = instance.model()
@@ -636,7 +649,7 @@ def main() -> int:
             record(
                 run(
                     principle,
-                    ethasp_command("plan", *model, "--principle", principle, *limit),
+                    ethasp_command("plan", *model, "--principle", principle, *limit, *reasons),
                     args.time_limit,
                     args.grace,
                     args.repeat,
@@ -656,7 +669,14 @@ def main() -> int:
                 run(
                     f"ask {form}",
                     ethasp_command(
-                        "ask", *model, "--plan", " ".join(plan), "--question", text, *limit
+                        "ask",
+                        *model,
+                        "--plan",
+                        " ".join(plan),
+                        "--question",
+                        text,
+                        *limit,
+                        *asked,
                     ),
                     args.time_limit,
                     args.grace,
@@ -671,7 +691,7 @@ def main() -> int:
             record(
                 run(
                     "ask",
-                    ethasp_command("ask", *model, "--question", text, *limit),
+                    ethasp_command("ask", *model, "--question", text, *limit, *asked),
                     args.time_limit,
                     args.grace,
                     args.repeat,
@@ -690,6 +710,7 @@ def main() -> int:
                 {
                     "started": started,
                     "time_limit": args.time_limit,
+                    "reasons_limit": args.reasons_limit,
                     "forms": forms,
                     "rows": [
                         {

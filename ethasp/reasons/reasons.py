@@ -280,8 +280,16 @@ def explain(
     for members in conj.values():
         members.sort(key=lambda pair: str(pair[0]))
 
+    # Reasons share most of their literals: each literal is put into words once.
+    said: dict[Literal, str] = {}
+
+    def text(literal: Literal) -> str:
+        if literal not in said:
+            said[literal] = format_literal(literal.term(), conj, model.naming)
+        return said[literal]
+
     def texts(reason: list[Literal]) -> list[str]:
-        return [format_literal(lit.term(), conj, model.naming) for lit in reason]
+        return [text(literal) for literal in reason]
 
     explanation = Explanation(
         principle=chosen.name,
