@@ -22,7 +22,7 @@ def _module(path: Path) -> str:
 
 
 def _group(module: str) -> str:
-    if module in CORE:
+    if module in CORE or module.startswith("ethasp.vocabulary."):
         return "core"
     return module.split(".")[1]
 

@@ -37,6 +37,7 @@ PAPER = ["deontology", "utilitarianism", "do_no_harm"]
 FOLDERS = ["planning", "judgement", "reasons", "questions"]
 PACKAGES = [
     "",
+    "vocabulary",
     "planning",
     "planning/readers",
     "planning/driver",

@@ -27,6 +27,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import clingo
 from clorm import Raw, unify
@@ -35,10 +36,12 @@ from ethasp.memo import results
 from ethasp.planning.budget import Budget
 from ethasp.planning.driver.planner import Planner, Setting
 from ethasp.planning.engines import ALL_FEATURES
-from ethasp.planning.engines.reachability import Best, Reachability
 from ethasp.planning.plan import steps
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
 from ethasp.vocabulary import Alternative, AtHorizon, BestFact, Conj, UpperBound
+
+if TYPE_CHECKING:  # the diagrams are loaded by the planner, where a model needs them
+    from ethasp.planning.engines.reachability import Best, Reachability
 
 # The model features this engine handles (ethasp.planning.engines).
 FEATURES = ALL_FEATURES
