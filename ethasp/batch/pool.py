@@ -185,6 +185,14 @@ class LocalPool:
         limit = self.settings.time_limit
         return None if not limit else 2 * limit + self.grace
 
+    @staticmethod
+    def _dispatch(slot: _Slot, queue: deque[Work]) -> None:
+        """Send the next case to a worker that is ready and idle."""
+        if slot.ready and slot.work is None and queue:
+            slot.work = queue.popleft()
+            slot.started = time.monotonic()
+            slot.connection.send(slot.work)
+
     def run(self, works: Iterable[Work]) -> Iterator[tuple[Work, list[dict]]]:
         """Compute the works, yielding each with its lines as it finishes."""
         queue = deque(works)
@@ -195,10 +203,7 @@ class LocalPool:
                 self._start()
             while queue or any(slot.work is not None for slot in self.slots):
                 for slot in self.slots:
-                    if slot.ready and slot.work is None and queue:
-                        slot.work = queue.popleft()
-                        slot.started = time.monotonic()
-                        slot.connection.send(slot.work)
+                    self._dispatch(slot, queue)
                 timeout = TICK
                 if overrun is not None:
                     running = [
@@ -231,6 +236,9 @@ class LocalPool:
                         failed_starts = 0
                     elif slot.work is not None:
                         work, slot.work = slot.work, None
+                        # The worker gets its next case before the caller
+                        # writes this one's lines: it need not wait for them.
+                        self._dispatch(slot, queue)
                         yield work, value
                 for slot in ended:
                     # Results already in the pipe were read above; what is left is lost.
