@@ -34,7 +34,7 @@ def test_every_engine_declares_its_features_and_the_contract_lists_it():
 
 
 def test_the_contract_says_what_reachability_handles():
-    assert reachability.FEATURES == {engines.CONDITIONAL_EFFECTS, engines.DERIVED_VARIABLES}
+    assert {engines.CONDITIONAL_EFFECTS, engines.DERIVED_VARIABLES} == reachability.FEATURES
     assert "Conditional effects and derived variables; no exogenous events." in engines.__doc__
 
 
