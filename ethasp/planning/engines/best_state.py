@@ -169,40 +169,33 @@ UB_PROOF = (
 )
 
 
-def _expand(
-    planner: Planner,
-    budget: Budget,
-    max_horizon: int,
-    decided: Callable[[Reachability, int], bool],
-    task: str,
-) -> tuple[Reachability, str]:
-    """Expand the layers of exact reachability until ``decided(r, k)`` holds for
-    a new layer k, every state is known, or a limit; return why it stopped
-    ('' when decided or complete)."""
-    r = planner.reachability()
+def _grow(
+    engine, budget: Budget, max_horizon: int, decided: Callable[[int], bool], task: str, what: str
+) -> str:
+    """Grow the layers of an engine (exact reachability's states or explicit
+    configurations) until ``decided(k)`` holds for a layer k, every state is
+    known, or a limit; return why it stopped ('' when decided or complete).
+    ``what`` names the layers' contents in that reason."""
     k = 0
     while True:
-        if k < len(r.layers):
-            if decided(r, k):
-                return r, ""
+        if k < len(engine.layers):
+            budget.report(task, horizon=k)
+            if decided(k):
+                return ""
             k += 1
             continue
-        if r.complete:
-            return r, ""
-        if len(r.layers) > max_horizon:
+        if engine.complete:
+            return ""
+        if len(engine.layers) > max_horizon:
             # The last layer allowed: complete if no state lies beyond it.
-            closed = r.closed(budget)
+            closed = engine.closed(budget)
             if closed:
-                return r, ""
+                return ""
             if closed is None:
-                return r, r.stopped
-            return (
-                r,
-                f"the layers of states reached within {steps(max_horizon)} (the maximal horizon)",
-            )
-        budget.report(task, horizon=len(r.layers))
-        if not r.expand(budget):
-            return r, r.stopped
+                return engine.stopped
+            return f"the {what} reached within {steps(max_horizon)} (the maximal horizon)"
+        if not engine.expand(budget):
+            return engine.stopped
 
 
 def _best_reachable(
@@ -266,36 +259,6 @@ def _final_state(planner: Planner, layers, configuration) -> ReachableState:
     return ReachableState(facts, layers.task.utility(final), distance)
 
 
-def _walk(
-    planner: Planner, budget: Budget, max_horizon: int, visit, task: str
-) -> tuple[object, str]:
-    """Layer after layer of configurations until ``visit(k)`` is True, every
-    configuration is known, or a limit; return the layers and why they stopped
-    ('' when decided or complete)."""
-    layers = _configurations(planner)
-    k = 0
-    while True:
-        if k < len(layers.layers):
-            budget.report(task, horizon=k)
-            if visit(k):
-                return layers, ""
-            k += 1
-            continue
-        if layers.complete:
-            return layers, ""
-        if len(layers.layers) > max_horizon:
-            closed = layers.closed(budget)
-            if closed:
-                return layers, ""
-            if closed is None:
-                return layers, layers.stopped
-            return layers, (
-                f"the configurations reached within {steps(max_horizon)} (the maximal horizon)"
-            )
-        if not layers.expand(budget):
-            return layers, layers.stopped
-
-
 def _best_explicit(
     planner: Planner, budget: Budget, max_horizon: int, within: str, other_than
 ) -> BestReachable | None:
@@ -321,7 +284,8 @@ def _best_explicit(
                 found[:] = [(*key, configuration)]
         return False
 
-    layers, stopped = _walk(planner, budget, max_horizon, visit, "best reachable state")
+    layers = _configurations(planner)
+    stopped = _grow(layers, budget, max_horizon, visit, "best reachable state", "configurations")
     searched = len(layers.layers) - 1
     best = _final_state(planner, layers, found[0][3]) if found else None
     if not stopped:
@@ -357,7 +321,10 @@ def _better_explicit(
                 return True
         return False
 
-    layers, stopped = _walk(planner, budget, max_horizon, visit, "a better reachable state")
+    layers = _configurations(planner)
+    stopped = _grow(
+        layers, budget, max_horizon, visit, "a better reachable state", "configurations"
+    )
     if found:
         state = _final_state(planner, layers, found[0])
         return Comparison(
@@ -390,14 +357,14 @@ def _best_exact(
         attaining &= restriction
     hit: list[int] = []
 
-    def decided(r: Reachability, k: int) -> bool:
+    def decided(k: int) -> bool:
         budget.report("best reachable state", horizon=k, bound=bound)
         if r.layers[k] & attaining != r.bdd.false:
             hit.append(k)
             return True
         return False
 
-    r, stopped = _expand(planner, budget, max_horizon, decided, "best reachable state")
+    stopped = _grow(r, budget, max_horizon, decided, "best reachable state", "layers of states")
     variables = planner.ground_model().variables
     searched = len(r.layers) - 1
     if hit:
@@ -477,9 +444,10 @@ def _better_state(planner: Planner, utility: int, budget: Budget, max_horizon: i
             if compared is not None
             else _better_by_search(planner, utility, budget, max_horizon)
         )
+    r = planner.reachability()
     found: list[Best] = []
 
-    def decided(r: Reachability, k: int) -> bool:
+    def decided(k: int) -> bool:
         best = r.best_in_layer(k)
         budget.report(
             "a better reachable state", horizon=k, best=best.utility if best else None, bound=bound
@@ -489,7 +457,7 @@ def _better_state(planner: Planner, utility: int, budget: Budget, max_horizon: i
             return True
         return False
 
-    r, stopped = _expand(planner, budget, max_horizon, decided, "a better reachable state")
+    stopped = _grow(r, budget, max_horizon, decided, "a better reachable state", "layers of states")
     variables = planner.ground_model().variables
     if found:
         state = _state(variables, found[0])

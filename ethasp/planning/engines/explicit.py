@@ -203,6 +203,15 @@ class Configurations:
         return None
 
 
+def search_with_events(model, budget: Budget, publish, stop, read_plan: bool = True) -> None:
+    """:func:`search` over a search model with exogenous events
+    (:func:`ethasp.planning.engines.layers.search_model`): its task and events."""
+    from ethasp.planning.engines.task import Task
+
+    task = Task(model)
+    search(task, Events(model.events, task.index), budget, publish, stop, read_plan)
+
+
 def search(task, events: Events, budget: Budget, publish, stop, read_plan: bool = True) -> None:
     """Plan search over the layers, reporting as the exact layers do
     (:class:`ethasp.planning.engines.layers.Status`): bounds, a shortest plan (only

@@ -129,14 +129,7 @@ class Greedy(Layers):
             # (a shortest plan) instead.
             from ethasp.planning.engines import explicit
 
-            task = Task(self.model)
-            explicit.search(
-                task,
-                explicit.Events(self.model.events, task.index),
-                self._budget,
-                publish,
-                self._stop.is_set,
-            )
+            explicit.search_with_events(self.model, self._budget, publish, self._stop.is_set)
             return
         plan, why = greedy_plan(Task(self.model), self._budget)
         if plan is None and why == EXHAUSTED:

@@ -417,16 +417,9 @@ class Layers:
         if self.model.events:
             # Exogenous events: explicit layers of configurations (state, time).
             from ethasp.planning.engines import explicit
-            from ethasp.planning.engines.task import Task
 
-            task = Task(self.model)
-            explicit.search(
-                task,
-                explicit.Events(self.model.events, task.index),
-                self._budget,
-                publish,
-                self._stop.is_set,
-                read_plan=self.read_plan,
+            explicit.search_with_events(
+                self.model, self._budget, publish, self._stop.is_set, read_plan=self.read_plan
             )
             return
         _import_diagrams()
