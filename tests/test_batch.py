@@ -353,6 +353,17 @@ def test_the_report_of_a_file_that_is_not_results_is_one_line(tmp_path):
     (tmp_path / "notes.jsonl").write_text("hello\n")
     code, _out, err = run_in_process(["report", str(tmp_path / "notes.jsonl")])
     assert code == 2 and "notes.jsonl:1: not a line of batch results" in err
+    # Advice about --output belongs to a batch resuming into the file, not to a report.
+    assert "--output" not in err
+
+
+def test_a_batch_into_a_file_that_is_not_results_says_to_give_another(tmp_path):
+    (tmp_path / "notes.jsonl").write_text("hello\n")
+    code, _out, err = run_in_process(
+        ["batch", "trolley", "--principle", "deontology", "-o", str(tmp_path / "notes.jsonl")]
+    )
+    assert code == 2 and len(err.splitlines()) == 1, err
+    assert "notes.jsonl:1: not a line of batch results" in err and "--output" in err
 
 
 def test_report_agreement_lists_the_disagreeing_cases(tmp_path):

@@ -40,10 +40,11 @@ def line_hash(
     return hashlib.sha256(data.encode()).hexdigest()[:32]
 
 
-def read_lines(path: Path, repair: bool = False) -> Iterator[dict]:
+def read_lines(path: Path, repair: bool = False, advice: str = "") -> Iterator[dict]:
     """The results of a JSON lines file, in order.  A last line without its
     newline is left out (and with ``repair`` cut off the file); any other line
-    that is not a JSON object is an InputError naming it."""
+    that is not a JSON object is an InputError naming it (and ending with
+    ``advice``, if given)."""
     try:
         with open(path, "rb") as stream:
             data = stream.read()
@@ -64,8 +65,8 @@ def read_lines(path: Path, repair: bool = False) -> Iterator[dict]:
             line = None
         if not isinstance(line, dict):
             raise InputError(
-                f"{path}:{number}: not a line of batch results (a JSON object); "
-                "give another --output file"
+                f"{path}:{number}: not a line of batch results (a JSON object)"
+                + (f"; {advice}" if advice else "")
             )
         yield line
 
@@ -85,7 +86,7 @@ class Output:
                 f"--output {self.path}: cannot be written ({error.strerror or error})"
             ) from None
         self._lock()
-        lines = list(read_lines(self.path, repair=True))
+        lines = list(read_lines(self.path, repair=True, advice="give another --output file"))
         if retry_errors and any("error" in line for line in lines):
             lines = [line for line in lines if "error" not in line]
             self._rewrite(lines)
