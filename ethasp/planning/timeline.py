@@ -17,11 +17,10 @@ import clingo
 from clorm import unify
 
 from ethasp.errors import InputError
-from ethasp.planning.driver.planner import occurrences
 from ethasp.planning.model import Model
 from ethasp.planning.naming import ASP_NAMING, Naming
 from ethasp.planning.plan import Plan
-from ethasp.planning.validation import read_validation
+from ethasp.planning.validation import plan_atoms
 from ethasp.vocabulary import (
     Action,
     ActionLabel,
@@ -230,15 +229,7 @@ def timeline(model: Model, plan: Plan, valuation: Valuation | None = None) -> Ti
             f"at most {MAX_STEPS} steps"
         )
     valuation = valuation or Valuation.of_model(model)
-    ctl = model.planner.program(STEPS, symbols=occurrences(plan))
-    symbols: list[clingo.Symbol] = []
-    with ctl.solve(yield_=True) as handle:
-        for answer in handle:
-            symbols = list(answer.symbols(shown=True))
-            break
-    validation = read_validation(plan, symbols)
-    if not validation.valid:
-        raise InputError(f"not a plan: {validation.message(model.naming)}")
+    symbols = plan_atoms(model, plan, STEPS)
     atoms = unify(
         [Initially, SetAt, Changed, Causing, Caused, Final, UtilityOfFinal, EventChanged, Happened],
         symbols,

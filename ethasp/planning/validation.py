@@ -15,7 +15,7 @@ from clingo import ast
 from clorm import unify
 
 from ethasp.errors import InputError
-from ethasp.planning.driver.planner import add_facts
+from ethasp.planning.driver.planner import add_facts, occurrences
 from ethasp.planning.messages import Messages
 from ethasp.planning.model import Model
 from ethasp.planning.naming import ASP_NAMING, Naming
@@ -123,6 +123,22 @@ def validate(model: Model, plan: Plan) -> Validation:
     """Validate a plan (its trace, computed once per plan by the model's
     planner); raise InputError if it names unknown actions."""
     return read_validation(plan, model.planner.trace(plan).select(TRACE_ATOMS), model)
+
+
+def plan_atoms(model: Model, plan: Plan, encodings) -> list[clingo.Symbol]:
+    """The shown atoms of programs about a plan (``encodings``, which include
+    its trace, ``planning/trace.lp``), in one clingo call; InputError if the
+    plan is not a plan of the model."""
+    ctl = model.planner.program(encodings, symbols=occurrences(plan))
+    symbols: list[clingo.Symbol] = []
+    with ctl.solve(yield_=True) as handle:
+        for answer in handle:
+            symbols = list(answer.symbols(shown=True))
+            break
+    validation = read_validation(plan, symbols)
+    if not validation.valid:
+        raise InputError(f"not a plan: {validation.message(model.naming)}")
+    return symbols
 
 
 def read_validation(

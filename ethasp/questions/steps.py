@@ -23,10 +23,9 @@ import clingo
 from clorm import unify
 
 from ethasp.errors import InputError
-from ethasp.planning.driver.planner import occurrences
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
-from ethasp.planning.validation import read_validation
+from ethasp.planning.validation import plan_atoms
 from ethasp.reasons import words
 from ethasp.reasons.explanation import Labels
 from ethasp.reasons.reasons import model_labels
@@ -362,15 +361,7 @@ def explain_steps(model: Model, plan: Plan) -> StepsExplanation:
             f"the plan has {len(plan)} steps; step-by-step explanations are made "
             f"for plans of at most {MAX_STEPS} steps"
         )
-    ctl = model.planner.program(ENCODINGS, symbols=occurrences(plan))
-    symbols: list[clingo.Symbol] = []
-    with ctl.solve(yield_=True) as handle:
-        for answer in handle:
-            symbols = list(answer.symbols(shown=True))
-            break
-    validation = read_validation(plan, symbols)
-    if not validation.valid:
-        raise InputError(f"not a plan: {validation.message(model.naming)}")
+    symbols = plan_atoms(model, plan, ENCODINGS)
     atoms = unify([Link, ServesGoal, Chain, StepUtility, StepCauses, Removable], symbols)
     by_provider: dict[Node, list[CausalLink]] = {}
     for atom in atoms.query(Link).all():

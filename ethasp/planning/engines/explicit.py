@@ -30,6 +30,7 @@ import clingo
 
 from ethasp.planning.budget import Budget
 from ethasp.planning.engines import ALL_FEATURES
+from ethasp.planning.engines.task import Task, bit_masks
 
 # The model features this engine handles (ethasp.planning.engines).
 FEATURES = ALL_FEATURES
@@ -67,13 +68,7 @@ class Events:
         rank = {key: number for number, key in enumerate(keys)}
 
         def masks(literals) -> tuple[int, int]:
-            pos = neg = 0
-            for variable, value in literals:
-                if value:
-                    pos |= 1 << index[variable]
-                else:
-                    neg |= 1 << index[variable]
-            return pos, neg
+            return bit_masks(literals, index)
 
         self.due: dict[int, list] = {}
         for event in events:
@@ -206,8 +201,6 @@ class Configurations:
 def search_with_events(model, budget: Budget, publish, stop, read_plan: bool = True) -> None:
     """:func:`search` over a search model with exogenous events
     (:func:`ethasp.planning.engines.layers.search_model`): its task and events."""
-    from ethasp.planning.engines.task import Task
-
     task = Task(model)
     search(task, Events(model.events, task.index), budget, publish, stop, read_plan)
 

@@ -30,6 +30,18 @@ from ethasp.planning.engines.reachability import dependency_groups
 AXIOM = -1
 
 
+def bit_masks(literals, index: dict[clingo.Symbol, int]) -> tuple[int, int]:
+    """The bits of the variables that literals (variable, value) make true and
+    those they make false."""
+    pos = neg = 0
+    for variable, value in literals:
+        if value:
+            pos |= 1 << index[variable]
+        else:
+            neg |= 1 << index[variable]
+    return pos, neg
+
+
 @dataclass(frozen=True)
 class Step:
     """An action over state bits: preconditions (bits that must be 1, bits that
@@ -87,13 +99,7 @@ class Task:
             return 2 * index[variable] + (1 if value else 0)
 
         def masks(literals) -> tuple[int, int]:
-            pos = neg = 0
-            for variable, value in literals:
-                if value:
-                    pos |= 1 << index[variable]
-                else:
-                    neg |= 1 << index[variable]
-            return pos, neg
+            return bit_masks(literals, index)
 
         for number, action in enumerate(model.actions):
             pos, neg = masks(action.pre)
