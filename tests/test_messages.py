@@ -3,8 +3,6 @@ kind of message: plans, HPlans, contrasts, utilitarian judgements)."""
 
 from __future__ import annotations
 
-import re
-
 import pytest
 from conftest import MODELS
 
