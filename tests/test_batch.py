@@ -183,8 +183,15 @@ def test_resume_computes_only_the_missing_lines(tmp_path):
 def test_bad_cases_get_their_line_and_the_batch_goes_on(tmp_path):
     pulled = Case((str(MODELS / "trolley.lp"),), "pulled", plan="pull")
     cases = [FIXTURES / "syntax.lp", FIXTURES / "script.lp", MODELS / "trolley.lp", pulled]
+    # (A limit over before any search starts; the grace lets the cases load.)
     lines = run(
-        cases, ["paper"], workers=2, time_limit=1e-6, task="judge", output=tmp_path / "out.jsonl"
+        cases,
+        ["paper"],
+        workers=2,
+        time_limit=1e-6,
+        grace=30.0,
+        task="judge",
+        output=tmp_path / "out.jsonl",
     )
     by_case = {}
     for line in lines:
@@ -218,7 +225,7 @@ def test_a_case_stuck_in_grounding_loses_its_worker_not_the_batch(tmp_path):
         grace=1.0,
     )
     [line] = [line for line in lines if line["case"] == str(stuck)]
-    assert "no answer within the time limit of 0.2 s" in line["error"]
+    assert "no answer within the limits: the time limit of 0.2 s was reached" in line["error"]
     assert [line["status"] for line in lines if line["case"] != str(stuck)] == ["proven"]
 
 
