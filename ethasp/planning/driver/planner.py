@@ -55,6 +55,7 @@ from typing import TYPE_CHECKING
 import clingo
 
 from ethasp.errors import InputError
+from ethasp.memo import results
 from ethasp.planning.budget import Budget
 from ethasp.planning.driver import incremental, namespace
 from ethasp.planning.driver.incremental import CHECK, STEP, TIME_MARKER
@@ -336,7 +337,6 @@ class Planner:
         self._avoided: dict[frozenset, int] = {}
         self._reachability: Reachability | None = None
         self._ground_model: GroundModel | None = None
-        self._traces: dict = {}
         self._externals: dict[clingo.Symbol, bool] = {}  # values assigned so far
         self._model_text: str | None = None
         self._action_atoms: dict[clingo.Symbol, list[clingo.Symbol]] | None = None
@@ -1084,10 +1084,13 @@ class Planner:
         utility), plus what further ``encodings`` over it show.
 
         Each plan is evaluated once: a request whose encodings an earlier
-        evaluation of the plan covers reuses that one.
+        evaluation of the plan covers reuses that one.  (The evaluations are
+        kept in :mod:`ethasp.memo` by the planner, not in it: the encodings
+        may be those of the layers above.)
         """
         wanted = set(encodings)
-        for done, answer in self._traces.get(plan, []):
+        traces = results(self).setdefault("traces", {})
+        for done, answer in traces.get(plan, []):
             if wanted <= done:
                 return answer
         if encodings:  # further programs may read any action of the model
@@ -1098,7 +1101,7 @@ class Planner:
             answer = self.solve_program(
                 TRACE_ENCODINGS, self.plan_model_text(plan), model=False, symbols=occurrences(plan)
             )
-        self._traces.setdefault(plan, []).append((wanted, answer))
+        traces.setdefault(plan, []).append((wanted, answer))
         return answer
 
     def solve_program(
