@@ -6,7 +6,6 @@ import argparse
 import sys
 from pathlib import Path
 
-from ethasp.interfaces.cli.models import model_paths
 from ethasp.interfaces.cli.options import horizon, reasons_number, seconds, whole_number
 from ethasp.interfaces.cli.output import writable
 from ethasp.planning.budget import DEFAULT_TIME_LIMIT
@@ -34,7 +33,8 @@ def add_parser(commands) -> None:
         metavar="CASE",
         help="a model file (.lp, HERA .yaml/.json; a PDDL domain and problem "
         "side by side, with their .lp annotation files after them), a "
-        "bundled model's name, a folder (searched recursively), or a "
+        "folder (searched recursively), the name of a bundled model or folder "
+        "(trolley, hera/trolley.yaml, hera, asp: a path in the bundled folder asp/), or a "
         "manifest (.csv, or .yaml with a list 'cases') listing cases with "
         "their own files, plans, principles and questions",
     )
@@ -158,7 +158,7 @@ def run(args: argparse.Namespace) -> int:
     if args.report is not None:
         writable(Path(args.report), "--report")
     run = batch(
-        [str(path) for path in model_paths(args.cases)],
+        args.cases,
         args.principle,
         task=args.task,
         questions=args.question or (),
