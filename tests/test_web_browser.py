@@ -610,3 +610,59 @@ def test_steps_and_a_question_no_plan_can_meet_in_the_browser(server, browser):
     assert len(driver.find_elements(By.CSS_SELECTOR, "#history li")) == 1
     severe = [entry["message"] for entry in driver.get_log("browser") if entry["level"] == "SEVERE"]
     assert severe == [], severe
+
+
+def test_the_batch_report_folds_its_lists_and_sorts_its_tables(browser, tmp_path):
+    """The report of a batch: the lists of the cases on which two principles
+    disagree are folded (a link from the table of agreement opens its list),
+    and a table sorts by the column whose heading is clicked."""
+    import json
+
+    from ethasp.batch.report import write_report
+
+    principles = [f"p{index}" for index in range(6)]
+    lines = [
+        {
+            "case": f"case-{number:02d}",
+            "principle": principle,
+            "permissible": (number * (index + 1)) % 3 == 0,
+            "status": "proven",
+            "seconds": round(0.5 + (number * 7 % 11) / 10, 3),
+            "hash": f"{number}-{principle}",
+        }
+        for number in range(30)
+        for index, principle in enumerate(principles)
+    ]
+    results = tmp_path / "results.jsonl"
+    results.write_text("".join(json.dumps(line) + "\n" for line in lines))
+    page = write_report(results, tmp_path / "report.html")
+    browser.get(page.as_uri())
+    lists = browser.find_elements(By.CSS_SELECTOR, "details")
+    assert len(lists) >= 5 and not any(item.get_attribute("open") for item in lists)
+    assert not any(item.is_displayed() for item in browser.find_elements(By.CSS_SELECTOR, "li"))
+    link = browser.find_element(By.CSS_SELECTOR, ".agree a")
+    target = link.get_attribute("href").split("#")[1]
+    click(browser, link)
+    opened = browser.find_element(By.ID, target)
+    wait_for(browser, lambda d: opened.get_attribute("open") is not None, "the list opened")
+    assert opened.find_element(By.TAG_NAME, "li").is_displayed()
+    assert browser.find_element(By.ID, "disagreements").get_attribute("open") is not None
+
+    cases = browser.find_element(By.CSS_SELECTOR, "#cases + p + table")
+
+    def times() -> list[float]:
+        rows = cases.find_elements(By.CSS_SELECTOR, "tbody tr")
+        return [
+            float(row.find_elements(By.TAG_NAME, "td")[-1].get_attribute("data-sort"))
+            for row in rows
+        ]
+
+    assert times() != sorted(times())
+    heading = cases.find_elements(By.CSS_SELECTOR, "thead th")[-1]
+    click(browser, heading)
+    assert times() == sorted(times()) and heading.get_attribute("aria-sort") == "ascending"
+    click(browser, heading)
+    assert times() == sorted(times(), reverse=True)
+    click(browser, cases.find_elements(By.CSS_SELECTOR, "thead th")[0])
+    numbers = [row.get_attribute("id") for row in cases.find_elements(By.CSS_SELECTOR, "tbody tr")]
+    assert numbers == [f"case-{number}" for number in range(1, 31)]

@@ -57,7 +57,8 @@ def add_parser(commands) -> None:
         choices=["judge", "plan", "ask"],
         default=None,
         help="judge: the case's plan under each principle; plan: a shortest "
-        "plan permissible under each principle; ask: each question about "
+        "plan permissible under each principle (one that can only judge: a "
+        "shortest plan found without it, judged under it); ask: each question about "
         "the case's plan (default: per case, see above)",
     )
     many.add_argument(
