@@ -55,8 +55,10 @@ def answer_text(answer: Answer, naming) -> str:
             f"  contrast plan: {naming.actions(contrast.plan) or '(empty)'} "
             f"({contrast.principle}: {_verdict(contrast)})"
         )
+    elif answer.status == "bounded":
+        lines.append(f"  no contrast plan found (bounded): {answer.proof}")
     else:
-        lines.append(f"  contrast plan: none ({answer.status}: {answer.proof})")
+        lines.append(f"  no contrast plan: {answer.proof}")
     if answer.principle_dropped:
         lines.append(
             f"  the principle {answer.under} was dropped for the contrast: "

@@ -402,11 +402,11 @@ class Answer:
     constraints is permissible under ``under`` (proven: ``dropped_because``),
     so the contrast plan was made without it (and is judged under it);
     ``conflict`` lists a minimal set of constraints that no plan meets.
-    ``difference`` holds the literals of the chosen reasons that only one side
-    has; ``optimal`` is False when the contrast plan comes from an any-plan
-    search (not proven shortest); ``note`` says what else was learnt (a plan
-    that meets the question without the principle, when the search under it
-    was cut short).
+    ``difference`` holds, for each side, the literals of the reason its words
+    give that do not hold of the other plan; ``optimal`` is False when the
+    contrast plan comes from an any-plan search (not proven shortest);
+    ``note`` says what else was learnt (a plan that meets the question
+    without the principle, when the search under it was cut short).
     """
 
     questions: list[Question]
@@ -449,16 +449,27 @@ class Answer:
 
 
 def _difference(original: Side, contrast: Side | None) -> dict[str, list[str]]:
-    mine = original.judgement.explanation.chosen_reason if original.judgement.explanation else []
-    theirs = (
-        contrast.judgement.explanation.chosen_reason
-        if contrast and contrast.judgement.explanation
-        else []
-    )
+    """The literals of the reason each side's words give that do not hold of
+    the other plan (its principle's formula has no such atom with that value):
+    what tells the two apart.  Nothing without a contrast plan."""
+    if contrast is None:
+        return {"original_only": [], "contrast_only": []}
     return {
-        "original_only": [lit for lit in mine if lit not in theirs],
-        "contrast_only": [lit for lit in theirs if lit not in mine],
+        "original_only": _only(original, contrast),
+        "contrast_only": _only(contrast, original),
     }
+
+
+def _only(side: Side, other: Side) -> list[str]:
+    mine, theirs = side.judgement.explanation, other.judgement.explanation
+    if mine is None:
+        return []
+    shared = theirs.actual if theirs is not None else frozenset()
+    return [
+        text
+        for literal, text in zip(mine.literals, mine.spoken_reason, strict=True)
+        if literal not in shared
+    ]
 
 
 def _side_sentences(side: Side, modal: str, opening: str, alternatively: bool) -> str:
