@@ -121,7 +121,10 @@ def resolve(model: Model, question: Question) -> Resolved:
             if term is not None and not model.planner.defines("action", term):
                 raise InputError(_unknown_action(model, question, term))
     return Resolved(
-        question, fact, question.contrasts(subject, other, fact), question.presupposes(subject)
+        question,
+        fact,
+        question.contrasts(subject, other, fact),
+        question.presupposes(subject, other),
     )
 
 
@@ -176,10 +179,13 @@ def _already(model: Model, resolved: Resolved, plan: Plan) -> str:
         return f"the plan has {steps(length)}, at most {question.steps}"
     if kind == "rather-than":
         return f"the plan does not use {name} and uses {other}"
-    if kind == "before":
-        return f"the plan uses {other} before {name}"
-    if kind == "after":
-        return f"the plan uses {name} before {other}"
+    if kind in ("before", "after"):
+        # The contrast is met: the first B (before) or the first A (after)
+        # comes before any of the other.
+        first, then = (other, name) if kind == "before" else (name, other)
+        term = parse_action(question.other if kind == "before" else question.action)
+        at = plan.actions.index(term) + 1
+        return f"the plan does not use {then} before its first {first} (step {at})"
     negative = kind == "why"
     if resolved.fact:
         value = "false" if negative else "true"
@@ -213,8 +219,9 @@ def check_question(model: Model, question: Question, plan: Plan) -> list[Constra
     model lacks, or a name that is both, or if its presupposition fails: the
     plan already meets all its constraints (then there is nothing to
     contrast: e.g. "why not A" about a plan that uses A, "why F" about a plan
-    that ends with F false), or a question about two actions names an A that
-    the plan does not use.
+    that ends with F false, "why A before B" about a plan whose first B comes
+    before any A), or a question about two actions names an A (for ``before``
+    and ``after`` also a B) that the plan does not use.
     """
     resolved = resolve(model, question)
     met = _met(model, plan, resolved.terms + resolved.presupposed)
@@ -222,7 +229,7 @@ def check_question(model: Model, question: Question, plan: Plan) -> list[Constra
         if term not in met:
             raise InputError(
                 f"question '{question}': the plan does not use "
-                f"{_subject_words(model, resolved)}; ask about what the plan does"
+                f"{model.naming.action(term.arguments[0])}; ask about what the plan does"
             )
     if all(term in met for term in resolved.terms):
         raise InputError(

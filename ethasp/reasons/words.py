@@ -437,7 +437,9 @@ def constraint_phrase(labels: Labels, term: clingo.Symbol) -> str:
     if name == "unused":
         return f"avoid {doing()}"
     if name == "before":
-        return f"include {doing(0)} before {doing(1)}"
+        if arguments[0] == arguments[1]:
+            return f"include {doing(0)}"
+        return f"include {doing(0)}, and {doing(1)} only after it"
     if name == "at":
         return f"include {doing()} at step {arguments[1]}"
     if name == "not_at":
