@@ -27,17 +27,6 @@ def encoding(name: str) -> Path:
     return path
 
 
-# The naming rule of bundled models (README, docs/getting-started.md): a name
-# that is not a file or folder where ethasp runs is looked up in MODELS.
-NAMING_RULE = (
-    "a bundled model is named by its path in the folder of bundled models "
-    "(asp/ of the source tree): trolley.lp, hera/robot-and-frank.yaml, "
-    "pddl/gripper-domain.pddl, or a folder such as hera; the leading asp/ and "
-    "the .lp of an ASP file may be left out, and a file may be named by its "
-    "file name alone when no other bundled file has that name"
-)
-
-
 def bundled_model(name: str | os.PathLike) -> Path | None:
     """The bundled model file or folder that ``name`` names, or None.
 
@@ -101,8 +90,3 @@ def bundled_names() -> list[str]:
         relative = path.relative_to(MODELS).as_posix()
         names.append(relative.removesuffix(".lp") if "/" not in relative else relative)
     return names
-
-
-def bundled_folders() -> list[str]:
-    """The names of the folders of bundled models (``hera``, ``pddl``)."""
-    return [path.name for path in sorted(MODELS.iterdir()) if path.is_dir()]

@@ -129,10 +129,6 @@ class LocalPool:
         self.slots: list[_Slot] = []
         self.context = context()
 
-    def pids(self) -> list[int]:
-        """The process ids of the workers running now."""
-        return [slot.process.pid for slot in self.slots if slot.process.pid is not None]
-
     def busy_pids(self) -> list[int]:
         """The process ids of the workers computing a case now."""
         return [slot.process.pid for slot in self.slots if slot.work is not None]

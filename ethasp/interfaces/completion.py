@@ -22,7 +22,6 @@ from dataclasses import dataclass, field
 
 from ethasp.resources import ENCODINGS, bundled_names
 
-SHELLS = ("bash", "zsh")
 FILE_OPTIONS = {"svg", "plan_file", "save", "load"}  # dests whose value is a file
 PRINCIPLE_OPTIONS = {"principle", "under"}
 GROUPS = ("paper", "hera", "all")

@@ -128,15 +128,6 @@ def resolve(model: Model, question: Question) -> Resolved:
     )
 
 
-def constraints_of(model: Model, questions: Sequence[Question], first: int = 1) -> list[Constraint]:
-    """The constraints of the questions, their names resolved to model terms."""
-    result = []
-    for number, question in enumerate(questions, start=first):
-        name = clingo.Function("q", [clingo.Number(number)])
-        result += [Constraint(name, term) for term in resolve(model, question).terms]
-    return result
-
-
 def _met(model: Model, plan: Plan, terms: Sequence[clingo.Symbol]) -> set[clingo.Symbol]:
     """The constraint terms that the plan meets (questions.lp run on the plan:
     its actions only, or its states too (questions/given.lp) when a term is
