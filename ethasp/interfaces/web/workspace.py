@@ -121,8 +121,18 @@ class Workspace:
         self._sessions: OrderedDict[str, Session] = OrderedDict()
         self._jobs: list[Job] = []
         self._lock = threading.Lock()
+        self._empty_plan: bool | None = None
 
     # -- judgements of plans (under every principle), kept --------------------------
+
+    def empty_plan_is_plan(self) -> bool:
+        """Is the empty plan a plan of the model (the goal holds at the start)?
+        (Validated once: a trace of no steps.)"""
+        if self._empty_plan is None:
+            from ethasp.planning.validation import validate
+
+            self._empty_plan = validate(self.model, Plan(())).valid
+        return self._empty_plan
 
     def report(self, plan: Plan, budget: Budget | None = None) -> JudgementReport:
         """The plan judged and explained under the default principles (the paper's three)."""
