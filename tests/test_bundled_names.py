@@ -24,15 +24,19 @@ pytestmark = pytest.mark.slow  # real processes
 WAIT = 120
 
 
-def ethasp(*args: str, cwd: Path) -> subprocess.CompletedProcess:
+def python(*args: str, cwd: Path) -> subprocess.CompletedProcess:
     return subprocess.run(
-        [sys.executable, "-m", "ethasp.interfaces.cli", *args],
+        [sys.executable, *args],
         capture_output=True,
         text=True,
         cwd=cwd,
         env={**os.environ, "PYTHONPATH": str(ROOT)},
         timeout=WAIT,
     )
+
+
+def ethasp(*args: str, cwd: Path) -> subprocess.CompletedProcess:
+    return python("-m", "ethasp.interfaces.cli", *args, cwd=cwd)
 
 
 def readme_names() -> list[list[str]]:
@@ -114,14 +118,7 @@ def test_model_load_takes_the_names(tmp_path):
         " ['pddl/gripper-domain.pddl', 'pddl/gripper-problem.pddl']):\n"
         "    print(len(Model.load(names).sources))\n"
     )
-    run = subprocess.run(
-        [sys.executable, "-c", program],
-        capture_output=True,
-        text=True,
-        cwd=tmp_path,
-        env={**os.environ, "PYTHONPATH": str(ROOT)},
-        timeout=WAIT,
-    )
+    run = python("-c", program, cwd=tmp_path)
     assert run.returncode == 0, run.stderr
     assert run.stdout.split() == ["1", "1", "1", "1"]
 

@@ -15,6 +15,7 @@ replaces the README's ``docs/page.png``.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import shutil
 import tempfile
@@ -85,17 +86,29 @@ UTILITARIAN_CONTRAST = (
 )
 
 
-@pytest.fixture(scope="module")
-def server():
-    workspace = Workspace(
-        Model.load([MODELS / "trolley.lp"]), [str(MODELS / "trolley.lp")], "do-no-harm"
-    )
+@contextlib.contextmanager
+def served(workspace: Workspace):
+    """A server of the workspace on a free port, in a thread, for the test."""
     running = Server(workspace, None, 0)
     thread = threading.Thread(target=running.serve_forever, daemon=True)
     thread.start()
-    yield running
-    running.shutdown()
-    thread.join(30)
+    try:
+        yield running
+    finally:
+        running.shutdown()
+        thread.join(30)
+
+
+def trolley_workspace() -> Workspace:
+    return Workspace(
+        Model.load([MODELS / "trolley.lp"]), [str(MODELS / "trolley.lp")], "do-no-harm"
+    )
+
+
+@pytest.fixture(scope="module")
+def server():
+    with served(trolley_workspace()) as running:
+        yield running
 
 
 @pytest.fixture(scope="module")
@@ -369,33 +382,36 @@ def test_conductor_example_in_the_browser(server, browser):
     assert severe == [], severe
 
 
-@pytest.fixture
-def slow_server(monkeypatch):
-    """A server whose questions search until they are cancelled (reporting
-    progress as the searches do), to see a long request on the page."""
+def slowed(monkeypatch, call: str, wait) -> None:
+    """The workspace's searches of ``call`` (a function's name) first run
+    ``wait(budget)``, to see a long request on the page."""
     from ethasp.interfaces.web import workspace as workspace_module
 
     original = workspace_module.searching
 
-    def slow(call, budget, *args, **kwargs):
-        if getattr(call, "__name__", "") == "ask":
-            budget.report("contrast plan search", horizon=2)
-            for _ in range(2400):  # until cancelled (at most a minute)
-                if budget.cancelled:
-                    break
-                threading.Event().wait(0.025)
-        return original(call, budget, *args, **kwargs)
+    def slow(function, budget, *args, **kwargs):
+        if getattr(function, "__name__", "") == call:
+            wait(budget)
+        return original(function, budget, *args, **kwargs)
 
     monkeypatch.setattr(workspace_module, "searching", slow)
-    workspace = Workspace(
-        Model.load([MODELS / "trolley.lp"]), [str(MODELS / "trolley.lp")], "do-no-harm"
-    )
-    running = Server(workspace, None, 0)
-    thread = threading.Thread(target=running.serve_forever, daemon=True)
-    thread.start()
-    yield running
-    running.shutdown()
-    thread.join(30)
+
+
+@pytest.fixture
+def slow_server(monkeypatch):
+    """A server whose questions search until they are cancelled (reporting
+    progress as the searches do), to see a long request on the page."""
+
+    def until_cancelled(budget):
+        budget.report("contrast plan search", horizon=2)
+        for _ in range(2400):  # until cancelled (at most a minute)
+            if budget.cancelled:
+                break
+            threading.Event().wait(0.025)
+
+    slowed(monkeypatch, "ask", until_cancelled)
+    with served(trolley_workspace()) as running:
+        yield running
 
 
 def test_a_long_search_shows_progress_and_can_be_cancelled(slow_server, browser):
@@ -435,13 +451,8 @@ CARE = [
 
 @pytest.fixture(scope="module")
 def care_server():
-    workspace = Workspace(Model.load(CARE), CARE, "do-no-harm")
-    running = Server(workspace, None, 0)
-    thread = threading.Thread(target=running.serve_forever, daemon=True)
-    thread.start()
-    yield running
-    running.shutdown()
-    thread.join(30)
+    with served(Workspace(Model.load(CARE), CARE, "do-no-harm")) as running:
+        yield running
 
 
 def test_the_layout_of_a_long_pddl_task(care_server, browser):
@@ -558,9 +569,7 @@ def test_the_layout_of_a_long_pddl_task(care_server, browser):
 
 def test_steps_and_a_question_no_plan_can_meet_in_the_browser(server, browser):
     driver = browser
-    driver.get(server.url)
-    driver.execute_script("localStorage.clear()")
-    driver.refresh()
+    reloaded(driver, server.url)
     wait_for(
         driver,
         lambda d: idle(d) and "the first plan" in text(d, "current-summary"),
@@ -691,27 +700,23 @@ def chain(steps: int) -> str:
     return "\n".join(lines)
 
 
-def serve_workspace(workspace):
-    running = Server(workspace, None, 0)
-    thread = threading.Thread(target=running.serve_forever, daemon=True)
-    thread.start()
-    return running, thread
-
-
 @pytest.fixture(scope="module")
 def long_server():
     workspace = Workspace(Model.from_string(chain(LONG)), ["chain.lp"], "do-no-harm")
-    running, thread = serve_workspace(workspace)
-    yield running
-    running.shutdown()
-    thread.join(30)
+    with served(workspace) as running:
+        yield running
+
+
+def reloaded(driver, url: str) -> None:
+    """The page, loaded again with nothing kept from earlier tests."""
+    driver.get(url)
+    driver.execute_script("localStorage.clear()")
+    driver.refresh()
 
 
 def fresh(driver, url: str) -> None:
     """The page with nothing kept from earlier tests, and its first plan shown."""
-    driver.get(url)
-    driver.execute_script("localStorage.clear()")
-    driver.refresh()
+    reloaded(driver, url)
     wait_for(
         driver,
         lambda d: (
@@ -821,30 +826,14 @@ def test_suggestions_and_buttons_come_from_the_plan(long_server, server, browser
 @pytest.fixture
 def slow_start_server(monkeypatch):
     """A server whose dialogues take two seconds to start, to see the page loading."""
-    from ethasp.interfaces.web import workspace as workspace_module
-
-    original = workspace_module.searching
-
-    def slow(call, budget, *args, **kwargs):
-        if getattr(call, "__name__", "") == "start":
-            threading.Event().wait(2.0)
-        return original(call, budget, *args, **kwargs)
-
-    monkeypatch.setattr(workspace_module, "searching", slow)
-    workspace = Workspace(
-        Model.load([MODELS / "trolley.lp"]), [str(MODELS / "trolley.lp")], "do-no-harm"
-    )
-    running, thread = serve_workspace(workspace)
-    yield running
-    running.shutdown()
-    thread.join(30)
+    slowed(monkeypatch, "start", lambda budget: threading.Event().wait(2.0))
+    with served(trolley_workspace()) as running:
+        yield running
 
 
 def test_while_the_page_loads_no_empty_button_and_the_served_principle(slow_start_server, browser):
     driver = browser
-    driver.get(slow_start_server.url)
-    driver.execute_script("localStorage.clear()")
-    driver.refresh()
+    reloaded(driver, slow_start_server.url)
     wait_for(
         driver,
         lambda d: "trolley" in text(d, "model-name") and not idle(d),
@@ -870,10 +859,8 @@ def rescue_server():
     workspace = Workspace(
         Model.load([MODELS / "rescue.lp"]), [str(MODELS / "rescue.lp")], "deontology"
     )
-    running, thread = serve_workspace(workspace)
-    yield running
-    running.shutdown()
-    thread.join(30)
+    with served(workspace) as running:
+        yield running
 
 
 def test_after_a_conflict_the_page_offers_to_drop_it_instead_of_stacking(rescue_server, browser):
