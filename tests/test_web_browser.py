@@ -708,8 +708,10 @@ def long_server():
 
 
 def reloaded(driver, url: str) -> None:
-    """The page, loaded again with nothing kept from earlier tests."""
+    """The page, loaded again with nothing kept from earlier tests (once the
+    first load's dialogue has started, so that one session starts at a time)."""
     driver.get(url)
+    wait_for(driver, lambda d: idle(d) and text(d, "model-name"), "the page loaded")
     driver.execute_script("localStorage.clear()")
     driver.refresh()
 
