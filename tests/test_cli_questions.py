@@ -189,17 +189,18 @@ def test_an_answer_without_a_contrast_plan_says_so_once():
 
 def test_the_dialogue_saves_only_when_asked_and_minus_is_standard_output(tmp_path):
     script = "why refrain rather than pull\nquit\n"
-    run = ethasp("dialogue", TROLLEY, "--principle", "do-no-harm", stdin=script, cwd=tmp_path)
+    harm = ("--principle", "do-no-harm")  # its first plan: refrain
+    run = ethasp("dialogue", TROLLEY, *harm, stdin=script, cwd=tmp_path)
     assert run.returncode == 0, run.stderr
     assert list(tmp_path.iterdir()) == []  # nothing written without --save
     assert "saved" not in run.stdout
-    run = ethasp("dialogue", TROLLEY, "--save", "-", stdin=script, cwd=tmp_path)
+    run = ethasp("dialogue", TROLLEY, *harm, "--save", "-", stdin=script, cwd=tmp_path)
     assert run.returncode == 0 and list(tmp_path.iterdir()) == [], run.stderr
     head, json_text = run.stdout.split("\n{\n", 1)
     assert head.startswith("current plan: refrain")
     data = json.loads("{\n" + json_text)
     assert data["format"] == "ethasp-dialogue" and len(data["steps"]) == 1
-    run = ethasp("dialogue", TROLLEY, "--save", "d.json", stdin=script, cwd=tmp_path)
+    run = ethasp("dialogue", TROLLEY, *harm, "--save", "d.json", stdin=script, cwd=tmp_path)
     assert run.returncode == 0 and run.stdout.endswith("dialogue saved to d.json\n")
     assert json.loads((tmp_path / "d.json").read_text())["steps"]
     run = ethasp("dialogue", TROLLEY, stdin="save -\nquit\n", cwd=tmp_path)

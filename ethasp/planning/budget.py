@@ -8,7 +8,11 @@ of time or is cancelled stops soon and answers ``bounded``, never a claim it
 has not proven.
 
 One budget covers one command (or one question of a dialogue): every search
-made for it shares the same deadline.
+made for it shares the same deadline.  A budget made while a worker process
+runs a call for a front end (:mod:`ethasp.execution`) joins that call: it
+expires by the call's soft deadline, is cancelled with it (for example when
+the memory of the process tree nears its limit), and reports progress to the
+front end unless it has a callback of its own.
 """
 
 from __future__ import annotations
@@ -17,6 +21,8 @@ import threading
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
+
+from ethasp.execution import context as execution_context
 
 # The default time limit of a command line search, in seconds (``ethasp ...
 # --time-limit 0`` for none; the Python API has no limit unless given one).
@@ -69,20 +75,16 @@ class Budget:
         self.on_progress = on_progress
         self._cancelled = threading.Event()
         self._reason: list[str] = []  # why it was cancelled, if a reason was given
-        self._share = False
-
-    def share(self, seconds: float) -> Budget:
-        """A part of this budget: at most ``seconds`` more, cancelled with it,
-        reporting to the same callback."""
-        part = Budget(None, self.on_progress)
-        part.started = self.started
-        part._cancelled = self._cancelled
-        part._reason = self._reason
-        end = time.monotonic() + seconds
-        part.deadline = end if self.deadline is None else min(end, self.deadline)
-        part.time_limit = self.time_limit
-        part._share = True
-        return part
+        running = execution_context.current()
+        if running is not None:
+            self._cancelled = running.cancelled
+            self._reason = running.reasons
+            soft = running.limits.soft_deadline()
+            if soft is not None and (self.deadline is None or soft < self.deadline):
+                self.deadline = soft
+                self.time_limit = running.limits.time
+            if self.on_progress is None:
+                self.on_progress = running.progress
 
     def until(self, condition: Callable[[], bool]) -> Budget:
         """This budget, also expired as soon as ``condition()`` holds (for a
@@ -123,8 +125,6 @@ class Budget:
         """Words for a search cut short by this budget."""
         if self.cancelled:
             return self._reason[0] if self._reason else "the search was cancelled"
-        if self._share:
-            return "its share of the time was used"
         if self.time_limit is None:
             return "the search was stopped"
         return f"the time limit of {self.time_limit:g} s was reached"
@@ -177,7 +177,6 @@ class _Until(Budget):
         self.time_limit = parent.time_limit
         self._cancelled = parent._cancelled
         self._reason = parent._reason
-        self._share = parent._share
         self.parent = parent
         self.condition = condition
 
