@@ -53,8 +53,9 @@ def meets(spec: RandomModel, plan: list[str], term: tuple) -> bool:
     if kind == "unused":
         return term[1] not in plan
     if kind == "before":
+        # An X at some step, and no Y at a step before the first X.
         first, then = term[1], term[2]
-        return any(x == first and then in plan[i + 1 :] for i, x in enumerate(plan))
+        return first in plan and then not in plan[: plan.index(first)]
     if kind in ("at", "not_at"):
         there = term[2] <= n and plan[term[2] - 1] == term[1]
         return there if kind == "at" else not there
@@ -91,8 +92,9 @@ def shortest_meeting(spec: RandomModel, terms, principles=()) -> int | None:
     Breadth-first search over nodes (state, time, memory, produced): the
     time counts the steps up to the later of the last event and one past
     the largest step the constraints name (exact below it); the memory holds
-    what the constraints remember (the actions used and their order, the
-    actions at named steps, the states after named steps); produced holds,
+    what the constraints remember (the actions used, whether a Y came before
+    the first X of a before(X,Y), the actions at named steps, the states
+    after named steps); produced holds,
     for do-no-harm, the bad facts an action of the plan set (they held after
     it) that have held ever since (as tests/oracle.py's search).  A node is
     accepted on the plan's final state, after the events still due.  The
@@ -147,9 +149,9 @@ def shortest_meeting(spec: RandomModel, terms, principles=()) -> int | None:
             remember = set(memory)
             if action in watched:
                 remember.add(("used", action))
-                for other in watched:
-                    if ("used", other) in memory:
-                        remember.add(("before", other, action))
+            for _, first, then in (t for t in terms if t[0] == "before"):
+                if action == then != first and ("used", first) not in memory:
+                    remember.add(("early", first, then))  # a Y before the first X
             if step < clock:
                 remember.add(("at", action, step))
                 if step in named_steps:
@@ -180,7 +182,7 @@ def _met(spec: RandomModel, term: tuple, final: frozenset, time: int, memory) ->
     if kind == "unused":
         return ("used", term[1]) not in memory
     if kind == "before":
-        return ("before", term[1], term[2]) in memory
+        return ("used", term[1]) in memory and ("early", term[1], term[2]) not in memory
     if kind in ("at", "not_at"):
         there = ("at", term[1], term[2]) in memory
         return there if kind == "at" else not there

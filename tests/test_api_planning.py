@@ -160,3 +160,22 @@ def test_searches_share_one_grounding(monkeypatch):
         restricted_control,
         restricted_grounded,
     )
+
+
+def test_the_ground_model_is_read_one_thread_at_a_time():
+    """Reading the model's atoms waits while another thread holds the planner
+    (a search grounding on its control): two sessions of the page at once
+    read whole atoms, never half-grounded ones."""
+    import threading
+
+    from ethasp.resources import MODELS
+
+    planner = Model.load([MODELS / "rescue.lp"]).planner
+    read: list = []
+    with planner.lock:
+        reader = threading.Thread(target=lambda: read.append(planner.get("action_label", 3)))
+        reader.start()
+        reader.join(0.5)
+        assert reader.is_alive() and read == []  # waits for the lock
+    reader.join(30)
+    assert len(read[0]) > 10

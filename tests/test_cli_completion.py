@@ -50,7 +50,7 @@ def test_the_scripts_follow_the_parser():
     restricting = principle_names(restricting=True)
     assert "deontology" in restricting and "kantian-humanity" not in restricting
     assert {"kantian-humanity", "paper", "all"} <= set(principle_names(restricting=False))
-    assert "trolley" in bundled_models() and "robot-and-frank.yaml" in bundled_models()
+    assert "trolley" in bundled_models() and "hera/robot-and-frank.yaml" in bundled_models()
 
 
 def test_an_unknown_shell_is_one_line():
@@ -77,16 +77,8 @@ def test_an_unknown_shell_is_one_line():
         (["ethasp", "plan", "trolley", "--principle", "do"], ["do-no-harm"]),
         (["ethasp", "ask", "trolley", "--under", "util"], ["utilitarianism"]),
         (["ethasp", "judge", "trolley", "--principle", "pa"], ["paper"]),
-        (
-            ["ethasp", "judge", "troll"],
-            [
-                "trolley",
-                "trolley.yaml",
-                "trolley-domain.pddl",
-                "trolley-problem.pddl",
-                "trolley-utility.lp",
-            ],
-        ),
+        (["ethasp", "judge", "troll"], ["trolley"]),
+        (["ethasp", "judge", "hera/"], ["hera/robot-and-frank.yaml", "hera/trolley.yaml"]),
         (["ethasp", "judge", "asp/foot"], ["asp/footbridge.lp"]),
         (["ethasp", "completion", ""], ["bash", "zsh"]),
         (["ethasp", "serve", "trolley", "--log"], ["--log-requests"]),

@@ -158,3 +158,52 @@ def test_dialogue_why_step_drop_and_principles(tmp_path):
     assert "dropped: why not lie_to_frank" in out
     assert "error: drop: the last question does not conflict" in out
     assert "1. why lie_to_frank (under deontology): unused(lie_to_frank)" in out
+
+
+def test_answers_name_only_the_reasons_that_tell_the_plans_apart():
+    """The reasons "only for" one plan hold of that plan alone: the contrast
+    plan also moves from room 2 to room 3, so that step's reason is shared."""
+    run = ethasp("ask", RESCUE, "--plan", KEY_PLAN, "--question", "why take_key")
+    assert run.returncode == 0, run.stderr
+    last = run.stdout.strip().splitlines()[-1]
+    assert last == (
+        "  reasons only for the plan asked about: not Bad(take_key), not Bad(unlock_door); "
+        "only for the contrast: Bad(break_door)"
+    ), last
+    data = json.loads(
+        ethasp("ask", RESCUE, "--plan", KEY_PLAN, "--question", "why take_key", "--json").stdout
+    )
+    assert data["reason_difference"]["original_only"] == [
+        "not Bad(take_key)",
+        "not Bad(unlock_door)",
+    ]
+
+
+def test_an_answer_without_a_contrast_plan_says_so_once():
+    run = ethasp("ask", TROLLEY, "--plan", "pull", "--question", "why not in 0 steps")
+    assert run.returncode == 0, run.stderr
+    assert "  no contrast plan: no plan meets the question: " in run.stdout
+    assert "contrast plan: none" not in run.stdout and "(none:" not in run.stdout
+    assert "only for the contrast" not in run.stdout and "reasons only" not in run.stdout
+
+
+def test_the_dialogue_saves_only_when_asked_and_minus_is_standard_output(tmp_path):
+    script = "why refrain rather than pull\nquit\n"
+    harm = ("--principle", "do-no-harm")  # its first plan: refrain
+    run = ethasp("dialogue", TROLLEY, *harm, stdin=script, cwd=tmp_path)
+    assert run.returncode == 0, run.stderr
+    assert list(tmp_path.iterdir()) == []  # nothing written without --save
+    assert "saved" not in run.stdout
+    run = ethasp("dialogue", TROLLEY, *harm, "--save", "-", stdin=script, cwd=tmp_path)
+    assert run.returncode == 0 and list(tmp_path.iterdir()) == [], run.stderr
+    head, json_text = run.stdout.split("\n{\n", 1)
+    assert head.startswith("current plan: refrain")
+    data = json.loads("{\n" + json_text)
+    assert data["format"] == "ethasp-dialogue" and len(data["steps"]) == 1
+    run = ethasp("dialogue", TROLLEY, *harm, "--save", "d.json", stdin=script, cwd=tmp_path)
+    assert run.returncode == 0 and run.stdout.endswith("dialogue saved to d.json\n")
+    assert json.loads((tmp_path / "d.json").read_text())["steps"]
+    run = ethasp("dialogue", TROLLEY, stdin="save -\nquit\n", cwd=tmp_path)
+    assert (
+        '"format": "ethasp-dialogue"' in run.stdout and "written to standard output" in run.stdout
+    )

@@ -29,8 +29,8 @@ def dense_model(seed: int) -> RandomModel:
     with up to two preconditions and one to three effects, so that many states
     are reachable and paths are long; a quarter with conditional effects, and
     a quarter with every feature (conditional effects, derived variables,
-    exogenous events: searched in ASP, as exact reachability knows no
-    events)."""
+    exogenous events: searched by the explicit layers of configurations, as
+    the decision diagrams of exact reachability know no events)."""
     if seed % 4 == 0:
         return random_model(seed, max_variables=7, max_actions=8, conditional=True, far_goal=True)
     if seed % 4 == 1:

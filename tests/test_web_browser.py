@@ -15,6 +15,7 @@ replaces the README's ``docs/page.png``.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import shutil
 import tempfile
@@ -85,17 +86,29 @@ UTILITARIAN_CONTRAST = (
 )
 
 
-@pytest.fixture(scope="module")
-def server():
-    workspace = Workspace(
-        Model.load([MODELS / "trolley.lp"]), [str(MODELS / "trolley.lp")], "do-no-harm"
-    )
+@contextlib.contextmanager
+def served(workspace: Workspace):
+    """A server of the workspace on a free port, in a thread, for the test."""
     running = Server(workspace, None, 0)
     thread = threading.Thread(target=running.serve_forever, daemon=True)
     thread.start()
-    yield running
-    running.shutdown()
-    thread.join(30)
+    try:
+        yield running
+    finally:
+        running.shutdown()
+        thread.join(30)
+
+
+def trolley_workspace() -> Workspace:
+    return Workspace(
+        Model.load([MODELS / "trolley.lp"]), [str(MODELS / "trolley.lp")], "do-no-harm"
+    )
+
+
+@pytest.fixture(scope="module")
+def server():
+    with served(trolley_workspace()) as running:
+        yield running
 
 
 @pytest.fixture(scope="module")
@@ -369,33 +382,36 @@ def test_conductor_example_in_the_browser(server, browser):
     assert severe == [], severe
 
 
-@pytest.fixture
-def slow_server(monkeypatch):
-    """A server whose questions search until they are cancelled (reporting
-    progress as the searches do), to see a long request on the page."""
+def slowed(monkeypatch, call: str, wait) -> None:
+    """The workspace's searches of ``call`` (a function's name) first run
+    ``wait(budget)``, to see a long request on the page."""
     from ethasp.interfaces.web import workspace as workspace_module
 
     original = workspace_module.searching
 
-    def slow(call, budget, *args, **kwargs):
-        if getattr(call, "__name__", "") == "ask":
-            budget.report("contrast plan search", horizon=2)
-            for _ in range(2400):  # until cancelled (at most a minute)
-                if budget.cancelled:
-                    break
-                threading.Event().wait(0.025)
-        return original(call, budget, *args, **kwargs)
+    def slow(function, budget, *args, **kwargs):
+        if getattr(function, "__name__", "") == call:
+            wait(budget)
+        return original(function, budget, *args, **kwargs)
 
     monkeypatch.setattr(workspace_module, "searching", slow)
-    workspace = Workspace(
-        Model.load([MODELS / "trolley.lp"]), [str(MODELS / "trolley.lp")], "do-no-harm"
-    )
-    running = Server(workspace, None, 0)
-    thread = threading.Thread(target=running.serve_forever, daemon=True)
-    thread.start()
-    yield running
-    running.shutdown()
-    thread.join(30)
+
+
+@pytest.fixture
+def slow_server(monkeypatch):
+    """A server whose questions search until they are cancelled (reporting
+    progress as the searches do), to see a long request on the page."""
+
+    def until_cancelled(budget):
+        budget.report("contrast plan search", horizon=2)
+        for _ in range(2400):  # until cancelled (at most a minute)
+            if budget.cancelled:
+                break
+            threading.Event().wait(0.025)
+
+    slowed(monkeypatch, "ask", until_cancelled)
+    with served(trolley_workspace()) as running:
+        yield running
 
 
 def test_a_long_search_shows_progress_and_can_be_cancelled(slow_server, browser):
@@ -435,13 +451,8 @@ CARE = [
 
 @pytest.fixture(scope="module")
 def care_server():
-    workspace = Workspace(Model.load(CARE), CARE, "do-no-harm")
-    running = Server(workspace, None, 0)
-    thread = threading.Thread(target=running.serve_forever, daemon=True)
-    thread.start()
-    yield running
-    running.shutdown()
-    thread.join(30)
+    with served(Workspace(Model.load(CARE), CARE, "do-no-harm")) as running:
+        yield running
 
 
 def test_the_layout_of_a_long_pddl_task(care_server, browser):
@@ -464,13 +475,14 @@ def test_the_layout_of_a_long_pddl_task(care_server, browser):
     assert driver.execute_script(
         "return [...document.querySelectorAll('#model details')].map(d => d.open)"
     ) == [False, False]
-    # The plan's picture fits its box; its boxes name facts whole (wrapped), with tooltips.
+    # The plan's picture keeps its size (its text readable) and scrolls sideways
+    # in its box; its boxes name facts whole (wrapped), with tooltips.
     picture = driver.find_element(By.ID, "current-picture")
     assert driver.execute_script(
         """
         const svg = arguments[0].querySelector("svg");
-        return svg.getBoundingClientRect().width <= arguments[0].clientWidth + 1 &&
-               svg.getBoundingClientRect().width < svg.viewBox.baseVal.width;""",
+        return Math.abs(svg.getBoundingClientRect().width - svg.viewBox.baseVal.width) < 1 &&
+               arguments[0].scrollWidth > arguments[0].clientWidth + 100;""",
         picture,
     )
     names = [
@@ -497,7 +509,7 @@ def test_the_layout_of_a_long_pddl_task(care_server, browser):
     for element_id in ("history-panel", "undo", "save"):
         assert in_view(driver, driver.find_element(By.ID, element_id)), element_id
 
-    # A question with a long contrast plan; its picture fits, or is shown at its size.
+    # A question with a long contrast plan; its picture is shown at its size, or fits.
     box = driver.find_element(By.ID, "question")
     box.clear()
     box.send_keys("why not (pick-up pills-bob kitchen)\n")
@@ -514,10 +526,15 @@ def test_the_layout_of_a_long_pddl_task(care_server, browser):
     open_everything(driver)
     assert layout_problems(driver) == []
     zoom = driver.find_element(By.CSS_SELECTOR, 'button.zoom[data-picture="answer-picture"]')
-    click(driver, zoom)
     assert zoom.text == "Fit to width"
     assert driver.execute_script(
         "const p = arguments[0]; return p.scrollWidth > p.clientWidth + 100",
+        driver.find_element(By.ID, "answer-picture"),
+    )
+    click(driver, zoom)
+    assert zoom.text == "Actual size"
+    assert driver.execute_script(
+        "const p = arguments[0]; return p.scrollWidth <= p.clientWidth + 1",
         driver.find_element(By.ID, "answer-picture"),
     )
     assert layout_problems(driver) == []
@@ -552,9 +569,7 @@ def test_the_layout_of_a_long_pddl_task(care_server, browser):
 
 def test_steps_and_a_question_no_plan_can_meet_in_the_browser(server, browser):
     driver = browser
-    driver.get(server.url)
-    driver.execute_script("localStorage.clear()")
-    driver.refresh()
+    reloaded(driver, server.url)
     wait_for(
         driver,
         lambda d: idle(d) and "the first plan" in text(d, "current-summary"),
@@ -610,3 +625,269 @@ def test_steps_and_a_question_no_plan_can_meet_in_the_browser(server, browser):
     assert len(driver.find_elements(By.CSS_SELECTOR, "#history li")) == 1
     severe = [entry["message"] for entry in driver.get_log("browser") if entry["level"] == "SEVERE"]
     assert severe == [], severe
+
+
+def test_the_batch_report_folds_its_lists_and_sorts_its_tables(browser, tmp_path):
+    """The report of a batch: the lists of the cases on which two principles
+    disagree are folded (a link from the table of agreement opens its list),
+    and a table sorts by the column whose heading is clicked."""
+    import json
+
+    from ethasp.batch.report import write_report
+
+    principles = [f"p{index}" for index in range(6)]
+    lines = [
+        {
+            "case": f"case-{number:02d}",
+            "principle": principle,
+            "permissible": (number * (index + 1)) % 3 == 0,
+            "status": "proven",
+            "seconds": round(0.5 + (number * 7 % 11) / 10, 3),
+            "hash": f"{number}-{principle}",
+        }
+        for number in range(30)
+        for index, principle in enumerate(principles)
+    ]
+    results = tmp_path / "results.jsonl"
+    results.write_text("".join(json.dumps(line) + "\n" for line in lines))
+    page = write_report(results, tmp_path / "report.html")
+    browser.get(page.as_uri())
+    lists = browser.find_elements(By.CSS_SELECTOR, "details")
+    assert len(lists) >= 5 and not any(item.get_attribute("open") for item in lists)
+    assert not any(item.is_displayed() for item in browser.find_elements(By.CSS_SELECTOR, "li"))
+    link = browser.find_element(By.CSS_SELECTOR, ".agree a")
+    target = link.get_attribute("href").split("#")[1]
+    click(browser, link)
+    opened = browser.find_element(By.ID, target)
+    wait_for(browser, lambda d: opened.get_attribute("open") is not None, "the list opened")
+    assert opened.find_element(By.TAG_NAME, "li").is_displayed()
+    assert browser.find_element(By.ID, "disagreements").get_attribute("open") is not None
+
+    cases = browser.find_element(By.CSS_SELECTOR, "#cases + p + table")
+
+    def times() -> list[float]:
+        rows = cases.find_elements(By.CSS_SELECTOR, "tbody tr")
+        return [
+            float(row.find_elements(By.TAG_NAME, "td")[-1].get_attribute("data-sort"))
+            for row in rows
+        ]
+
+    assert times() != sorted(times())
+    heading = cases.find_elements(By.CSS_SELECTOR, "thead th")[-1]
+    click(browser, heading)
+    assert times() == sorted(times()) and heading.get_attribute("aria-sort") == "ascending"
+    click(browser, heading)
+    assert times() == sorted(times(), reverse=True)
+    click(browser, cases.find_elements(By.CSS_SELECTOR, "thead th")[0])
+    numbers = [row.get_attribute("id") for row in cases.find_elements(By.CSS_SELECTOR, "tbody tr")]
+    assert numbers == [f"case-{number}" for number in range(1, 31)]
+
+
+# -- long plans, suggestions, buttons, conflicts ---------------------------------------------
+
+LONG = 46
+
+
+def chain(steps: int) -> str:
+    """A model whose only plan walks a chain of ``steps`` actions; step 7 is
+    bad, and an action the plan never uses is good."""
+    lines = [f"variable(v({i})). action(go({i}))." for i in range(1, steps + 1)]
+    lines += ["variable(v(0)). init(v(0)). action(rest). pre(rest, v(0), false)."]
+    lines += [
+        f"pre(go({i}), v({i - 1}), true). eff(go({i}), v({i}), true)." for i in range(1, steps + 1)
+    ]
+    lines += [f"goal(v({steps}), true). utility(go(7), -1). utility(rest, 1)."]
+    return "\n".join(lines)
+
+
+@pytest.fixture(scope="module")
+def long_server():
+    workspace = Workspace(Model.from_string(chain(LONG)), ["chain.lp"], "do-no-harm")
+    with served(workspace) as running:
+        yield running
+
+
+def reloaded(driver, url: str) -> None:
+    """The page, loaded again with nothing kept from earlier tests (once the
+    first load's dialogue has started, so that one session starts at a time)."""
+    driver.get(url)
+    wait_for(driver, lambda d: idle(d) and text(d, "model-name"), "the page loaded")
+    driver.execute_script("localStorage.clear()")
+    driver.refresh()
+
+
+def fresh(driver, url: str) -> None:
+    """The page with nothing kept from earlier tests, and its first plan shown."""
+    reloaded(driver, url)
+    wait_for(
+        driver,
+        lambda d: (
+            idle(d)
+            and "the first plan" in text(d, "current-summary")
+            and d.find_elements(By.CSS_SELECTOR, "#current-picture svg")
+        ),
+        "the first plan",
+    )
+
+
+def test_a_long_plan_keeps_its_picture_readable_and_shows_the_step_under_the_pointer(
+    long_server, browser
+):
+    driver = browser
+    driver.set_window_size(1280, 900)
+    fresh(driver, long_server.url)
+    assert text(driver, "current-summary").startswith(f"{LONG} steps: the first plan")
+    picture = driver.find_element(By.ID, "current-picture")
+    # The picture is drawn at its own size: its step labels are as large as
+    # drawn (11 px), and the box scrolls sideways through the 46 steps.
+    sizes = driver.execute_script(
+        """
+        const box = arguments[0], svg = box.querySelector("svg");
+        const label = [...svg.querySelectorAll("text")].find((t) => t.textContent === "step 1");
+        return [svg.getBoundingClientRect().width / svg.viewBox.baseVal.width,
+                label.getBoundingClientRect().height, box.scrollWidth, box.clientWidth];""",
+        picture,
+    )
+    scale, height, wide, shown = sizes
+    assert scale > 0.99 and height >= 10, sizes
+    assert wide > 10 * shown, sizes
+    # The pointer over a step's column highlights that step, in the picture
+    # and in the plan above it; scrolled to step 40, the same.
+    from selenium.webdriver.common.action_chains import ActionChains
+
+    for step in (3, 40):
+        band = driver.find_element(
+            By.CSS_SELECTOR, f'#current-picture rect.column[data-step="{step}"]'
+        )
+        driver.execute_script(
+            "const box = arguments[0], band = arguments[1];"
+            "box.scrollLeft = band.getBoundingClientRect().left - box.getBoundingClientRect().left"
+            " + box.scrollLeft - 100;",
+            picture,
+            band,
+        )
+        driver.execute_script("arguments[0].scrollIntoView({block: 'center'})", picture)
+        ActionChains(driver).move_to_element(band).perform()
+        wait_for(
+            driver,
+            lambda d, step=step: d.find_elements(
+                By.CSS_SELECTOR, f'#current-picture rect.column.hover[data-step="{step}"]'
+            ),
+            f"step {step} highlighted",
+        )
+        assert len(driver.find_elements(By.CSS_SELECTOR, "#current-picture rect.column.hover")) == 1
+        item = driver.find_element(By.CSS_SELECTOR, "#current-actions li.hover")
+        assert item.get_attribute("data-step") == str(step)
+    # Fitted to the width, the whole plan shows at once.
+    zoom = driver.find_element(By.CSS_SELECTOR, 'button.zoom[data-picture="current-picture"]')
+    click(driver, zoom)
+    assert driver.execute_script(
+        "return arguments[0].scrollWidth <= arguments[0].clientWidth + 1", picture
+    )
+    click(driver, zoom)
+    assert layout_problems(driver) == []
+
+
+def test_suggestions_and_buttons_come_from_the_plan(long_server, server, browser):
+    driver = browser
+    fresh(driver, long_server.url)
+    # The question field suggests a question about this model's plan: its bad
+    # step, rather than the action it leaves out.
+    assert driver.find_element(By.ID, "question").get_attribute("placeholder") == (
+        "why go(7) rather than rest"
+    )
+    assert text(driver, "shorter") == f"Why not in {LONG - 1} steps?"
+    # A step's menu offers "why not this at step T" for a step whose action is
+    # another one, and refuses the step where it already is.
+    click(driver, driver.find_element(By.CSS_SELECTOR, '#current-actions button[data-step="1"]'))
+    step = driver.find_element(By.ID, "not-at-step")
+    assert step.get_attribute("value") == "2"
+    assert driver.find_element(By.ID, "why-not-at").is_enabled()
+    step.clear()
+    step.send_keys("1")
+    assert not driver.find_element(By.ID, "why-not-at").is_enabled()
+    step.clear()
+    step.send_keys("5")
+    assert driver.find_element(By.ID, "why-not-at").is_enabled()
+
+    # The trolley: a plan of one step offers no question about 0 steps, and
+    # the plan's words appear once, above the judgements.
+    fresh(driver, server.url)
+    assert not driver.find_element(By.ID, "shorter").is_displayed()
+    assert driver.find_element(By.ID, "question").get_attribute("placeholder") == (
+        "why refrain rather than pull"
+    )
+    assert text(driver, "current-words") == "The man can refrain from action."
+    cards = driver.find_elements(By.CSS_SELECTOR, "#judgements .card .explanation")
+    assert len(cards) == 3
+    for card in cards:
+        assert "can refrain" not in card.text and card.text.startswith("Doing so is"), card.text
+    assert driver.page_source.count("The man can refrain from action.") == 1
+
+
+@pytest.fixture
+def slow_start_server(monkeypatch):
+    """A server whose dialogues take two seconds to start, to see the page loading."""
+    slowed(monkeypatch, "start", lambda budget: threading.Event().wait(2.0))
+    with served(trolley_workspace()) as running:
+        yield running
+
+
+def test_while_the_page_loads_no_empty_button_and_the_served_principle(slow_start_server, browser):
+    driver = browser
+    reloaded(driver, slow_start_server.url)
+    wait_for(
+        driver,
+        lambda d: "trolley" in text(d, "model-name") and not idle(d),
+        "the model, while the first plan is made",
+    )
+    empty = driver.execute_script(
+        """return [...document.querySelectorAll("button")]
+             .filter((b) => b.getClientRects().length && !b.textContent.trim())
+             .map((b) => b.id || b.outerHTML.slice(0, 60));"""
+    )
+    assert empty == []
+    under = Select(driver.find_element(By.ID, "under"))
+    assert under.first_selected_option.text == "do-no-harm"
+    wait_for(
+        driver, lambda d: idle(d) and "the first plan" in text(d, "current-summary"), "the plan"
+    )
+    assert under.first_selected_option.text == "do-no-harm"
+    assert driver.find_element(By.ID, "under").is_enabled()
+
+
+@pytest.fixture(scope="module")
+def rescue_server():
+    workspace = Workspace(
+        Model.load([MODELS / "rescue.lp"]), [str(MODELS / "rescue.lp")], "deontology"
+    )
+    with served(workspace) as running:
+        yield running
+
+
+def test_after_a_conflict_the_page_offers_to_drop_it_instead_of_stacking(rescue_server, browser):
+    driver = browser
+    fresh(driver, rescue_server.url)
+    box = driver.find_element(By.ID, "question")
+    box.clear()
+    box.send_keys("why take_key before unlock_door\n")
+    wait_for(driver, lambda d: idle(d) and d.find_elements(By.ID, "drop-question"), "the conflict")
+    assert len(driver.find_elements(By.CSS_SELECTOR, "#history li")) == 1
+    # A further question would have no contrast plan: the page offers to drop
+    # the conflicting question first, and asks nothing yet.
+    box = driver.find_element(By.ID, "question")
+    box.clear()
+    box.send_keys("why not in 4 steps\n")
+    offer = driver.find_element(By.ID, "drop-offer")
+    assert offer.is_displayed() and "why take_key before unlock_door" in offer.text
+    assert len(driver.find_elements(By.CSS_SELECTOR, "#history li")) == 1
+    click(driver, driver.find_element(By.ID, "drop-and-ask"))
+    wait_for(
+        driver,
+        lambda d: idle(d) and "why not in 4 steps" in text(d, "answer-question"),
+        "the question asked after the drop",
+    )
+    entries = driver.find_elements(By.CSS_SELECTOR, "#history li")
+    assert len(entries) == 1 and "why not in 4 steps" in entries[0].text
+    assert "contrast: " in entries[0].text  # a contrast plan, not another "no contrast plan"
+    assert not driver.find_elements(By.ID, "drop-offer")

@@ -223,3 +223,30 @@ def test_the_paper_sentences_stay():
     assert explain(trolley, Plan.parse("pull"), "do-no-harm").text.endswith(
         "impermissible because this way the death of the one person is caused by the man's action."
     )
+
+
+def test_an_action_without_a_label_reads_as_words():
+    """A step without a label is named in words, its arguments after it, not
+    in the model's syntax (``put_down(p2,r2)``: "put down (p2, r2)")."""
+    model = Model.from_string(
+        "variable(done). variable(here(p2)). action(put_down(p2,r2)). action(wait_a_bit).\n"
+        "eff(put_down(p2,r2), here(p2), true). pre(wait_a_bit, here(p2), true).\n"
+        "eff(wait_a_bit, done, true). goal(done, true). utility(put_down(p2,r2), -1).\n"
+    )
+    text = explain(model, Plan.parse("put_down(p2,r2) wait_a_bit"), "deontology").text
+    assert "put down (p2, r2), then wait a bit" in text, text
+    assert "put_down" not in text and "wait_a_bit" not in text
+    assert "action put down (p2, r2) is inherently bad" in text, text
+
+
+def test_several_facts_compared_take_a_plural_verb():
+    model = Model.load([MODELS / "rescue.lp"])
+    plan = Plan.parse(
+        "move(r1,r2) pick_up(p2,r2) move(r2,r3) put_down(p2,r3) break_door move(r3,r4)"
+    )
+    text = explain(model, plan, "utilitarianism").text
+    assert "the person from room 3 left behind are worse than the person from room 2 saved" in text
+    assert "then put the person down in room 3, then" in text  # the bundled model's label
+    trolley = Model.load([MODELS / "trolley.lp"])
+    single = explain(trolley, Plan.parse("pull"), "utilitarianism").text
+    assert "five saved lives is better than one saved life" in single, single

@@ -4,7 +4,7 @@
 ; moral annotations are in gripper-utility.lp.
 
 (define (domain gripper)
-  (:requirements :strips :typing :equality)
+  (:requirements :strips :typing :negative-preconditions :equality)
   (:types room ball gripper)
   (:predicates
     (robot-at ?r - room)

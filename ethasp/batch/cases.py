@@ -20,6 +20,10 @@ own plan, principles and questions when a manifest gives them.  Cases come from
   ``name``, ``plan``, ``principles`` and ``questions``; file names are
   relative to the manifest's folder.
 
+A name that is no file or folder names a bundled model or folder
+(:func:`ethasp.resources.bundled_model`: ``trolley``, ``hera``, ``asp``); its
+cases are named by their bundled names (``hera/trolley.yaml``).
+
 Bad manifests and unreadable folders are :class:`~ethasp.errors.InputError`
 (the batch does not start); a bad model file becomes its case's error line
 when the case runs.
@@ -35,10 +39,11 @@ import os
 import re
 import shlex
 from collections.abc import Iterable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from ethasp.errors import InputError
+from ethasp.resources import bundled_model, bundled_name
 
 ASP_SUFFIXES = (".lp",)
 SITUATION_SUFFIXES = (".yaml", ".yml", ".json")
@@ -319,14 +324,18 @@ def _row_case(row: dict, folder: Path, where: str) -> Case:
     files = _words(row.get("files", row.get("file")), where, "files")
     if not files:
         raise InputError(f"{where}: no files (the column files names the case's model files)")
-    paths = tuple(
-        name
-        if Path(name).is_absolute()
-        else os.path.join(folder, name)
-        if str(folder) not in ("", ".")
-        else name
+    resolved = [
+        _resolve(
+            name
+            if Path(name).is_absolute()
+            else os.path.join(folder, name)
+            if str(folder) not in ("", ".")
+            else name,
+            name,
+        )
         for name in files
-    )
+    ]
+    paths = tuple(path for path, _ in resolved)
     plan = row.get("plan")
     if plan is not None and not isinstance(plan, str):
         plan = " ".join(_words(plan, where, "plan"))
@@ -335,7 +344,21 @@ def _row_case(row: dict, folder: Path, where: str) -> Case:
     questions = _words(row.get("questions"), where, "questions", ";") or None
     name = row.get("name")
     name = str(name).strip() if name is not None and str(name).strip() else ""
+    name = name or " + ".join(shown for _, shown in resolved)
     return Case(paths, name, plan, principles, questions)
+
+
+def _resolve(path: str, name: str) -> tuple[str, str]:
+    """The file a case names and the name it is shown by: ``path`` when it
+    exists, else the bundled model or folder ``name`` names (by the naming
+    rule of :func:`ethasp.resources.bundled_model`), shown by its bundled name."""
+    try:
+        if Path(path).exists():
+            return path, path
+    except (OSError, ValueError):  # a name too long, ...: its case's error line says so
+        return path, path
+    bundled = bundled_model(name)
+    return (path, path) if bundled is None else (str(bundled), bundled_name(bundled))
 
 
 def read_manifest(path: Path) -> list[Case]:
@@ -402,39 +425,48 @@ def discover(
     with no model file, or a bad manifest."""
     cases: list[Case] = []
     pddl_run: list[str] = []
+    pddl_shown: list[str] = []  # their names in the output
 
     def close_run() -> None:
         if pddl_run:
-            cases.append(Case(tuple(pddl_run)))
+            cases.append(Case(tuple(pddl_run), " + ".join(pddl_shown)))
             pddl_run.clear()
+            pddl_shown.clear()
 
     for item in items:
         if isinstance(item, Case) or not isinstance(item, (str, os.PathLike)):
             close_run()
             cases.append(Case.of(item))
             continue
-        name = os.fspath(item)
+        name, shown = _resolve(os.fspath(item), os.fspath(item))
         path = Path(name)
         suffix = path.suffix.lower()
         if pddl_run and suffix in ASP_SUFFIXES and path.is_file():
             pddl_run.append(name)  # an annotation file of the PDDL case
+            pddl_shown.append(shown)
             continue
         if suffix in PDDL_SUFFIXES and not path.is_dir():
             if sum(1 for n in pddl_run if n.lower().endswith(".pddl")) >= 2:
                 close_run()
             pddl_run.append(name)
+            pddl_shown.append(shown)
             continue
         close_run()
         if path.is_dir():
             found = _walk(path, pattern)
             if not found:
                 what = f"matching {pattern!r}" if pattern else "(.lp, .pddl, .yaml, .json)"
-                raise InputError(f"{name}: no model file {what} in this folder")
+                raise InputError(f"{shown}: no model file {what} in this folder")
+            if shown != name:  # a bundled folder: its cases by their bundled names
+                found = [
+                    replace(case, name=" + ".join(bundled_name(Path(f)) for f in case.files))
+                    for case in found
+                ]
             cases += found
         elif is_manifest(path):
             cases += read_manifest(path)
         elif path.exists():
-            cases.append(Case((name,)))  # an unreadable file is its case's error line
+            cases.append(Case((name,), shown))  # an unreadable file is its case's error line
         else:
             raise InputError(f"{name}: no such file or folder")
     close_run()

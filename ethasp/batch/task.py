@@ -8,7 +8,9 @@ grounding for everything the case asks) and
 * ``judge``: its plan (a manifest's, else the model's own) is judged under
   every principle at once (:func:`ethasp.reasons.reasons.judge`);
 * ``plan``: a shortest plan permissible under each principle is searched
-  (:func:`ethasp.principles.restriction.plan_with_principles`);
+  (:func:`ethasp.principles.restriction.plan_with_principles`); a principle
+  that can only judge (no restriction encoding) judges a shortest plan found
+  without it, and its line says so (``"judged": true``);
 * ``ask``: each question is asked about the plan under each principle
   (:func:`ethasp.questions.contrast.ask`; without a plan, the plan asked
   about is the one plan search under the principle makes).
@@ -363,11 +365,15 @@ def _judge(
 def _plan(model, case: Case, principles: list[str], settings: Settings, budget) -> list[dict]:
     from ethasp.planning.search import FOUND, NONE
     from ethasp.principles.judgement import final_utility
-    from ethasp.principles.restriction import plan_with_principles
+    from ethasp.principles.principle import select_principles
+    from ethasp.principles.restriction import plan_with_principles, restricts
 
     lines = []
     for principle in principles:
         try:
+            if not restricts(select_principles([principle])[0]):
+                lines.append(_judged(model, case, principle, settings, budget))
+                continue
             result = plan_with_principles(
                 model,
                 [principle],
@@ -395,6 +401,49 @@ def _plan(model, case: Case, principles: list[str], settings: Settings, budget) 
             line["best_utility"] = result.best.utility
         lines.append(line)
     return lines
+
+
+def _judged(model, case: Case, principle: str, settings: Settings, budget) -> dict:
+    """The plan task's line of a principle that can only judge (it has no
+    restriction encoding): a shortest plan, found without it, judged under it
+    (``judged``: true).  Permissible, it is a shortest permissible plan;
+    impermissible, it says nothing of other plans.  No plan at all: none is
+    permissible."""
+    from ethasp.planning.search import FOUND, NONE, find_plan
+    from ethasp.principles.judgement import final_utility
+    from ethasp.reasons.reasons import judge
+
+    result = find_plan(
+        model, _max_horizon(settings, True), budget=budget, satisficing=settings.satisficing
+    )
+    line = {
+        "case": case.name,
+        "task": PLAN,
+        "principle": principle,
+        "judged": True,
+        "permissible": False if result.status == NONE else None,
+        "status": result.status,
+        "plan": None,
+        "utility": None,
+        "horizon": result.horizon,
+        "optimal": None,
+        "proof": f"{principle} cannot restrict plan search: {result.proof}",
+    }
+    if result.status != FOUND or result.plan is None:
+        return line
+    judgement = judge(
+        model, result.plan, [principle], _max_horizon(settings), reasons_limit=0, budget=budget
+    ).judgements[0]
+    shortest = "a shortest plan" if result.optimal else "a plan"
+    return line | {
+        "permissible": judgement.permissible,
+        "status": judgement.status,
+        "plan": result.plan.to_list(),
+        "utility": final_utility(model, result.plan),
+        "optimal": result.optimal,
+        "proof": f"{principle} cannot restrict plan search, so {shortest} found without "
+        f"it is judged under it: {judgement.proof}",
+    }
 
 
 def _ask(model, case: Case, plan, keys, settings: Settings, budget) -> list[dict]:

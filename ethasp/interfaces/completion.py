@@ -20,9 +20,8 @@ import argparse
 import re
 from dataclasses import dataclass, field
 
-from ethasp.resources import ENCODINGS, MODELS
+from ethasp.resources import ENCODINGS, bundled_names
 
-SHELLS = ("bash", "zsh")
 FILE_OPTIONS = {"svg", "plan_file", "save", "load"}  # dests whose value is a file
 PRINCIPLE_OPTIONS = {"principle", "under"}
 GROUPS = ("paper", "hera", "all")
@@ -60,11 +59,8 @@ def principle_names(restricting: bool) -> list[str]:
 
 
 def bundled_models() -> list[str]:
-    """The names of the bundled models that work from any directory."""
-    names = [path.stem for path in sorted(MODELS.glob("*.lp"))]
-    for folder in ("hera", "pddl"):
-        names += [path.name for path in sorted((MODELS / folder).glob("*")) if path.is_file()]
-    return names
+    """The names of the bundled model files (:func:`ethasp.resources.bundled_names`)."""
+    return bundled_names()
 
 
 def commands(parser: argparse.ArgumentParser) -> list[Command]:

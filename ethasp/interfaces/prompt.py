@@ -36,9 +36,12 @@ Commands:
   undo               take back the last question
   drop               take back the last question when no plan can meet it
   save FILE          save the whole dialogue to FILE (JSON)
+  save -             print the whole dialogue (JSON) on standard output
   load FILE          load a dialogue saved before
   help               this text
-  quit               end the dialogue (it is saved, see --save)"""
+  quit               end the dialogue (saved with --save FILE)"""
+
+STANDARD_OUTPUT = "-"  # as a file to save to: print the JSON instead
 
 
 def answer_text(answer: Answer, naming) -> str:
@@ -55,8 +58,10 @@ def answer_text(answer: Answer, naming) -> str:
             f"  contrast plan: {naming.actions(contrast.plan) or '(empty)'} "
             f"({contrast.principle}: {_verdict(contrast)})"
         )
+    elif answer.status == "bounded":
+        lines.append(f"  no contrast plan found (bounded): {answer.proof}")
     else:
-        lines.append(f"  contrast plan: none ({answer.status}: {answer.proof})")
+        lines.append(f"  no contrast plan: {answer.proof}")
     if answer.principle_dropped:
         lines.append(
             f"  the principle {answer.under} was dropped for the contrast: "
@@ -103,12 +108,13 @@ def _verdict(side) -> str:
 
 
 class Prompt:
-    """Runs a dialogue from lines of text; saves it when it ends."""
+    """Runs a dialogue from lines of text; saves it when it ends to
+    ``save_path`` (``-``: prints it on ``output``; None: not at all)."""
 
     def __init__(
         self,
         dialogue: Dialogue,
-        save_path: Path | None,
+        save_path: Path | str | None,
         output: TextIO,
         load: Callable[[str], Dialogue],
         progress: ProgressLine | None = None,
@@ -205,9 +211,8 @@ class Prompt:
             self.show_current()
         elif command == "save":
             if not rest:
-                raise InputError("save: give a file name")
-            self.dialogue.save(rest)
-            self.say(f"saved to {rest}")
+                raise InputError("save: give a file name (- for standard output)")
+            self.say(self._save(rest))
         elif command == "load":
             if not rest:
                 raise InputError("load: give a file name")
@@ -243,30 +248,36 @@ class Prompt:
                 return 130
             self._ended = True
             if self.save_path is not None:
-                self.dialogue.save(self.save_path)
-                self.say(f"dialogue saved to {self.save_path}")
+                said = self._save(self.save_path)
+                if self.save_path != STANDARD_OUTPUT:  # the JSON ends standard output
+                    self.say(said)
         return 0
+
+    def _save(self, path: Path | str) -> str:
+        """Save the dialogue to a file, or print it (``-``); what happened, in words."""
+        if str(path) == STANDARD_OUTPUT:
+            self.say(json.dumps(self.dialogue.to_json(), indent=2))
+            return "dialogue written to standard output"
+        self.dialogue.save(path)
+        return f"dialogue saved to {path}"
+
+    def _saved(self) -> str:
+        if self.save_path is None:
+            return "dialogue not saved (--save FILE saves it)"
+        if str(self.save_path) == STANDARD_OUTPUT:
+            return "dialogue written to standard output"
+        return f"dialogue saved to {self.save_path}"
 
     def save_now(self) -> str:
         """Save the dialogue as it stands and end it (on an interrupt, from any
         thread); what happened, in words."""
         with self._saving:
             if self._ended:  # it ended meanwhile, and saved itself
-                return (
-                    f"dialogue saved to {self.save_path}"
-                    if self.save_path
-                    else "dialogue not saved (--save -)"
-                )
+                return self._saved()
             self._ended = True
             if self.save_path is None:
-                return "dialogue not saved (--save -)"
+                return self._saved()
             try:
-                self.dialogue.save(self.save_path)
+                return self._save(self.save_path)
             except InputError as error:
                 return f"dialogue not saved: {error}"
-            return f"dialogue saved to {self.save_path}"
-
-
-def transcript(dialogue: Dialogue) -> str:
-    """The dialogue's answers as JSON text."""
-    return json.dumps(dialogue.to_json(), indent=2)

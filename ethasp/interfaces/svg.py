@@ -37,6 +37,7 @@ FACT = 40  # height of a fact box
 SPACE = 8  # between boxes
 LINE = 18  # height of a line of text
 CHAR = 0.6  # average glyph width as a share of the font size
+READABLE = 960  # headings and notes wrap at this width, however wide the steps run
 
 COLOURS = {  # moral value: (fill, stroke, text)
     "good": ("#dcf3e4", "#1e7b3c", "#14532d"),
@@ -229,6 +230,18 @@ def _column_x(index: int) -> float:
     return MARGIN + index * (COLUMN + GAP)
 
 
+def _step_bands(canvas: _Canvas, steps: int, top: float, bottom: float) -> None:
+    """A band over each step's column, from ``top`` to ``bottom``: invisible
+    and letting the pointer through (``class="column"``, ``data-step``), for
+    a page to show the step under the pointer."""
+    for step in range(1, steps + 1):
+        canvas.add(
+            f'<rect class="column" data-step="{step}" x="{_column_x(step) - GAP / 2:.0f}" '
+            f'y="{top:.0f}" width="{COLUMN + GAP:.0f}" height="{bottom - top:.0f}" '
+            'fill="none" pointer-events="none"/>'
+        )
+
+
 def _draw_lane(
     canvas: _Canvas,
     lane: _Lane,
@@ -325,8 +338,10 @@ def _heading(
     weight: str = "normal",
 ) -> float:
     """Wrapped lines of text from ``y``; return the y below them.  A line given
-    as ``(text, True)`` is emphasised (dark and bold)."""
-    room = max(40, int(width / (size * CHAR)))
+    as ``(text, True)`` is emphasised (dark and bold).  Lines wrap at ``width``
+    or at READABLE pixels, whichever is less, so that the text of a picture of
+    a long plan stays at its left, where it is read."""
+    room = max(40, int(min(width, READABLE) / (size * CHAR)))
     for line in lines:
         strong = isinstance(line, tuple) and line[1]
         text = line[0] if isinstance(line, tuple) else line
@@ -451,6 +466,7 @@ def plan_svg(
         _draw_arrows(canvas, arrows, end_index, bottom)
         y = bottom - 12
     lowest = _draw_lane(canvas, _Lane(timeline, "plan", y + 22), naming, end_index)
+    _step_bands(canvas, len(timeline.columns), y + 16, lowest)
     _legend(canvas, lowest + 4)
     canvas.grow(width, 0)
     return canvas.svg(title)
@@ -537,6 +553,7 @@ def contrast_svg(
     elif contrast is not None:
         canvas.add(_text(MARGIN, lowest + 14, "the two plans are the same", 11, PART, "bold"))
         lowest += 18
+    _step_bands(canvas, length, lanes_top, lowest)
     _legend(canvas, lowest + 4)
     canvas.grow(width, 0)
     return canvas.svg(title)

@@ -182,8 +182,3 @@ class _Until(Budget):
 
     def expired(self) -> bool:
         return self.condition() or self.parent.expired()
-
-
-def unlimited() -> Budget:
-    """A budget without time limit or progress callback."""
-    return Budget(None)

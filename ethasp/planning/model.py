@@ -16,7 +16,7 @@ from ethasp.planning.driver.namespace import NamespaceCheck, misused_vocabulary
 from ethasp.planning.messages import Messages
 from ethasp.planning.naming import Naming, PddlNaming
 from ethasp.planning.terms import read_text, scan_file, scan_program
-from ethasp.resources import encoding
+from ethasp.resources import encoding, model_path
 
 if TYPE_CHECKING:
     from ethasp.planning.driver.planner import Planner
@@ -151,12 +151,14 @@ class Model:
         HERA situations (``.yaml``, ``.yml``, ``.json``) are translated into
         facts (see :mod:`ethasp.planning.readers.situation`).  ``texts`` are more ASP
         sources given as (name, text), e.g. ``("<stdin>", text)`` read from
-        standard input; messages name them by that name.
+        standard input; messages name them by that name.  A path that does not
+        exist names a bundled model (``"trolley"``, ``"hera/trolley.yaml"``; the
+        naming rule: :func:`ethasp.resources.bundled_model`).
         """
         from ethasp.planning.readers.situation import situation_paths, translate
 
         sources, naming = [], Naming()
-        situations, files = situation_paths(Path(path) for path in paths)
+        situations, files = situation_paths(model_path(path) for path in paths)
         for path in situations:
             sources.append(Source(str(path), translate(path), generated=True, kind="situation"))
         if any(path.suffix.lower() == ".pddl" for path in files):

@@ -87,12 +87,6 @@ class Plan:
         return cls(tuple(actions))
 
     @classmethod
-    def from_occurs(cls, atoms: Iterable[Occurs]) -> Plan:
-        """The plan of a set of ``occurs(A,T)`` atoms."""
-        ordered = sorted(atoms, key=lambda atom: atom.step)
-        return cls(tuple(atom.action.symbol for atom in ordered))
-
-    @classmethod
     def from_symbols(cls, symbols: Iterable[clingo.Symbol]) -> Plan:
         """The plan of the ``occurs(A,T)`` atoms among clingo symbols (other
         atoms are left aside): read without the typed vocabulary, whose

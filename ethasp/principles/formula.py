@@ -99,7 +99,6 @@ COMPARISONS = {
     "=": ("eq", False),
 }
 _SHOWN = {"gt": ">", "geq": ">=", "eq": "="}
-KEYWORDS = {"not", "and", "or", "true", "false"}
 
 _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_']*")
 _PDDL_NOT = re.compile(r"\(\s*not\s+(\(.*\))\s*\)", re.IGNORECASE | re.DOTALL)
@@ -119,7 +118,7 @@ class Elements:
 
     @classmethod
     def of_model(cls, model) -> Elements:
-        """The actions, variables and moral patients of a :class:`ethasp.model.Model`."""
+        """The actions, variables and moral patients of a :class:`ethasp.planning.model.Model`."""
         planner = model.planner
         return cls(
             frozenset(a.arguments[0] for a in planner.get("action", 1)),

@@ -121,17 +121,11 @@ def resolve(model: Model, question: Question) -> Resolved:
             if term is not None and not model.planner.defines("action", term):
                 raise InputError(_unknown_action(model, question, term))
     return Resolved(
-        question, fact, question.contrasts(subject, other, fact), question.presupposes(subject)
+        question,
+        fact,
+        question.contrasts(subject, other, fact),
+        question.presupposes(subject, other),
     )
-
-
-def constraints_of(model: Model, questions: Sequence[Question], first: int = 1) -> list[Constraint]:
-    """The constraints of the questions, their names resolved to model terms."""
-    result = []
-    for number, question in enumerate(questions, start=first):
-        name = clingo.Function("q", [clingo.Number(number)])
-        result += [Constraint(name, term) for term in resolve(model, question).terms]
-    return result
 
 
 def _met(model: Model, plan: Plan, terms: Sequence[clingo.Symbol]) -> set[clingo.Symbol]:
@@ -176,10 +170,13 @@ def _already(model: Model, resolved: Resolved, plan: Plan) -> str:
         return f"the plan has {steps(length)}, at most {question.steps}"
     if kind == "rather-than":
         return f"the plan does not use {name} and uses {other}"
-    if kind == "before":
-        return f"the plan uses {other} before {name}"
-    if kind == "after":
-        return f"the plan uses {name} before {other}"
+    if kind in ("before", "after"):
+        # The contrast is met: the first B (before) or the first A (after)
+        # comes before any of the other.
+        first, then = (other, name) if kind == "before" else (name, other)
+        term = parse_action(question.other if kind == "before" else question.action)
+        at = plan.actions.index(term) + 1
+        return f"the plan does not use {then} before its first {first} (step {at})"
     negative = kind == "why"
     if resolved.fact:
         value = "false" if negative else "true"
@@ -213,8 +210,9 @@ def check_question(model: Model, question: Question, plan: Plan) -> list[Constra
     model lacks, or a name that is both, or if its presupposition fails: the
     plan already meets all its constraints (then there is nothing to
     contrast: e.g. "why not A" about a plan that uses A, "why F" about a plan
-    that ends with F false), or a question about two actions names an A that
-    the plan does not use.
+    that ends with F false, "why A before B" about a plan whose first B comes
+    before any A), or a question about two actions names an A (for ``before``
+    and ``after`` also a B) that the plan does not use.
     """
     resolved = resolve(model, question)
     met = _met(model, plan, resolved.terms + resolved.presupposed)
@@ -222,7 +220,7 @@ def check_question(model: Model, question: Question, plan: Plan) -> list[Constra
         if term not in met:
             raise InputError(
                 f"question '{question}': the plan does not use "
-                f"{_subject_words(model, resolved)}; ask about what the plan does"
+                f"{model.naming.action(term.arguments[0])}; ask about what the plan does"
             )
     if all(term in met for term in resolved.terms):
         raise InputError(
@@ -434,11 +432,11 @@ class Answer:
     constraints is permissible under ``under`` (proven: ``dropped_because``),
     so the contrast plan was made without it (and is judged under it);
     ``conflict`` lists a minimal set of constraints that no plan meets.
-    ``difference`` holds the literals of the chosen reasons that only one side
-    has; ``optimal`` is False when the contrast plan comes from an any-plan
-    search (not proven shortest); ``note`` says what else was learnt (a plan
-    that meets the question without the principle, when the search under it
-    was cut short).
+    ``difference`` holds, for each side, the literals of the reason its words
+    give that do not hold of the other plan; ``optimal`` is False when the
+    contrast plan comes from an any-plan search (not proven shortest);
+    ``note`` says what else was learnt (a plan that meets the question
+    without the principle, when the search under it was cut short).
     """
 
     questions: list[Question]
@@ -481,16 +479,27 @@ class Answer:
 
 
 def _difference(original: Side, contrast: Side | None) -> dict[str, list[str]]:
-    mine = original.judgement.explanation.chosen_reason if original.judgement.explanation else []
-    theirs = (
-        contrast.judgement.explanation.chosen_reason
-        if contrast and contrast.judgement.explanation
-        else []
-    )
+    """The literals of the reason each side's words give that do not hold of
+    the other plan (its principle's formula has no such atom with that value):
+    what tells the two apart.  Nothing without a contrast plan."""
+    if contrast is None:
+        return {"original_only": [], "contrast_only": []}
     return {
-        "original_only": [lit for lit in mine if lit not in theirs],
-        "contrast_only": [lit for lit in theirs if lit not in mine],
+        "original_only": _only(original, contrast),
+        "contrast_only": _only(contrast, original),
     }
+
+
+def _only(side: Side, other: Side) -> list[str]:
+    mine, theirs = side.judgement.explanation, other.judgement.explanation
+    if mine is None:
+        return []
+    shared = theirs.actual if theirs is not None else frozenset()
+    return [
+        text
+        for literal, text in zip(mine.literals, mine.spoken_reason, strict=True)
+        if literal not in shared
+    ]
 
 
 def _side_sentences(side: Side, modal: str, opening: str, alternatively: bool) -> str:

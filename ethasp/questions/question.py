@@ -13,8 +13,8 @@ than T steps it is the plan's final state::
     why A                    contrast: A is not used                unused(A)
     why not A                contrast: A is used                    used(A)
     why A rather than B      contrast: A is not used, B is used     unused(A), used(B)
-    why A before B           contrast: B is used before A           before(B,A)
-    why A after B            contrast: A is used before B           before(A,B)
+    why A before B           contrast: B is used, no A before the first B   before(B,A)
+    why A after B            contrast: A is used, no B before the first A   before(A,B)
     why A at T               contrast: A is not the action of step T  not_at(A,T)
     why not A at T           contrast: A is the action of step T    at(A,T)
     why A within T1..T2      contrast: A at no step from T1 to T2   not_within(A,T1,T2)
@@ -27,10 +27,11 @@ than T steps it is the plan's final state::
 
 ``why X`` (with or without ``not``, ``at`` or ``within``) names an action or a
 state variable; a name that is both is refused unless the question says which:
-``why action X``, ``why fact X``.  "Before" means at an earlier step (an A at
-some step, a B at a later one).  ``why step T`` is no contrastive question: it
-asks for the causal explanation of step T of the plan (:func:`step_question`,
-:mod:`ethasp.questions.steps`).
+``why action X``, ``why fact X``.  "Before" means at an earlier step.
+``why A before B`` presupposes that the plan uses B and an A before its first
+B; ``why A after B`` that it uses A and a B before its first A.  ``why step
+T`` is no contrastive question: it asks for the causal explanation of step T
+of the plan (:func:`step_question`, :mod:`ethasp.questions.steps`).
 
 A question becomes constraint facts ``contrast(Q,C)`` read by the fixed
 encoding ``encodings/questions/questions.lp``; no rule text is generated.
@@ -358,10 +359,15 @@ class Question:
             return [fn("within" if positive else "not_within", [subject, num(first), num(last)])]
         return [fn("used" if positive else "unused", [subject])]
 
-    def presupposes(self, subject: clingo.Symbol | None) -> list[clingo.Symbol]:
+    def presupposes(
+        self, subject: clingo.Symbol | None, other: clingo.Symbol | None = None
+    ) -> list[clingo.Symbol]:
         """Constraint terms the plan asked about must meet, besides not meeting
         the contrast already: the questions about two actions ask about an A
-        that the plan uses."""
-        if self.kind in PAIRS:
+        that the plan uses, and ``before`` and ``after`` about a B it uses too
+        (not meeting the contrast then says that the order asked about holds)."""
+        if self.kind == "rather-than":
             return [clingo.Function("used", [subject])]
+        if self.kind in PAIRS:
+            return [clingo.Function("used", [subject]), clingo.Function("used", [other])]
         return []

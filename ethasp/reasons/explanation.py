@@ -63,7 +63,11 @@ class Explanation:
     objects, with ``comparisons`` and ``labels``, for building other texts
     (see :mod:`ethasp.reasons.words`): the chosen reason, or the only
     sufficient reason when its literals are all of one kind (a permissible
-    plan of several actions under deontology: none of them is bad).
+    plan of several actions under deontology: none of them is bad), and
+    ``spoken_reason`` their texts.  ``actual`` holds every atom of the
+    principle's formula with its value for the plan (what the plan makes
+    true or false of it), for telling which of a reason's literals another
+    plan shares.
     """
 
     principle: str
@@ -78,6 +82,8 @@ class Explanation:
     necessary_truncated: bool = False
     sufficient_truncated: bool = False
     literals: list[Literal] = field(default_factory=list)
+    spoken_reason: list[str] = field(default_factory=list)
+    actual: frozenset[Literal] = frozenset()
     comparisons: dict[clingo.Symbol, Comparison] = field(default_factory=dict)
     labels: Labels = field(default_factory=Labels)
 

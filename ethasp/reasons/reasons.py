@@ -60,6 +60,7 @@ from ethasp.reasons.explanation import Comparison, Explanation, Labels, Literal
 from ethasp.reasons.words import non_contrastive
 from ethasp.vocabulary import (
     ActionLabel,
+    ActualValue,
     AgentLabel,
     ComparisonAtom,
     Conjunct,
@@ -102,6 +103,16 @@ def _literals(symbols: Iterable[clingo.Symbol]) -> list[Literal]:
         (Literal(a.atom.symbol, a.value == "true") for a in atoms),
         key=lambda lit: (str(lit.atom), lit.value),
     )
+
+
+def _actual(ctl: clingo.Control) -> frozenset[Literal]:
+    """The atoms of the explained formula with their values for the plan
+    (``actual_value/2`` of ``reasons/literals.lp``, facts once grounded)."""
+    facts = [
+        atom.symbol for atom in ctl.symbolic_atoms.by_signature("actual_value", 2) if atom.is_fact
+    ]
+    atoms = unify([ActualValue], facts).query(ActualValue).all()
+    return frozenset(Literal(a.atom.symbol, a.value == "true") for a in atoms)
 
 
 def _kind(literal: Literal) -> tuple:
@@ -252,6 +263,7 @@ def explain(
         + f"explain({chosen.asp_name}).\n"
     )
     necessary_ctl = model.planner.program(NECESSARY, program, OPTIONS, model=False)
+    actual = _actual(necessary_ctl)
     best = _optimum(necessary_ctl)
     literals = _literals(best) if best is not None else []
     necessary, necessary_done = _enumerate(necessary_ctl, limit) if best is not None else ([], True)
@@ -304,6 +316,8 @@ def explain(
         sufficient_truncated=not sufficient_done,
         alternative=compared,
         literals=spoken,
+        spoken_reason=texts(spoken),
+        actual=actual,
         comparisons=_comparisons(words),
         labels=_labels_of(model),
     )

@@ -96,8 +96,19 @@ def _term_words(term: clingo.Symbol, labels: Labels | None = None) -> str:
 
 
 def _action_name(labels: Labels, action: clingo.Symbol) -> str:
-    """An action without a label: its term, or its PDDL form ``(move a b)``."""
-    return labels.naming.action(action) if labels.naming.pddl else str(action)
+    """An action without a label: its term in words, or its PDDL form ``(move a b)``."""
+    return labels.naming.action(action) if labels.naming.pddl else _compound_words(action)
+
+
+def _compound_words(term: clingo.Symbol) -> str:
+    """An ASP term in words: its name with spaces for underscores and its
+    arguments after it (``put_down(p2,r2)``: "put down (p2, r2)")."""
+    if term.type != clingo.SymbolType.Function or not term.name:
+        return str(term)
+    name = term.name.replace("_", " ")
+    if not term.arguments:
+        return name
+    return f"{name} ({', '.join(str(argument) for argument in term.arguments)})"
 
 
 def term_words(term: clingo.Symbol) -> str:
@@ -110,7 +121,7 @@ def action_phrase(labels: Labels, action: clingo.Symbol) -> str:
     label = labels.actions.get(action)
     if label:
         return label[0]
-    return _action_name(labels, action) if labels.naming.pddl else _term_words(action)
+    return _action_name(labels, action)
 
 
 def gerund(labels: Labels, action: clingo.Symbol) -> str:
@@ -199,12 +210,13 @@ def literal_clause(
             return f"{atom} is {negation}true"
         left = join([fact_phrase(labels, v, b) for v, b in comparison.left]) or "nothing"
         right = join([fact_phrase(labels, v, b) for v, b in comparison.right]) or "nothing"
+        verb = "are" if len(comparison.left) > 1 else "is"  # several facts: "X and Y are"
         if not value:
-            relation = "is worse than"
+            relation = f"{verb} worse than"
         elif comparison.relation == "equal":
-            relation = "is as good as"
+            relation = f"{verb} as good as"
         else:
-            relation = "is better than"
+            relation = f"{verb} better than"
         return f"{left} {relation} {right}"
     return f"{atom} is {negation}true"
 
@@ -425,7 +437,9 @@ def constraint_phrase(labels: Labels, term: clingo.Symbol) -> str:
     if name == "unused":
         return f"avoid {doing()}"
     if name == "before":
-        return f"include {doing(0)} before {doing(1)}"
+        if arguments[0] == arguments[1]:
+            return f"include {doing(0)}"
+        return f"include {doing(0)}, and {doing(1)} only after it"
     if name == "at":
         return f"include {doing()} at step {arguments[1]}"
     if name == "not_at":

@@ -40,6 +40,7 @@ _HOMES = {
     "BestFact": "judgement",
     "AtHorizon": "judgement",
     "ReasonAtom": "reasons",
+    "ActualValue": "reasons",
     "Mention": "reasons",
     "ComparisonAtom": "reasons",
     "Conjunct": "reasons",
@@ -94,6 +95,7 @@ if TYPE_CHECKING:  # the same names for type checkers, which do not run __getatt
     from ethasp.vocabulary.questions import Answered, Contrast, Met, UnknownAction, UnknownVariable
     from ethasp.vocabulary.reasons import (
         ActionLabel,
+        ActualValue,
         AgentLabel,
         ComparisonAtom,
         Conjunct,
@@ -130,6 +132,7 @@ def __dir__() -> list[str]:
 __all__ = [
     "Action",
     "ActionLabel",
+    "ActualValue",
     "AgentLabel",
     "Alternative",
     "Answered",

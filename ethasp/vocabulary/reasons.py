@@ -10,6 +10,14 @@ class ReasonAtom(Predicate, name="reason"):
     value: ConstantStr
 
 
+class ActualValue(Predicate, name="actual_value"):
+    """An atom of the explained formula and its truth value for the plan
+    (``reasons/literals.lp``)."""
+
+    atom: Raw
+    value: ConstantStr
+
+
 class Mention(Predicate, name="mention"):
     atom: Raw
     side: ConstantStr

@@ -6,7 +6,6 @@ import argparse
 import sys
 from pathlib import Path
 
-from ethasp.interfaces.cli.models import model_paths
 from ethasp.interfaces.cli.options import (
     DEFAULT_MEMORY_LIMIT,
     gigabytes,
@@ -41,7 +40,8 @@ def add_parser(commands) -> None:
         metavar="CASE",
         help="a model file (.lp, HERA .yaml/.json; a PDDL domain and problem "
         "side by side, with their .lp annotation files after them), a "
-        "bundled model's name, a folder (searched recursively), or a "
+        "folder (searched recursively), the name of a bundled model or folder "
+        "(trolley, hera/trolley.yaml, hera, asp: a path in the bundled folder asp/), or a "
         "manifest (.csv, or .yaml with a list 'cases') listing cases with "
         "their own files, plans, principles and questions",
     )
@@ -64,7 +64,8 @@ def add_parser(commands) -> None:
         choices=["judge", "plan", "ask"],
         default=None,
         help="judge: the case's plan under each principle; plan: a shortest "
-        "plan permissible under each principle; ask: each question about "
+        "plan permissible under each principle (one that can only judge: a "
+        "shortest plan found without it, judged under it); ask: each question about "
         "the case's plan (default: per case, see above)",
     )
     many.add_argument(
@@ -174,7 +175,7 @@ def run(args: argparse.Namespace) -> int:
     if args.report is not None:
         writable(Path(args.report), "--report")
     run = batch(
-        [str(path) for path in model_paths(args.cases)],
+        args.cases,
         args.principle,
         task=args.task,
         questions=args.question or (),

@@ -32,8 +32,8 @@ def add_parser(commands) -> None:
         "about the current plan (the forms of 'ethasp ask'); their constraints "
         "accumulate; 'why step T' explains a step of the current plan; undo, "
         "drop a question no plan can meet, switch principle, save and load. Type "
-        "help at the prompt. The dialogue is saved when it ends (also on Ctrl-C "
-        "or end of input).",
+        "help at the prompt. With --save FILE the dialogue is saved when it ends "
+        "(also on Ctrl-C or end of input).",
     )
     inherit(talk, model_options(stdin=False))  # standard input carries the commands
     hide(talk, "--json")  # refused with a line that says why
@@ -50,10 +50,11 @@ def add_parser(commands) -> None:
     talk.add_argument("--load", metavar="FILE", help="resume a saved dialogue")
     talk.add_argument(
         "--save",
-        default="ethasp-dialogue.json",
+        default=None,
         metavar="FILE",
-        help="where the dialogue is saved when it ends "
-        "(default ethasp-dialogue.json; - for nowhere)",
+        help="save the dialogue (JSON) to FILE when it ends, also on Ctrl-C or "
+        "end of input (- for standard output, after the conversation; "
+        "default: not saved)",
     )
     inherit(talk, search_options(" per question", satisficing=True))
     inherit(
@@ -67,7 +68,7 @@ def add_parser(commands) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ethasp.interfaces.prompt import Prompt
+    from ethasp.interfaces.prompt import STANDARD_OUTPUT, Prompt
     from ethasp.questions.dialogue import Dialogue
 
     default_reasons_limit(args)
@@ -82,8 +83,9 @@ def run(args: argparse.Namespace) -> int:
             "the dialogue reads its commands from standard input, so its model "
             "cannot come from there (-): give the model as a file"
         )
-    save = None if args.save == "-" else Path(args.save)
-    if save is not None:
+    save: Path | str | None = args.save
+    if save is not None and save != STANDARD_OUTPUT:
+        save = Path(save)
         writable(save, "--save")
     model = load_model(args)
     options = {

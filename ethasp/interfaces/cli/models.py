@@ -15,32 +15,13 @@ from pathlib import Path
 
 from ethasp.errors import InputError
 from ethasp.planning.model import Model
-from ethasp.resources import MODELS
+from ethasp.resources import model_path
 
 
 def model_paths(names: Sequence[str]) -> list[Path]:
-    """Model files: paths as given, or else the bundled model of that name.
-
-    Bundled PDDL files and their annotations are in the folder ``pddl``, HERA
-    situations in the folder ``hera``.
-    """
-    paths = []
-    for name in names:
-        path = Path(name)
-        try:
-            exists = path.exists()
-        except (OSError, ValueError):  # a name too long, ...: read_text says so
-            exists = True
-        if not exists:
-            bundled = MODELS / (name if name.endswith(".lp") else name + ".lp")
-            if "/" not in name and not bundled.is_file():
-                bundled = MODELS / "pddl" / name
-            if "/" not in name and not bundled.is_file():
-                bundled = MODELS / "hera" / name
-            if "/" not in name and bundled.is_file():
-                path = bundled
-        paths.append(path)
-    return paths
+    """Model files: paths as given, or else the bundled models of those names
+    (:func:`ethasp.resources.bundled_model` states the naming rule)."""
+    return [model_path(name) for name in names]
 
 
 STDIN = "-"  # as a model file: read the model from standard input
@@ -105,7 +86,7 @@ def model_files(args: argparse.Namespace, resolve: bool = False) -> list[str]:
 MODEL_FILES_HELP = (
     "model files (ASP), or a PDDL domain and problem (.pddl) with ASP "
     "annotation files, or a HERA situation (.yaml, .json), or the name of a "
-    "bundled model"
+    "bundled model (trolley, hera/trolley.yaml)"
 )
 MODEL_HELP = MODEL_FILES_HELP + "; - reads an ASP model from standard input"
 

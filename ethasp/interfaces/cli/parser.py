@@ -29,8 +29,9 @@ MODEL is one or more ASP files in the vocabulary variable/1, action/1, pre/3,
 eff/3, ceff/4, cpre/4, init/1, goal/2, utility/2, utility/3 (derived variables:
 derived/1, axiom/2, axiom_pre/4; events: event/1, event_at/2, ...), or a PDDL
 domain and problem (STRIPS, ADL, derived predicates) with ASP annotation files,
-or a HERA situation (.yaml, .json); the name of a bundled model (e.g. trolley)
-also works, and - reads an ASP model from standard input.  A model that comes
+or a HERA situation (.yaml, .json); the name of a bundled model also works (its
+path in the bundled folder asp/, the .lp left out: trolley, hera/trolley.yaml),
+and - reads an ASP model from standard input.  A model that comes
 with a plan (a situation's) is judged on it when --plan is not given.  Bad
 input gets one line on standard error and exit code 2; Ctrl-C one line and exit
 code 130."""

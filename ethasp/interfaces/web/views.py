@@ -11,6 +11,7 @@ from ethasp.planning.plan import Plan
 from ethasp.principles.principle import available_principles
 from ethasp.principles.restriction import restricting_principles
 from ethasp.questions.dialogue import Step
+from ethasp.reasons.words import option_sentence, verdict_sentence
 
 
 def model_json(workspace: Workspace) -> dict:
@@ -90,6 +91,18 @@ def state_json(workspace: Workspace, session: Session) -> dict:
     naming = workspace.model.naming
     current = report.to_json()
     current["shown"] = _actions(workspace, plan)
+    # The plan in words once ("The man can pull the lever."), and each
+    # judgement's verdict without it ("Doing so is ..."); from the
+    # explanations' labels (the planner is not touched here: a job may use it).
+    explained = [j for j in report.judgements if j.explanation is not None]
+    if explained:
+        current["plan_words"] = option_sentence(explained[0].explanation.labels, plan)
+        for shown, judgement in zip(current["judgements"], report.judgements, strict=True):
+            if judgement.explanation is not None:
+                shown["verdict_words"] = verdict_sentence(judgement.explanation)
+    # Whether "why not in N-1 steps" can have a contrast at all: for a plan of
+    # one step, only when the empty plan is a plan.
+    current["empty_plan_is_plan"] = workspace.empty_plan_is_plan
     current["final_shown"] = [naming.fact(literal) for literal in report.final_state]
     current["principle"] = dialogue.current_principle
     # Which question's contrast plan this is (0: the first plan), and whether

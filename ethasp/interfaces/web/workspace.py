@@ -25,6 +25,7 @@ from ethasp.planning.budget import Budget
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
+from ethasp.planning.validation import validate
 from ethasp.principles.judgement import JudgementReport
 from ethasp.principles.restriction import one_restricting_principle
 from ethasp.questions.dialogue import Dialogue
@@ -121,6 +122,9 @@ class Workspace:
         self._sessions: OrderedDict[str, Session] = OrderedDict()
         self._jobs: list[Job] = []
         self._lock = threading.Lock()
+        # Is the empty plan a plan (the goal holds at the start)?  Known before
+        # any job uses the planner: a trace of no steps.
+        self.empty_plan_is_plan = validate(model, Plan(())).valid
 
     # -- judgements of plans (under every principle), kept --------------------------
 

@@ -368,13 +368,17 @@ class Planner:
                 answers.append(list(answer.symbols(shown=True)))
         return answers
 
+    @_locked
     def signatures(self) -> list[tuple[str, int]]:
         """The signatures of the predicates of the model's base grounding."""
         return [(name, arity) for name, arity, _ in self.ctl.symbolic_atoms.signatures]
 
+    @_locked
     def get(self, name: str, arity: int) -> list[clingo.Symbol]:
         """The ground atoms of a predicate of the model's base part (model.lp's
-        too), in the grounder's order (the same for the same model)."""
+        too), in the grounder's order (the same for the same model).  Under
+        the lock: read while another thread grounds, clingo's atoms could be
+        read half-made (and kept so)."""
         key = (name, arity)
         if key not in self._atoms:
             self._settle(None)

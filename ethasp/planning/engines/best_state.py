@@ -113,9 +113,6 @@ class BestReachable:
     def facts(self) -> list[tuple[clingo.Symbol, str]]:
         return [(v, "true" if b else "false") for v, b in self.found.facts] if self.found else []
 
-    def alternative_facts(self) -> list:
-        return self.found.asp_facts() if self.found else []
-
     def to_json(self) -> dict:
         return {
             "state": self.state,

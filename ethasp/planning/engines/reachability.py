@@ -117,14 +117,6 @@ class GroundModel:
         true = set(state)
         return sum(self.weights.get((v, v in true), 0) for v in self.variables)
 
-    def is_goal(self, state: Iterable[clingo.Symbol]) -> bool:
-        """Does a state (true variables given) meet the goal?  (Literals on
-        state variables only: for tests and plans read off engines.)"""
-        true = set(state)
-        return all((v in true) == b for v, b in self.goal if v not in self.axioms) and (
-            self.goal_utility is None or self.utility(true) >= self.goal_utility
-        )
-
 
 @dataclass
 class Best:

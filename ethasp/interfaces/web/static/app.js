@@ -128,10 +128,10 @@ function remembered() {
 function setBusy(job) {
   running = Boolean(job && job.state === "running");
   $("status").hidden = !running;
-  for (const button of document.querySelectorAll("#ask-form button, #undo, #start, #action-menu button, #drop-question, #shorter, #explain-plan")) {
+  for (const button of document.querySelectorAll("#ask-form button, #undo, #start, #action-menu button, #drop-question, #drop-offer button, #shorter, #explain-plan")) {
     button.disabled = running;
   }
-  $("under").disabled = running;
+  $("under").disabled = running || !state || !state.dialogue;
   if (!running) return;
   $("status-text").textContent = `${job.description}\u2026`;
   $("status-time").textContent = `${job.elapsed.toFixed(1)} s`;
@@ -156,6 +156,8 @@ async function follow(reply) {
 }
 
 async function move(request, slot) {
+  const offer = $("drop-offer");
+  if (offer) offer.remove();  // an offer to drop a question is answered by any move
   place(slot);
   showError(null);
   showNote(null);
@@ -224,6 +226,8 @@ function renderModel() {
     for (const name of model.restricting) select.append(el("option", { value: name, text: name }));
   }
   $("start-principle").value = model.principle;
+  $("under").value = model.principle;  // until the dialogue says otherwise
+  $("under").disabled = !state || !state.dialogue;
   $("question").maxLength = model.limits.question;
   $("start-plan").maxLength = model.limits.plan;
 }
@@ -289,9 +293,11 @@ function reasonsBlock(kind, reasons, chosen) {
     reasons.length ? list : el("p", { class: "muted", text: "none" }));
 }
 
-function reasonsOf(side, highlight) {
+function reasonsOf(side, highlight, text) {
+  // ``text``: the words to show instead of the side's explanation (a
+  // judgement card shows its verdict only: the plan's words are above the cards).
   return [
-    el("p", { class: "explanation", text: side.explanation || "" }),
+    el("p", { class: "explanation", text: text === undefined ? side.explanation || "" : text }),
     el("p", {}, el("span", { class: "muted", text: "Chosen reason: " }), literals(side.chosen_reason, highlight)),
     reasonsBlock("Necessary", side.necessary_reasons || [], side.chosen_reason),
     reasonsBlock("Sufficient", side.sufficient_reasons || [], null),
@@ -305,7 +311,7 @@ function planNode(actions, clickable) {
   actions.forEach((action, index) => {
     const glance = model.model.actions.find((a) => a.term === action.term);
     const moral = glance ? glance.moral : "neutral";
-    list.append(el("li", {}, el("span", { class: "step", text: `${index + 1}.` }),
+    list.append(el("li", { "data-step": index + 1 }, el("span", { class: "step", text: `${index + 1}.` }),
       clickable
         ? el("button", { class: `chip ${moral}`, type: "button", "data-term": action.term,
             "data-step": index + 1, title: "ask about this action",
@@ -333,10 +339,50 @@ async function showPicture(box, path) {
       const step = box.id === "current-picture" ? Number(action.dataset.step) : null;
       action.addEventListener("click", () => choose(action.dataset.action, action.dataset.shown, step));
     }
+    followPointer(box);
   } else {
     box.replaceChildren(content);
   }
   settled();
+}
+
+function followPointer(box) {
+  // The step under the pointer: its column band in the picture, and, for the
+  // current plan, its action in the plan above.
+  const bands = [...box.querySelectorAll("rect.column")];
+  let shown = null;
+  const mark = (step) => {
+    if (step === shown) return;
+    shown = step;
+    for (const band of bands) band.classList.toggle("hover", band.dataset.step === step);
+    if (box.id === "current-picture") {
+      for (const item of $("current-actions").querySelectorAll("li[data-step]")) {
+        item.classList.toggle("hover", item.dataset.step === step);
+      }
+    }
+  };
+  box.onpointermove = (event) => {
+    const band = bands.find((b) => {
+      const rect = b.getBoundingClientRect();
+      return event.clientX >= rect.left && event.clientX < rect.right &&
+        event.clientY >= rect.top && event.clientY < rect.bottom;
+    });
+    mark(band ? band.dataset.step : null);
+  };
+  box.onpointerleave = () => mark(null);
+}
+
+function suggestion() {
+  // A question about the model's own plan for the question field's
+  // placeholder: its worst action rather than an action it leaves out.
+  const actions = model.model.actions;
+  const plan = state.current.plan;
+  const worth = (term) => { const a = actions.find((x) => x.term === term); return a ? a.utility : 0; };
+  const unused = actions.filter((a) => !plan.includes(a.term)).sort((a, b) => b.utility - a.utility);
+  if (!plan.length) return unused.length ? `why not ${unused[0].shown}` : "why ...";
+  const index = plan.reduce((best, term, i) => (worth(term) < worth(plan[best]) ? i : best), 0);
+  const asked = state.current.shown[index].shown;
+  return unused.length ? `why ${asked} rather than ${unused[0].shown}` : `why ${asked}`;
 }
 
 function renderCurrent() {
@@ -356,8 +402,12 @@ function renderCurrent() {
     : "";
   $("current-summary").textContent =
     `${count}: ${origin}; final state utility ${current.utility}${unanswered}`;
-  $("shorter").hidden = steps === 0;
-  $("shorter").textContent = steps > 0 ? `Why not in ${steps - 1} ${steps - 1 === 1 ? "step" : "steps"}?` : "";
+  // "Why not in N-1 steps?": for a plan of one step only when the empty plan is a plan.
+  const shorter = steps >= 2 || (steps === 1 && current.empty_plan_is_plan);
+  $("shorter").hidden = !shorter;
+  $("shorter").textContent = shorter ? `Why not in ${steps - 1} ${steps - 1 === 1 ? "step" : "steps"}?` : "";
+  $("question").placeholder = suggestion();
+  $("current-words").textContent = current.plan_words || "";
   const plan = planNode(current.shown, true);
   plan.id = "current-actions";
   $("current-actions").replaceWith(plan);
@@ -371,7 +421,7 @@ function renderCurrent() {
       judgement.best_reachable && judgement.best_reachable.state
         ? el("p", { class: "proof", text: `Best reachable state found: utility ${judgement.best_reachable.utility}` })
         : null,
-      reasonsOf(judgement)));
+      reasonsOf(judgement, null, judgement.verdict_words || judgement.explanation)));
   }
 }
 
@@ -414,12 +464,27 @@ function choose(term, shown, step) {
     menu.append(el("div", { class: "row" },
       el("button", { type: "button", id: "why-not", onclick: () => askText(`why not ${shown}`) }, "Why not this?")));
   }
-  menu.append(el("div", { class: "row" },
-    el("button", { type: "button", id: "why-not-at", onclick: () => askText(`why not ${shown} at ${$("not-at-step").value}`) },
-      "Why not this at step"), stepInput("not-at-step", Math.min(steps + 1, step || 1)), "?"));
+  // "Why not this at step T?" for a step whose action is another one: by
+  // default the first such step at or after the one clicked.
+  const plan = state.current.plan;
+  const elsewhere = (t) => plan[t - 1] !== term;
+  let first = step || 1;
+  while (first <= steps && !elsewhere(first)) first += 1;
+  const notAt = el("button", { type: "button", id: "why-not-at",
+    onclick: () => askText(`why not ${shown} at ${$("not-at-step").value}`) }, "Why not this at step");
+  const notAtStep = stepInput("not-at-step", first);
+  const check = () => {
+    const t = Number(notAtStep.value);
+    const already = Number.isInteger(t) && t >= 1 && !elsewhere(t);
+    notAt.disabled = running || already;
+    notAt.title = already ? `step ${t} of the current plan already is ${shown}` : "";
+  };
+  notAtStep.addEventListener("input", check);
+  menu.append(el("div", { class: "row" }, notAt, notAtStep, "?"));
   menu.append(el("div", { class: "row" }, el("button", { type: "button", onclick: () => { menu.hidden = true; selected = null; } }, "Close")));
   menu.hidden = false;
   for (const button of menu.querySelectorAll("button")) button.disabled = running;
+  check();
   $("ask-panel").scrollIntoView({ block: "nearest", behavior: "smooth" });
 }
 
@@ -533,6 +598,7 @@ function render() {
     return;
   }
   $("under").value = state.under;
+  $("under").disabled = running;
   const planKey = JSON.stringify(state.current.plan);
   if (planKey !== explainedPlan) { $("explain-panel").hidden = true; explainedPlan = planKey; }
   renderCurrent();
@@ -558,6 +624,37 @@ async function ask() {
   }
   const step = /^why\s+step\s+(\S+?)\s*\??$/i.exec(text);
   if (step) { await explainStep(step[1]); return; }
+  if (state && state.unmeetable) { offerDrop(text); return; }
+  await askNow(text);
+}
+
+function offerDrop(text) {
+  // The questions asked so far conflict: a further question would have no
+  // contrast plan either.  Offer to drop the last one first (or ask anyway).
+  place($("ask-messages"));
+  showError(null);
+  showNote(null);
+  const last = state.steps.length;
+  const old = $("drop-offer");
+  if (old) old.remove();
+  const box = el("p", { id: "drop-offer", class: "notice warning" },
+    el("strong", { text: "The questions asked so far conflict: " }),
+    `no plan meets them together (question ${last}, ${state.steps[last - 1].question}, added the conflict), ` +
+    `so "${text}" would have no contrast plan either. `,
+    el("button", { type: "button", id: "drop-and-ask", onclick: async () => {
+      box.remove();
+      const job = await dropQuestion();
+      if (job && job.state === "done") await askNow(text);
+    } }, `Drop question ${last}, then ask`), " ",
+    el("button", { type: "button", id: "ask-anyway", onclick: () => { box.remove(); askNow(text); } },
+      "Ask anyway"));
+  $("ask-messages").append(box);
+  requestAnimationFrame(() => box.scrollIntoView({ block: "nearest" }));
+}
+
+async function askNow(text) {
+  const old = $("drop-offer");
+  if (old) old.remove();
   const job = await move(() => post(`/api/sessions/${sid}/ask`, { question: text }), $("ask-messages"));
   if (job && job.state === "done") {
     viewing = state.steps.length;
@@ -598,6 +695,7 @@ async function explainStep(step) {
 async function dropQuestion() {
   const job = await move(() => post(`/api/sessions/${sid}/undo`, {}), $("ask-messages"));
   if (job && job.state === "done") showNote(`dropped: ${job.note.replace(/^took back: /, "")} (its constraints are no longer imposed)`);
+  return job;
 }
 
 async function startDialogue(principle, plan, quiet) {
@@ -641,9 +739,9 @@ function bind() {
   });
   for (const button of document.querySelectorAll("button.zoom")) {
     button.addEventListener("click", () => {
-      const actual = $(button.dataset.picture).classList.toggle("actual");
-      button.setAttribute("aria-pressed", String(actual));
-      button.textContent = actual ? "Fit to width" : "Actual size";
+      const fit = $(button.dataset.picture).classList.toggle("fit");
+      button.setAttribute("aria-pressed", String(fit));
+      button.textContent = fit ? "Actual size" : "Fit to width";
     });
   }
   $("under").addEventListener("change", async () => {
