@@ -253,3 +253,23 @@ def test_the_command_line_plans_with_each_planner_and_the_lengths_agree():
 def test_no_planner_is_assumed_where_none_is_chosen():
     model = Model.from_string("variable(a). action(go). eff(go,a,true). goal(a,true).")
     assert model.planning_system == systems.AUTO
+
+
+@installed
+@pytest.mark.slow
+@settings(max_examples=80, deadline=None)
+@given(SEEDS, st.booleans(), st.integers(min_value=-6, max_value=6))
+def test_best_reachable_utility_and_better_states_agree_with_the_oracle(seed, conditional, shift):
+    """Utilitarianism's proofs by Fast Downward: the relaxed bound, the
+    bisection by searches for a state worth at least k, a better state."""
+    from ethasp.planning.engines.best_state import best_reachable, better_state
+
+    spec = random_model(seed, conditional=conditional)
+    best = best_reachable(forced(spec.to_asp()))
+    assert best.status == "proven" and best.utility == spec.best_reachable_utility(), (best, spec)
+    utility = spec.best_reachable_utility() + shift
+    compared = better_state(forced(spec.to_asp()), utility)
+    assert compared.status == "proven"
+    assert (compared.better is not None) == (spec.best_reachable_utility() > utility)
+    if compared.better is not None:
+        assert compared.better.utility > utility

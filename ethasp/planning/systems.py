@@ -51,10 +51,12 @@ def warn(text: str) -> None:
         print(f"ethasp: warning: {text}", file=sys.stderr, flush=True)
 
 
-def usable(planner, setting, all_plans: bool = False) -> bool:
-    """Does a search under ``setting`` hand its task to Fast Downward, by the
-    planner's model's choice?  (It may still find that the task does not
-    compile, or the planner may fail: then clingo searches.)"""
+def usable(planner, setting=None, all_plans: bool = False) -> bool:
+    """Does a search under ``setting`` (None: a search for reachable states of
+    a utility, :mod:`ethasp.planning.engines.best_state`) hand its task to
+    Fast Downward, by the planner's model's choice?  (It may still find that
+    the task does not compile, or the planner may fail: then clingo
+    searches.)"""
     choice = getattr(planner.model, "planning_system", DEFAULT)
     if choice == CLINGO:
         return False
@@ -78,11 +80,13 @@ def _unsuited(planner, setting, all_plans: bool) -> str:
     """Why a search is not one Fast Downward does (words), or the empty text."""
     from ethasp.planning.engines import downward, handles
 
-    if all_plans:
+    if setting is None:
+        pass
+    elif all_plans:
         return "for all shortest plans"
-    if not setting.goal or setting.at_least is not None or setting.other_state is not None:
+    elif not setting.goal or setting.at_least is not None or setting.other_state is not None:
         return "for states of a utility"
-    if setting.constraints:
+    elif setting.constraints:
         return "under a question's constraints that no HModel compiles"
     if not handles(downward.FEATURES, planner.features):
         return f"models with {' or '.join(sorted(planner.features - downward.FEATURES))}"
