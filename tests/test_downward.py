@@ -236,9 +236,11 @@ def test_the_command_line_plans_with_each_planner_and_the_lengths_agree():
     lengths = {}
     for system in systems.CHOICES:
         done = subprocess.run(
-            [sys.executable, "-m", "ethasp.interfaces.cli", "plan"]
-            + [str(ipc / "domain.pddl"), str(ipc / "p1.pddl")]
-            + ["--json", "--planner", system],
+            [
+                *(sys.executable, "-m", "ethasp.interfaces.cli", "plan"),
+                *(str(ipc / "domain.pddl"), str(ipc / "p1.pddl")),
+                *("--json", "--planner", system),
+            ],
             capture_output=True,
             text=True,
             cwd=ROOT,

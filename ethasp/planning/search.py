@@ -778,7 +778,8 @@ def _any_plan(
 ) -> SearchResult:
     if longest is not None:
         max_horizon = min(max_horizon, longest)
-    horizon, slice_, checked = start, SLICE, 0
+    horizon, checked = start, 0
+    slice_: float = SLICE
     witness: Plan | None = None  # the solver's plan, if the greedy search gives up
     exact.head_start()
     while True:
