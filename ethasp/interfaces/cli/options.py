@@ -226,17 +226,23 @@ def search_options(
         metavar="N",
         help=f"search plans of at most N steps (default {default})",
     )
+    inherit(parser, planner_option(), limit_options(per, quiet))
+    return parser
+
+
+def planner_option() -> argparse.ArgumentParser:
+    """--planner: which planning system searches (ethasp.planning.systems)."""
+    parser = _parent()
     parser.add_argument(
         "--planner",
         choices=CHOICES,
         default=DEFAULT_SYSTEM,
-        help="the planning system that searches plans: clingo; fast-downward (Fast "
-        "Downward, from pip install 'ethasp[planners]') where the search compiles "
+        help="the planning system that searches plans and states: clingo; fast-downward "
+        "(Fast Downward, from pip install 'ethasp[planners]') where the search compiles "
         "for it, clingo elsewhere; auto: Fast Downward where it is installed, the "
         f"search compiles and the task has at least {AUTO_ACTIONS} usable actions, "
         "else clingo (default auto)",
     )
-    inherit(parser, limit_options(per, quiet))
     return parser
 
 
