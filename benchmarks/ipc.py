@@ -48,6 +48,7 @@ import signal
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 from dataclasses import asdict, dataclass
 from pathlib import Path
@@ -109,12 +110,50 @@ def _children_cpu() -> float:
     return usage.ru_utime + usage.ru_stime
 
 
+def _tree_cpu(root: int, seen: dict[int, float]) -> None:
+    """Record the processor seconds (user and system, its own) of ``root`` and of
+    every process below it, as last seen (``seen``: by process id)."""
+    try:
+        pids = [int(name) for name in os.listdir("/proc") if name.isdigit()]
+    except OSError:
+        return
+    parents: dict[int, int] = {}
+    stats: dict[int, list[str]] = {}
+    for pid in pids:
+        try:
+            fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+        except (OSError, IndexError):
+            continue
+        parents[pid] = int(fields[1])
+        stats[pid] = fields
+    tree, frontier = {root}, [root]
+    while frontier:
+        parent = frontier.pop()
+        for pid, ppid in parents.items():
+            if ppid == parent and pid not in tree:
+                tree.add(pid)
+                frontier.append(pid)
+    for pid in tree:
+        if pid in stats:
+            fields = stats[pid]
+            seen[pid] = (int(fields[11]) + int(fields[12])) / TICKS
+
+
+TICKS = os.sysconf("SC_CLK_TCK") if hasattr(os, "sysconf") else 100
+
+
 def timed(
     command: list[str], cap: float, cwd: Path
 ) -> tuple[subprocess.CompletedProcess | None, float, float]:
     """Run a command (in a session of its own), at most ``cap`` seconds; its
     result (None on timeout, its processes then killed), the seconds taken and
-    the processor seconds of the process and of the children it waited for."""
+    the processor seconds of the process and of every process below it.
+
+    Those are read from ``/proc`` every 10 ms (each process's own time, as
+    last seen): ethasp's engines and planners run in processes whose parent
+    does not wait for them (their times would be missing from the
+    resource usage of the children waited for).  Where ``/proc`` cannot be
+    read, the resource usage of the children waited for is taken."""
     cpu = _children_cpu()
     start = time.perf_counter()
     process = subprocess.Popen(
@@ -125,17 +164,29 @@ def timed(
         cwd=cwd,
         start_new_session=True,
     )
-    try:
-        stdout, stderr = process.communicate(timeout=cap)
-    except subprocess.TimeoutExpired:
-        os.killpg(process.pid, signal.SIGKILL)  # the planner's children too
-        process.communicate()
-        return None, time.perf_counter() - start, _children_cpu() - cpu
+    seen: dict[int, float] = {}
+    output: dict[str, str] = {}
+
+    def communicate() -> None:
+        output["stdout"], output["stderr"] = process.communicate()
+
+    reader = threading.Thread(target=communicate, daemon=True)
+    reader.start()
+    while reader.is_alive():
+        _tree_cpu(process.pid, seen)
+        reader.join(0.01)
+        if time.perf_counter() - start > cap:
+            os.killpg(process.pid, signal.SIGKILL)  # the planner's children too
+            reader.join()
+            return None, time.perf_counter() - start, sum(seen.values())
     seconds = time.perf_counter() - start
+    waited = _children_cpu() - cpu
     return (
-        subprocess.CompletedProcess(command, process.returncode, stdout, stderr),
+        subprocess.CompletedProcess(
+            command, process.returncode, output.get("stdout", ""), output.get("stderr", "")
+        ),
         seconds,
-        _children_cpu() - cpu,
+        max(waited, sum(seen.values())),
     )
 
 

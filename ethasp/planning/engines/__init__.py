@@ -43,9 +43,9 @@ The engines and the features they handle:
   once every reachable state is expanded.  Every feature (with events, the
   states are configurations).
 * ``best_state``: for utilitarianism, a reachable state better than a
-  utility, or the best one, from the engines above (``downward`` first,
-  where the model's planning system is Fast Downward) or by clingo
-  optimisation.  Every feature.
+  utility, or the best one, from the engines above (``downward`` where the
+  diagrams give up and the model's planning system is Fast Downward) or by
+  clingo optimisation.  Every feature.
 
 * ``downward``: Fast Downward, a planner of the planning community, run as
   a child process on the task that ``sas`` writes from the ground model (the

@@ -210,9 +210,10 @@ def _best_reachable(
     key = ("best_reachable", within, frozenset(other_than or ()), max_horizon)
     if key in results(planner):
         return results(planner)[key]
-    result = _best_by_planner(planner, budget, within, other_than)
+    result = _best_exact(planner, budget, max_horizon, within, other_than)
     if result is None:
-        result = _best_exact(planner, budget, max_horizon, within, other_than)
+        # The diagrams gave up: Fast Downward's searches, where it searches.
+        result = _best_by_planner(planner, budget, within, other_than)
     if result is None:
         result = _best_by_optimisation(planner, budget, max_horizon, within, other_than)
     if result.status == PROVEN:
@@ -429,9 +430,6 @@ def _better_state(planner: Planner, utility: int, budget: Budget, max_horizon: i
                 best=known,
             )
         return Comparison(PROVEN, f"no reachable state is better: {known.proof}", best=known)
-    compared = _better_by_planner(planner, utility, budget)
-    if compared is not None:
-        return compared
     if len(planner.get("variable", 1)) > PROBE_VARIABLES and planner.reachability_pending():
         # Large models: a few short searches first, each with a share of the time;
         # a better state near the initial one decides before any diagram is built.
@@ -489,6 +487,10 @@ def _better_state(planner: Planner, utility: int, budget: Budget, max_horizon: i
         )
         return Comparison(PROVEN, f"no reachable state is better: {result.proof}", best=result)
     if "diagram nodes" in stopped and not budget.expired():
+        # The diagrams gave up: Fast Downward's search, where it searches, else clingo's.
+        compared = _better_by_planner(planner, utility, budget)
+        if compared is not None:
+            return compared
         return _better_by_search(planner, utility, budget, max_horizon)
     return Comparison(
         BOUNDED, f"no better state among those reached within {steps(searched)}; stopped: {stopped}"
@@ -497,7 +499,8 @@ def _better_state(planner: Planner, utility: int, budget: Budget, max_horizon: i
 
 # -- an external planner: searches for a state of at least a utility ----------------
 #
-# Where the model's planning system hands searches to Fast Downward
+# Where the exact layers give up (diagram nodes: a limit of work, not of
+# time) and the model's planning system hands searches to Fast Downward
 # (ethasp.planning.systems), the best reachable utility is an
 # oversubscription question answered by planner calls on the compiled goal
 # "a state worth at least k" (ethasp.planning.engines.sas): the relaxed upper
