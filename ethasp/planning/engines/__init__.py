@@ -55,7 +55,8 @@ The engines and the features they handle:
   end is explored, and for ``best_state`` states worth at least a utility.
   Conditional effects; no exogenous events, no derived variables.
 
-``task`` holds what ``explicit`` and ``greedy`` search over: the explicit
+``sas`` writes what ``downward`` searches (and refuses events and derived
+variables); ``task`` holds what ``explicit`` and ``greedy`` search over: the explicit
 states of the search model (bit masks), its actions and derived variables,
 and the FF heuristic.
 """
