@@ -146,6 +146,7 @@ def _operators(text: str) -> list[str]:
 def _execute(argv: list[str], task_file: str, folder: str, out) -> None:
     """In a child process: become the planner, reading the task on standard
     input and writing to ``out`` (standard output and error both)."""
+    spawner.end_with_parent()  # killed with its parent (kept across exec)
     with contextlib.suppress(OSError):
         os.setpgid(0, 0)  # a process group of its own (a terminal's Ctrl-C is not its)
     task = os.open(task_file, os.O_RDONLY)
