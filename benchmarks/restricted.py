@@ -556,6 +556,11 @@ def main() -> int:
         "--repeat", type=int, default=1, help="runs per process, the fastest kept (default 1)"
     )
     parser.add_argument("--only", help="instances whose DOMAIN/PROBLEM contains this text")
+    parser.add_argument(
+        "--planner",
+        default="auto",
+        help="ethasp's --planner for every command, plain search included (default auto)",
+    )
     parser.add_argument("--json", type=Path, help="also write every row to this JSON file")
     parser.add_argument(
         "--summary",
@@ -617,7 +622,8 @@ def main() -> int:
         "without proof"
     )
     print(f"{'instance / search':44} {'status':12} {'s':>7} {'ratio':>6} {'MB':>7} {'cpu s':>7}")
-    limit = ["--time-limit", f"{args.time_limit:g}", "--json"]
+    limit = ["--time-limit", f"{args.time_limit:g}", "--json", "--planner", args.planner]
+    print(f"--planner {args.planner} (every command)")
     reasons = [] if args.reasons_limit is None else ["--reasons-limit", str(args.reasons_limit)]
     asked = reasons if args.reasons_limit is not None and args.reasons_limit >= 1 else []
     if reasons:

@@ -16,7 +16,8 @@ from ethasp.planning.engines import reachability
 ENGINES = [
     name
     for module in pkgutil.iter_modules(engines.__path__)
-    if (name := module.name) != "task"  # what explicit and greedy search over
+    # (task: what explicit and greedy search over; sas: what downward searches)
+    if (name := module.name) not in ("task", "sas")
 ]
 
 BASE = "variable(a;b). action(go). eff(go,a,true). goal(a,true).\n"
@@ -26,7 +27,9 @@ DERIVED = "derived(d). axiom(d,1). axiom_pre(d,1,a,true).\n"
 
 
 def test_every_engine_declares_its_features_and_the_contract_lists_it():
-    assert set(ENGINES) == {"reachability", "explicit", "layers", "greedy", "best_state"}
+    assert set(ENGINES) == {
+        *("reachability", "explicit", "layers", "greedy", "best_state", "downward")
+    }
     for name in ENGINES:
         module = importlib.import_module(f"ethasp.planning.engines.{name}")
         assert module.FEATURES <= engines.ALL_FEATURES, name
@@ -68,3 +71,16 @@ def test_features_of_a_model_whose_rules_give_them():
     # due only through a rule.
     text = BASE + "event(e). step_of(1). event_at(e,T) :- step_of(T).\n"
     assert Model.from_string(text).planner.features == {engines.EVENTS}
+
+
+@pytest.mark.parametrize(("extra", "why"), [(EVENT, "exogenous events"), (DERIVED, "derived")])
+def test_the_planners_task_refuses_what_it_does_not_write(extra, why):
+    from ethasp.planning.budget import Budget
+    from ethasp.planning.engines import downward, sas
+    from ethasp.planning.engines.layers import Atoms, search_model
+
+    planner = Model.from_string(BASE + extra).planner
+    planner.prepare(Budget(None))
+    assert not engines.handles(downward.FEATURES, planner.features)
+    with pytest.raises(sas.NotCompiled, match=why):
+        sas.task(search_model(Atoms(planner)))

@@ -132,6 +132,8 @@ class Model:
     sources: list[Source] = field(default_factory=list)
     allow_scripts: bool = False
     naming: Naming = field(default_factory=Naming)
+    # Which planning system searches its plans (ethasp.planning.systems).
+    planning_system: str = "auto"
     _planner: Planner | None = field(default=None, repr=False, compare=False)
 
     # -- construction ---------------------------------------------------------

@@ -380,6 +380,7 @@ def _before(budget: Budget, planner: Planner) -> str:
 
 # One proof text for each kind of claim, whichever engine proved it first.
 SEARCHED = "every reachable state was searched, and none is a goal state"
+GREEDY_PROOF = "a plan found by greedy forward search (not proven shortest)"
 
 
 def _shortest_proof(length: int) -> str:
@@ -437,6 +438,55 @@ def _least(
     return plans_of([outcome.symbols])[0]
 
 
+def _external(
+    planner: Planner,
+    setting: Setting,
+    budget: Budget,
+    max_horizon: int,
+    longest: int | None,
+    optimal: bool,
+    all_plans: bool = False,
+) -> SearchResult | None:
+    """The search by an external planner (:mod:`ethasp.planning.systems`):
+    its result, or None where clingo searches (not chosen, not compiled, or
+    the planner failed).  Its plan is checked by its trace; it is reported as
+    the planner found it (the planner is chosen by the options and the task
+    alone, and searches deterministically), so it may be another shortest
+    plan than the least one that clingo reports."""
+    from ethasp.planning import systems
+
+    if not systems.usable(planner, setting, all_plans):
+        return None
+    from ethasp.planning.engines import downward, sas
+    from ethasp.planning.engines.layers import Atoms, search_model
+
+    try:
+        task = sas.task(search_model(Atoms(planner)))
+    except sas.NotCompiled as why:
+        systems.warn(f"Fast Downward does not search models with {why}: clingo searches instead")
+        return None
+    outcome = downward.solve(task, budget, optimal)
+    if outcome.status == downward.STOPPED:
+        return SearchResult(
+            BOUNDED, optimal=optimal, proof=f"{budget.why_stopped()} during Fast Downward's search"
+        )
+    if outcome.status == downward.FAILED:
+        systems.warn(f"Fast Downward failed ({outcome.why}): clingo searches instead")
+        return None
+    if outcome.status == downward.NO_PLAN:
+        return SearchResult(NONE, horizon=0, optimal=optimal, proof=SEARCHED)
+    plan = _checked(planner, task.plan(outcome.operators), "Fast Downward")
+    length = len(plan)
+    if optimal and longest is not None and length > longest:
+        return SearchResult(NONE, horizon=longest, proof=_too_long(longest))
+    if length > max_horizon:
+        if not optimal:
+            return None  # too long for the search: clingo looks within the horizon
+        return SearchResult(BOUNDED, horizon=max_horizon, proof=_at_maximum(max_horizon))
+    proof = _shortest_proof(length) if optimal else GREEDY_PROOF
+    return SearchResult(FOUND, plan=plan, horizon=length, optimal=optimal, proof=proof)
+
+
 def _checked(planner: Planner, actions, engine: str) -> Plan:
     """A plan that an engine proposed, checked by its trace (the encodings)."""
     plan = Plan(tuple(actions))
@@ -486,6 +536,9 @@ def shortest(
         return SearchResult(NONE, horizon=0, proof=impossible)
     if longest is not None and start > longest:
         return SearchResult(NONE, horizon=longest, proof=_too_long(longest))
+    external = _external(planner, setting, budget, max_horizon, longest, True, all_plans)
+    if external is not None:
+        return external
     if start > max_horizon:
         return SearchResult(
             BOUNDED,
@@ -697,6 +750,9 @@ def any_plan(
         return SearchResult(NONE, horizon=0, optimal=False, proof=impossible)
     if longest is not None and start > longest:
         return SearchResult(NONE, horizon=longest, optimal=False, proof=_too_long(longest))
+    external = _external(planner, setting, budget, max_horizon, longest, False)
+    if external is not None:
+        return external
     plain = not setting.constraints
     exact = _Exact(planner, setting, budget, read_plan=plain, greedy=True)
     exact.max_horizon = max_horizon
@@ -722,7 +778,8 @@ def _any_plan(
 ) -> SearchResult:
     if longest is not None:
         max_horizon = min(max_horizon, longest)
-    horizon, slice_, checked = start, SLICE, 0
+    horizon, checked = start, 0
+    slice_: float = SLICE
     witness: Plan | None = None  # the solver's plan, if the greedy search gives up
     exact.head_start()
     while True:
@@ -734,7 +791,7 @@ def _any_plan(
                 plan=plan,
                 horizon=len(plan),
                 optimal=False,
-                proof="a plan found by greedy forward search (not proven shortest)",
+                proof=GREEDY_PROOF,
             )
         if exact.greedy_complete() or exact.complete(max_horizon):
             return SearchResult(NONE, horizon=0, optimal=False, proof=SEARCHED)

@@ -220,6 +220,7 @@ def plan_with_principles(
         best.utility if best is not None else None,
     )
     restricted = model if restriction.empty else hmodel(model, restriction)
+    restricted.planning_system = model.planning_system
     against = impossible(model, restriction) if restriction.terms else []
     if against:
         # Known before any search (a constraint against the goal, or one that

@@ -16,6 +16,7 @@ from ethasp.interfaces.cli.options import (
     limit_options,
     max_horizon,
     plan_options,
+    planner_option,
     reasons_option,
 )
 from ethasp.interfaces.cli.output import checkpoint, emit, svg_option, write_picture
@@ -52,7 +53,7 @@ def add_parser(commands) -> None:
         help="compare with the states reachable in at most N steps "
         f"(default {DEFAULT_MAX_HORIZON})",
     )
-    inherit(judging, limit_options())
+    inherit(judging, planner_option(), limit_options())
     judging.add_argument(
         "--best",
         action="store_true",

@@ -61,18 +61,21 @@ def read_stdin_model() -> str:
 
 def load_model(args: argparse.Namespace) -> Model:
     """The model of the command's MODEL arguments; ``-`` reads ASP text from
-    standard input (at most once)."""
+    standard input (at most once); its planning system is ``--planner``'s."""
     names = list(args.model)
     if names.count(STDIN) > 1:
         raise InputError("standard input (-) can be given only once as a model file")
     if STDIN not in names:
-        return Model.load(model_paths(names), allow_scripts=args.allow_scripts)
-    names.remove(STDIN)
-    return Model.load(
-        model_paths(names),
-        allow_scripts=args.allow_scripts,
-        texts=[(STDIN_NAME, read_stdin_model())],
-    )
+        model = Model.load(model_paths(names), allow_scripts=args.allow_scripts)
+    else:
+        names.remove(STDIN)
+        model = Model.load(
+            model_paths(names),
+            allow_scripts=args.allow_scripts,
+            texts=[(STDIN_NAME, read_stdin_model())],
+        )
+    model.planning_system = getattr(args, "planner", None) or model.planning_system
+    return model
 
 
 def model_files(args: argparse.Namespace, resolve: bool = False) -> list[str]:

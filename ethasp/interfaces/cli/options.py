@@ -21,6 +21,8 @@ from ethasp.planning.budget import DEFAULT_TIME_LIMIT, Budget
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
 from ethasp.planning.search import DEFAULT_MAX_HORIZON, DEFAULT_SATISFICING_HORIZON
+from ethasp.planning.systems import AUTO_ACTIONS, CHOICES
+from ethasp.planning.systems import DEFAULT as DEFAULT_SYSTEM
 from ethasp.planning.terms import read_text
 from ethasp.reasons import DEFAULT_LIMIT as DEFAULT_REASONS_LIMIT
 
@@ -224,7 +226,23 @@ def search_options(
         metavar="N",
         help=f"search plans of at most N steps (default {default})",
     )
-    inherit(parser, limit_options(per, quiet))
+    inherit(parser, planner_option(), limit_options(per, quiet))
+    return parser
+
+
+def planner_option() -> argparse.ArgumentParser:
+    """--planner: which planning system searches (ethasp.planning.systems)."""
+    parser = _parent()
+    parser.add_argument(
+        "--planner",
+        choices=CHOICES,
+        default=DEFAULT_SYSTEM,
+        help="the planning system that searches plans and states: clingo; fast-downward "
+        "(Fast Downward, from pip install 'ethasp[planners]') where the search compiles "
+        "for it, clingo elsewhere; auto: Fast Downward where it is installed, the "
+        f"search compiles and the task has at least {AUTO_ACTIONS} usable actions, "
+        "else clingo (default auto)",
+    )
     return parser
 
 

@@ -43,10 +43,20 @@ The engines and the features they handle:
   once every reachable state is expanded.  Every feature (with events, the
   states are configurations).
 * ``best_state``: for utilitarianism, a reachable state better than a
-  utility, or the best one, from the engines above or by clingo
-  optimisation.  Every feature.
+  utility, or the best one, from the engines above (``downward`` where the
+  diagrams give up and the model's planning system is Fast Downward) or by
+  clingo optimisation.  Every feature.
 
-``task`` holds what ``explicit`` and ``greedy`` search over: the explicit
+* ``downward``: Fast Downward, a planner of the planning community, run as
+  a child process on the task that ``sas`` writes from the ground model (the
+  ``planners`` extra; chosen by :mod:`ethasp.planning.systems`): a shortest
+  plan (A* with LM-cut, or h^max with conditional effects), some plan (lazy
+  greedy search with FF), "none" once every state not recognised as a dead
+  end is explored, and for ``best_state`` states worth at least a utility.
+  Conditional effects; no exogenous events, no derived variables.
+
+``sas`` writes what ``downward`` searches (and refuses events and derived
+variables); ``task`` holds what ``explicit`` and ``greedy`` search over: the explicit
 states of the search model (bit masks), its actions and derived variables,
 and the FF heuristic.
 """

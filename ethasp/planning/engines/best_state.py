@@ -209,6 +209,9 @@ def _best_reachable(
         return results(planner)[key]
     result = _best_exact(planner, budget, max_horizon, within, other_than)
     if result is None:
+        # The diagrams gave up: Fast Downward's searches, where it searches.
+        result = _best_by_planner(planner, budget, within, other_than)
+    if result is None:
         result = _best_by_optimisation(planner, budget, max_horizon, within, other_than)
     if result.status == PROVEN:
         results(planner)[key] = result
@@ -481,9 +484,145 @@ def _better_state(planner: Planner, utility: int, budget: Budget, max_horizon: i
         )
         return Comparison(PROVEN, f"no reachable state is better: {result.proof}", best=result)
     if "diagram nodes" in stopped and not budget.expired():
+        # The diagrams gave up: Fast Downward's search, where it searches, else clingo's.
+        compared = _better_by_planner(planner, utility, budget)
+        if compared is not None:
+            return compared
         return _better_by_search(planner, utility, budget, max_horizon)
     return Comparison(
         BOUNDED, f"no better state among those reached within {steps(searched)}; stopped: {stopped}"
+    )
+
+
+# -- an external planner: searches for a state of at least a utility ----------------
+#
+# Where the exact layers give up (diagram nodes: a limit of work, not of
+# time) and the model's planning system hands searches to Fast Downward
+# (ethasp.planning.systems), the best reachable utility is an
+# oversubscription question answered by planner calls on the compiled goal
+# "a state worth at least k" (ethasp.planning.engines.sas): the relaxed upper
+# bound first (one call where it is attained), then a bisection between the
+# best utility found and the bound, each call by greedy search (a state worth
+# at least k, or the proof that none is reachable: every state from which the
+# relaxed count could still reach k was searched).  The best state reported
+# is a goal state where a goal state is that good (the nearest, by A*), else
+# the state that the search reached.  Each state is the final state of the
+# planner's action sequence, checked by its trace.
+
+PLANNER_PROOF = (
+    "no reachable state is worth more than {u} (every state from which a better one "
+    "might be reached was searched)"
+)
+
+
+def _planner_search(planner, ground, at_least: int, budget: Budget, goal: bool, optimal: bool):
+    """One search for a state worth at least ``at_least`` (a goal state with
+    ``goal``): ("state", a ReachableState), ("none", None), ("stopped", why)
+    or ("failed", why)."""
+    from ethasp.planning import systems
+    from ethasp.planning.engines import downward, sas
+
+    try:
+        task = sas.task(ground, goal=goal, at_least=at_least)
+    except sas.NotCompiled as why:
+        systems.warn(f"Fast Downward does not search models with {why}: clingo searches instead")
+        return "failed", str(why)
+    outcome = downward.solve(task, budget, optimal)
+    if outcome.status == downward.STOPPED:
+        return "stopped", f"{budget.why_stopped()} during Fast Downward's search"
+    if outcome.status == downward.FAILED:
+        systems.warn(f"Fast Downward failed ({outcome.why}): clingo searches instead")
+        return "failed", outcome.why
+    if outcome.status == downward.NO_PLAN:
+        return "none", None
+    return "state", _reached(planner, task.plan(outcome.operators))
+
+
+def _reached(planner: Planner, actions) -> ReachableState:
+    """The final state of an action sequence an engine proposed, by its trace."""
+    from ethasp.planning.plan import Plan
+
+    plan = Plan(tuple(actions))
+    answer = planner.trace(plan)
+    if answer.get("failure", 1) or answer.get("invalid", 1):
+        raise RuntimeError(f"Fast Downward proposed {plan}, which the encodings refute")
+    final = {atom.arguments[0]: atom.arguments[1].name == "true" for atom in answer.get("final", 2)}
+    model = planner.ground_model()
+    facts = [(v, final.get(v, False)) for v in model.variables]
+    return ReachableState(facts, model.utility(v for v, b in facts if b), len(plan))
+
+
+def _planner_model(planner: Planner):
+    """The search model with the utilities of facts, or None where Fast
+    Downward does not answer for this planner (its model's choice)."""
+    from ethasp.planning import systems
+
+    if getattr(planner.model, "planning_system", systems.DEFAULT) == systems.CLINGO:
+        return None
+    if not planner.prepare(None) or not systems.usable(planner):
+        return None
+    from ethasp.planning.engines.layers import Atoms, search_model
+
+    return search_model(Atoms(planner, weights=True))
+
+
+def _best_by_planner(
+    planner: Planner, budget: Budget, within: str, other_than
+) -> BestReachable | None:
+    """The best reachable state by Fast Downward (see above); None where it
+    does not answer (the search goes on with the other engines)."""
+    if within != "all" or other_than is not None:
+        return None
+    ground = _planner_model(planner)
+    if ground is None:
+        return None
+    bound = upper_bound(planner)
+    best = _reached(planner, [])
+    low, high = best.utility, bound
+    target = high  # the bound first: often attained
+    while low < high:
+        budget.report("best reachable state (Fast Downward)", best=low, bound=high)
+        kind, found = _planner_search(planner, ground, target, budget, False, False)
+        if kind == "failed":
+            return None
+        if kind == "stopped":
+            return BestReachable(BOUNDED, f"{found}; best found {low}, bound {high}", best)
+        if kind == "none":
+            high = target - 1
+        else:
+            best, low = found, found.utility
+        target = (low + high + 1) // 2
+    # A goal state as good, the nearest (the paper's max: goal states first).
+    kind, found = _planner_search(planner, ground, low, budget, True, True)
+    if kind == "failed":
+        return None
+    if kind == "stopped":
+        return BestReachable(BOUNDED, found, best)
+    if kind == "state":
+        best = found
+    proof = UB_PROOF.format(u=bound) if low == bound else PLANNER_PROOF.format(u=low)
+    return BestReachable(PROVEN, proof, best, best.distance)
+
+
+def _better_by_planner(planner: Planner, utility: int, budget: Budget) -> Comparison | None:
+    """Is a reachable state better than ``utility``, by Fast Downward (one
+    greedy search for a state worth more)?  None where it does not answer."""
+    ground = _planner_model(planner)
+    if ground is None:
+        return None
+    kind, found = _planner_search(planner, ground, utility + 1, budget, False, False)
+    if kind == "failed":
+        return None
+    if kind == "stopped":
+        return Comparison(BOUNDED, found)
+    if kind == "none":
+        return Comparison(
+            PROVEN, f"no reachable state is better: {PLANNER_PROOF.format(u=utility)}"
+        )
+    return Comparison(
+        PROVEN,
+        f"a state of utility {found.utility} is reachable within {steps(found.distance)}",
+        better=found,
     )
 
 

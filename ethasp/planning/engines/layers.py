@@ -89,12 +89,14 @@ class Atoms:
     """The ground atoms of a planner that the search model needs, read at once
     (the planner's control serves one thread at a time)."""
 
-    def __init__(self, planner):
+    def __init__(self, planner, weights: bool = False):
         self.usable = planner.search_atoms("usable", 1)
         self.reachable = planner.search_atoms("reachable", 2)
         self.model = {name: planner.get(name, arity) for name, arity in MODEL_ATOMS}
-        # The utilities of facts, for a goal utility (an HModel's) only.
-        self.model["weight"] = planner.get("weight", 2) if self.model["goal_utility"] else []
+        # The utilities of facts, for a goal utility (an HModel's) or where
+        # asked for (``weights``: searches for states of a utility).
+        wanted = weights or self.model["goal_utility"]
+        self.model["weight"] = planner.get("weight", 2) if wanted else []
 
     def get(self, name: str, arity: int) -> list[clingo.Symbol]:
         return self.model[name]
@@ -175,19 +177,18 @@ def search_model(atoms: Atoms) -> GroundModel:
     # A goal utility: the fixed variables' utilities are a constant; the
     # fluents' utilities stay in the search model.
     bounds = [atom.arguments[0].number for atom in atoms.get("goal_utility", 1)]
-    goal_utility, weights = None, {}
-    if bounds:
-        goal_utility = max(bounds)
-        for atom in atoms.get("weight", 2):
-            element, utility = atom.arguments
-            if element.name != "fact":
-                continue
-            variable, value = element.arguments[0], _value(element.arguments[1])
-            if variable in moving:
-                weights[(variable, value)] = utility.number
-            elif fixed.get(variable) == value:
-                goal_utility -= utility.number
-    return from_atoms(
+    weights, fixed_utility = {}, 0
+    for atom in atoms.get("weight", 2):
+        element, utility = atom.arguments
+        if element.name != "fact":
+            continue
+        variable, value = element.arguments[0], _value(element.arguments[1])
+        if variable in moving:
+            weights[(variable, value)] = utility.number
+        elif fixed.get(variable) == value:
+            fixed_utility += utility.number
+    goal_utility = max(bounds) - fixed_utility if bounds else None
+    ground = from_atoms(
         fluents,
         actions,
         pre,
@@ -203,6 +204,8 @@ def search_model(atoms: Atoms) -> GroundModel:
         goal_utility,
         _events(atoms, keeps, moving),
     )
+    ground.fixed_utility = fixed_utility
+    return ground
 
 
 def _events(atoms, keeps=lambda variable, value: None, moving=None) -> list:

@@ -111,6 +111,9 @@ class GroundModel:
     # Exogenous events (ethasp.planning.engines.explicit.GroundEvent): the engine of
     # this module knows none; ethasp.planning.engines.explicit serves models with them.
     events: list = field(default_factory=list)
+    # The utility of the state variables a search model leaves out (they keep
+    # one value in every reachable state; ethasp.planning.engines.layers).
+    fixed_utility: int = 0
 
     def utility(self, state: Iterable[clingo.Symbol]) -> int:
         """u(s): the sum of the utilities of the facts of a state (true variables given)."""

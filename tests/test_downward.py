@@ -1,0 +1,285 @@
+"""Fast Downward as an engine (ethasp.planning.engines.downward, the SAS+ task of
+ethasp.planning.engines.sas, the choice of ethasp.planning.systems): plans and
+"none" against the brute-force oracle, plain and under principles, with the
+planner forced; the choice of auto; the fallback to clingo with one line of
+warning; the budget ends the planner's process.
+
+The tests that run the planner are skipped where it is not installed (the
+``planners`` extra); those of the choice and the fallback run everywhere.
+"""
+
+import json
+import os
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from oracle import random_model
+
+from ethasp import Model, find_plan
+from ethasp.execution.limits import descendants
+from ethasp.planning import systems
+from ethasp.planning.budget import Budget
+from ethasp.planning.engines import downward, sas
+from ethasp.planning.engines.layers import Atoms, search_model
+from ethasp.principles.restriction import plan_with_principles
+
+ROOT = Path(__file__).resolve().parent.parent
+IPC = Path(__file__).resolve().parent / "data" / "ipc"
+SEEDS = st.integers(min_value=0, max_value=10**9)
+HORIZON = 40
+
+installed = pytest.mark.skipif(
+    not systems.installed(), reason="Fast Downward is not installed (the planners extra)"
+)
+
+
+def forced(text: str, system: str = systems.FAST_DOWNWARD) -> Model:
+    model = Model.from_string(text)
+    model.planning_system = system
+    return model
+
+
+# -- against the oracle --------------------------------------------------------------
+
+
+@installed
+@pytest.mark.slow
+@settings(max_examples=80, deadline=None)
+@given(SEEDS, st.booleans(), st.booleans())
+def test_shortest_plans_and_none_agree_with_the_oracle(seed, conditional, far_goal):
+    """A* with LM-cut (h^max with conditional effects) finds a shortest plan
+    exactly when one exists, and proves "none" otherwise."""
+    spec = random_model(
+        seed, max_variables=5, max_actions=6, conditional=conditional, far_goal=far_goal
+    )
+    result = find_plan(forced(spec.to_asp()), max_horizon=HORIZON)
+    expected = spec.shortest_plan_length()
+    if expected is None:
+        assert result.status == "none", (result, spec)
+    else:
+        assert result.status == "found", (result, spec)
+        plan = [str(action) for action in result.plan]
+        assert spec.is_plan(plan), (plan, spec)
+        assert len(plan) == expected and result.optimal
+
+
+@installed
+@pytest.mark.slow
+@settings(max_examples=60, deadline=None)
+@given(SEEDS, st.booleans())
+def test_any_plan_search_finds_a_plan_exactly_when_one_exists(seed, conditional):
+    spec = random_model(seed, max_variables=5, max_actions=6, conditional=conditional)
+    result = find_plan(forced(spec.to_asp()), max_horizon=HORIZON, satisficing=True)
+    if spec.shortest_plan_length() is None:
+        assert result.status == "none", (result, spec)
+    else:
+        assert result.status == "found" and not result.optimal, (result, spec)
+        assert spec.is_plan([str(action) for action in result.plan])
+
+
+@installed
+@pytest.mark.slow
+@settings(max_examples=120, deadline=None)
+@given(SEEDS, st.sampled_from(["deontology", "utilitarianism", "do-no-harm"]), st.booleans())
+def test_hplans_agree_with_the_oracle(seed, principle, conditional):
+    """HModels searched by Fast Downward: the do-no-harm HModel's flags, the
+    utilitarian goal utility compiled into a counting phase."""
+    spec = random_model(seed, conditional=conditional)
+    result = plan_with_principles(forced(spec.to_asp()), [principle], max_horizon=HORIZON)
+    expected = spec.shortest_permissible_length([principle])
+    if expected is None:
+        assert result.status == "none", (result, spec)
+    else:
+        assert result.status == "found", (result, spec, expected)
+        plan = [str(action) for action in result.plan]
+        assert spec.is_plan(plan) and spec.permissible(plan, principle), (plan, spec)
+        assert len(plan) == expected, (plan, expected, spec)
+
+
+# -- the task ----------------------------------------------------------------------
+
+
+def test_the_task_keeps_the_variables_that_matter_and_their_actions():
+    model = Model.from_string(
+        "variable(a;b;noise). action(go;hum;stir). eff(go,a,true). "
+        "pre(stir,a,true). eff(stir,b,true). eff(hum,noise,true). goal(b,true)."
+    )
+    model.planner.prepare(Budget(None))
+    task = sas.task(search_model(Atoms(model.planner)))
+    assert task.text.count("begin_variable") == 2  # a and b, not noise
+    assert task.text.count("begin_operator") == 2  # go and stir, not hum
+    assert [str(a) for a in task.plan(["a0", "a2"])] == [str(task.actions[0]), "stir"]
+
+
+def test_a_goal_utility_compiles_into_a_count_and_too_large_counts_are_refused():
+    model = Model.from_string(
+        "variable(a;b). action(x;y). eff(x,a,true). eff(y,b,true). "
+        "utility(a,true,2). utility(b,true,4). utility(b,false,1)."
+    )
+    model.planner.prepare(Budget(None))
+    ground = search_model(Atoms(model.planner, weights=True))
+    # Base utility 1 (b false); gains 2 (a) and 3 (b): 6 needs both.
+    task = sas.threshold_task(ground, 6)
+    assert "begin_variable\nstage" in task.text and "begin_variable\ncounter" in task.text
+    assert sas.threshold_task(ground, 1).text.count("counter") == 0  # every state is worth 1
+    big = Model.from_string(
+        "variable(a;b). action(x;y). eff(x,a,true). eff(y,b,true). "
+        "utility(a,true,1000000). utility(b,true,999999)."
+    )
+    big.planner.prepare(Budget(None))
+    with pytest.raises(sas.NotCompiled):
+        sas.threshold_task(search_model(Atoms(big.planner, weights=True)), 1_999_999)
+
+
+@installed
+def test_true_wins_when_effects_that_fire_together_set_a_variable_both_ways():
+    model = forced(
+        "variable(a;b). action(x). ceff(x,k1,a,false). ceff(x,k2,a,true). "
+        "cpre(x,k1,b,false). cpre(x,k2,b,false). goal(a,true)."
+    )
+    result = find_plan(model)
+    assert result.status == "found" and [str(a) for a in result.plan] == ["x"]
+
+
+# -- the choice ----------------------------------------------------------------------
+
+
+def test_clingo_searches_when_asked_and_auto_keeps_small_tasks(monkeypatch):
+    def refuse(*args, **kwargs):
+        raise AssertionError("Fast Downward was asked")
+
+    monkeypatch.setattr(downward, "solve", refuse)
+    text = "variable(a). action(go). eff(go,a,true). goal(a,true)."
+    assert find_plan(forced(text, systems.CLINGO)).status == "found"
+    assert find_plan(forced(text, systems.AUTO)).status == "found"  # 1 action: clingo
+
+
+def test_a_missing_planner_falls_back_to_clingo_with_one_line_of_warning(monkeypatch, capsys):
+    monkeypatch.setattr(systems, "installed", lambda: False)
+    monkeypatch.setattr(systems, "_warned", set())
+    text = "variable(a). action(go). eff(go,a,true). goal(a,true)."
+    for _ in range(2):
+        result = find_plan(forced(text))
+        assert result.status == "found" and [str(a) for a in result.plan] == ["go"]
+    lines = capsys.readouterr().err.splitlines()
+    assert len(lines) == 1 and "Fast Downward is not installed" in lines[0]
+
+
+def test_a_failing_planner_falls_back_to_clingo_with_one_line_of_warning(monkeypatch, capsys):
+    monkeypatch.setattr(systems, "installed", lambda: True)
+    monkeypatch.setattr(systems, "_warned", set())
+    monkeypatch.setattr(
+        downward,
+        "solve",
+        lambda task, budget, optimal=True: downward.Outcome("failed", "x", why="boom"),
+    )
+    result = find_plan(forced("variable(a). action(go). eff(go,a,true). goal(a,true)."))
+    assert result.status == "found"
+    assert capsys.readouterr().err.strip() == (
+        "ethasp: warning: Fast Downward failed (boom): clingo searches instead"
+    )
+
+
+def test_models_the_planner_does_not_model_are_searched_by_clingo(monkeypatch, capsys):
+    monkeypatch.setattr(systems, "installed", lambda: True)
+    monkeypatch.setattr(systems, "_warned", set())
+    model = forced(
+        "variable(a). derived(d). axiom(d,k). axiom_pre(d,k,a,true). "
+        "action(go). eff(go,a,true). goal(d,true)."
+    )
+    assert find_plan(model).status == "found"
+    assert "does not search models with derived variables" in capsys.readouterr().err
+
+
+# -- processes and limits --------------------------------------------------------------
+
+
+@installed
+def test_the_budget_ends_the_planner_and_its_process():
+    """A task too hard for the time given (no plan, but 2^22 states before the
+    planner knows it): bounded, and no planner left running."""
+    toggles = [f"t{i}" for i in range(22)]
+    text = (
+        f"variable(a;b;{';'.join(toggles)}). action(set_a;set_b). "
+        "pre(set_a,b,false). eff(set_a,a,true). pre(set_b,a,false). eff(set_b,b,true). "
+        + "".join(
+            f"pre(set_b,{t},true). action(on({t})). eff(on({t}),{t},true). "
+            f"action(off({t})). eff(off({t}),{t},false). "
+            for t in toggles
+        )
+        + "goal(a,true). goal(b,true)."
+    )
+    started = time.monotonic()
+    result = find_plan(forced(text), time_limit=1.0)
+    assert result.status == "bounded" and "Fast Downward" in result.proof, result
+    assert time.monotonic() - started < 30
+    time.sleep(0.2)  # SIGKILL is delivered at once; the process table may lag
+    assert not [pid for pid in descendants(os.getpid()) if _name(pid) == "downward"]
+
+
+def _name(pid: int) -> str:
+    try:
+        return Path(f"/proc/{pid}/comm").read_text().strip()
+    except OSError:
+        return ""
+
+
+@installed
+@pytest.mark.slow
+def test_the_command_line_plans_with_each_planner_and_the_lengths_agree():
+    ipc = IPC / "logistics-strips-typed"
+    lengths = {}
+    for system in systems.CHOICES:
+        done = subprocess.run(
+            [
+                *(sys.executable, "-m", "ethasp.interfaces.cli", "plan"),
+                *(str(ipc / "domain.pddl"), str(ipc / "p1.pddl")),
+                *("--json", "--planner", system),
+            ],
+            capture_output=True,
+            text=True,
+            cwd=ROOT,
+            check=True,
+        )
+        answer = json.loads(done.stdout)
+        assert answer["status"] == "found" and answer["optimal"], answer
+        lengths[system] = len(answer["plan"])
+    assert len(set(lengths.values())) == 1, lengths
+
+
+def test_no_planner_is_assumed_where_none_is_chosen():
+    model = Model.from_string("variable(a). action(go). eff(go,a,true). goal(a,true).")
+    assert model.planning_system == systems.AUTO
+
+
+@installed
+@pytest.mark.slow
+@settings(max_examples=80, deadline=None)
+@given(SEEDS, st.booleans(), st.integers(min_value=-6, max_value=6))
+def test_best_reachable_utility_and_better_states_agree_with_the_oracle(seed, conditional, shift):
+    """Utilitarianism's proofs by Fast Downward, where the diagrams give up
+    (here at once: a node limit of 1): the relaxed bound, the bisection by
+    searches for a state worth at least k, a better state."""
+    from ethasp.planning.engines import reachability
+    from ethasp.planning.engines.best_state import best_reachable, better_state
+
+    spec = random_model(seed, conditional=conditional)
+    saved = reachability.DEFAULT_NODE_LIMIT
+    reachability.DEFAULT_NODE_LIMIT = 1
+    try:
+        best = best_reachable(forced(spec.to_asp()))
+        utility = spec.best_reachable_utility() + shift
+        compared = better_state(forced(spec.to_asp()), utility)
+    finally:
+        reachability.DEFAULT_NODE_LIMIT = saved
+    assert best.status == "proven" and best.utility == spec.best_reachable_utility(), (best, spec)
+    assert "was searched" in best.proof or "upper bound" in best.proof, best
+    assert compared.status == "proven"
+    assert (compared.better is not None) == (spec.best_reachable_utility() > utility)
+    if compared.better is not None:
+        assert compared.better.utility > utility
