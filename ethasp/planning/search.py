@@ -128,7 +128,10 @@ class _Exact:
     (the layers know the model's plans, and every plan a setting allows is one
     of them).  With ``greedy`` (any-plan search) and ``read_plan`` (plain
     search), the greedy forward search (:mod:`ethasp.planning.engines.greedy`) runs
-    instead of the layers, started with the search."""
+    instead of the layers, started with the search.  Each engine only on a
+    model it handles (:meth:`~ethasp.planning.driver.planner.Planner.handles`):
+    the layers where the greedy search does not handle the model (events),
+    the solver alone where neither does."""
 
     def __init__(
         self,
@@ -154,10 +157,15 @@ class _Exact:
             return
         if greedy and read_plan:
             # Any-plan search: a greedy forward search proposes a plan (or
-            # proves that there is none) instead of the layers.
-            from ethasp.planning.engines.greedy import Greedy
+            # proves that there is none) instead of the layers, on a model
+            # it handles (not one with events: the layers serve those).
+            from ethasp.planning.engines import greedy as greedy_engine
 
-            self.greedy = Greedy(Atoms(planner), budget, read_plan=True).start()
+            if planner.handles(greedy_engine.FEATURES):
+                self.greedy = greedy_engine.Greedy(Atoms(planner), budget, read_plan=True).start()
+                return
+        if not planner.handles(layers_module.FEATURES):
+            self.usable = False  # the solver alone
             return
         large = (
             len(planner.get("action", 1)) >= LAYERS_AT_ONCE_ACTIONS
