@@ -90,6 +90,9 @@ def state_json(workspace: Workspace, session: Session) -> dict:
     naming = workspace.model.naming
     current = report.to_json()
     current["shown"] = _actions(workspace, plan)
+    for judgement, shown in zip(report.judgements, current["judgements"], strict=True):
+        if judgement.better_plan is not None:  # utilitarianism: a better reachable state
+            shown["better_plan_shown"] = _actions(workspace, judgement.better_plan)
     current["final_shown"] = [naming.fact(literal) for literal in report.final_state]
     current["principle"] = dialogue.current_principle
     # Which question's contrast plan this is (0: the first plan), and whether
