@@ -6,7 +6,7 @@ question's constraints, and the principle whenever it was not dropped
 import random
 
 import pytest
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from oracle import features, random_model
 
@@ -28,7 +28,8 @@ def meets(plan: list[str], kind: str, a: str, b: str | None) -> bool:
 
 
 @pytest.mark.slow
-@settings(max_examples=120, deadline=None)
+# (About 4 in 9 drawn models have no plan; 65 of the others.)
+@settings(max_examples=65, deadline=None)
 @given(
     st.integers(min_value=0, max_value=10**9),
     st.sampled_from(PRINCIPLES),
@@ -37,9 +38,7 @@ def meets(plan: list[str], kind: str, a: str, b: str | None) -> bool:
 def test_contrast_plans_meet_the_constraints(seed, under, kind):
     spec = random_model(seed, **features(seed))
     rng = random.Random(seed)
-    length = spec.shortest_plan_length()
-    if length is None:
-        return
+    assume(spec.shortest_plan_length() is not None)
     model = Model.from_string(spec.to_asp())
     from ethasp.planning.search import find_plan
 
@@ -65,14 +64,18 @@ def test_contrast_plans_meet_the_constraints(seed, under, kind):
         # actions) does not use the action asked about.
         if kind in ("rather-than", "before") and a not in plan:
             assert f"the plan does not use {a}" in str(error)
-            return
-        assert "already meets" in str(error)
-        assert meets(plan, kind, a, b)
-        return
-    assert not meets(plan, kind, a, b)
-    if answer.contrast is None:
-        assert answer.status in ("none", "bounded")
-        return
+        else:
+            assert "already meets" in str(error)
+            assert meets(plan, kind, a, b)
+    else:
+        assert not meets(plan, kind, a, b)
+        if answer.contrast is None:
+            assert answer.status in ("none", "bounded")
+        else:
+            _check_contrast(spec, answer, under, kind, a, b)
+
+
+def _check_contrast(spec, answer, under, kind, a, b) -> None:
     contrast = [str(x) for x in answer.contrast.plan]
     assert spec.is_plan(contrast)
     assert meets(contrast, kind, a, b)
