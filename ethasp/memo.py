@@ -18,7 +18,10 @@ class Registry:
     own one too)."""
 
     def __init__(self):
-        self.lock = threading.Lock()
+        # Reentrant: the collector may free an owner (a planner in a reference
+        # cycle) while this thread holds the lock, and run the owner's
+        # callback, _forget, here and now.
+        self.lock = threading.RLock()
         self.by_owner: dict[int, tuple[weakref.ref, dict]] = {}
 
     def of(self, owner) -> dict:
@@ -32,7 +35,9 @@ class Registry:
 
     def _forget(self, key: int) -> None:
         with self.lock:
-            self.by_owner.pop(key, None)
+            entry = self.by_owner.get(key)
+            if entry is not None and entry[0]() is None:  # not a new owner's
+                del self.by_owner[key]
 
 
 _RESULTS = Registry()
