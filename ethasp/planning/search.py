@@ -619,10 +619,11 @@ def any_plan(
     decide in time is left for a larger one (a search to horizon h finds the
     plans of at most h steps, so larger horizons leave it more room), the
     horizon and the slice growing by :data:`GROWTH`.  For plain plan search
-    (no restriction, no question constraint) a greedy forward search
-    (:mod:`ethasp.planning.engines.greedy`) runs beside it in a child process and
-    may deliver a plan (or the proof that none exists) first; otherwise exact
-    layers run beside it as in :func:`shortest`.  A plan from either engine is
+    (no restriction, no question constraint) on a model without exogenous
+    events a greedy forward search (:mod:`ethasp.planning.engines.greedy`)
+    runs beside it in a child process and may deliver a plan (or the proof
+    that none exists) first; otherwise exact layers run beside it as in
+    :func:`shortest`.  A plan from either engine is
     checked by its trace.  ``none`` is proven as by :func:`shortest`: relaxed or exact
     reachability, or a refuted horizon without a simple path of its length.
     """
