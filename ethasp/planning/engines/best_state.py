@@ -196,9 +196,10 @@ def witnessed(
 
 
 def _state(planner: Planner, r: Reachability, best: Best) -> ReachableState:
-    """A state of the diagrams, with a shortest path to it."""
+    """A state of the diagrams, with the least of the shortest paths to it (the
+    same plan on every run)."""
     facts = [(v, v in best.state) for v in planner.ground_model().variables]
-    path = r.path_to(best.state, best.layer)
+    path = r.least_path(r.state(best.state), best.layer)
     return witnessed(planner, facts, best.utility, path, "exact reachability")
 
 
@@ -210,10 +211,11 @@ def upper_bound(planner: Planner) -> int:
 
 
 # Models with more variables than this are first probed by short searches for a
-# better state (horizons, seconds each) before exact reachability.
+# better state (horizons, conflicts each: work, not seconds, so that the same
+# state is found on every run) before exact reachability.
 PROBE_VARIABLES = 300
 PROBE_HORIZONS = (1, 2, 4, 8)
-PROBE_SECONDS = 1.0
+PROBE_CONFLICTS = 20_000
 
 
 UB_PROOF = (
@@ -499,7 +501,10 @@ def _better_state(planner: Planner, utility: int, budget: Budget, max_horizon: i
         # a better state near the initial one decides before any diagram is built.
         for horizon in PROBE_HORIZONS:
             outcome = planner.solve(
-                horizon, Setting(goal=False, at_least=utility + 1), budget.share(PROBE_SECONDS)
+                horizon,
+                Setting(goal=False, at_least=utility + 1),
+                budget,
+                conflicts=PROBE_CONFLICTS,
             )
             if outcome.satisfiable:
                 return _found_better(planner, outcome, horizon)
