@@ -52,9 +52,10 @@ The engines and the features they handle:
   Every feature.
 * ``greedy``: any-plan search, a plan fast (not a shortest one), or "none"
   once every reachable state is expanded.  Conditional effects and derived
-  variables; no exogenous events: the planner gives any-plan search on a
-  model with events the ``layers`` instead (explicit layers of
-  configurations, which find a shortest plan).
+  variables; no exogenous events: on a model with events the planner runs
+  the ``layers`` beside any-plan search instead (explicit layers of
+  configurations, for the proof that no plan exists; the plan is the
+  solver's).
 * ``best_state``: for utilitarianism, a reachable state better than a
   utility, or the best one, each with a plan that reaches it: from
   ``reachability``, else ``explicit``, else by clingo optimisation.  Every

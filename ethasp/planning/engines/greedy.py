@@ -22,9 +22,9 @@ found the goal reachable (the search model leaves out the goal literals on
 variables that never change).  It runs in a child process beside the
 solver (see :class:`Greedy`).  It does not model exogenous events (its
 states are states, not configurations of a state and a time): it refuses a
-model with events, and the planner gives any-plan search on such a model
-the exact layers instead (:mod:`ethasp.planning.engines.layers`, explicit
-layers of configurations there).
+model with events, and the planner runs the exact layers beside any-plan
+search on such a model instead (:mod:`ethasp.planning.engines.layers`,
+explicit layers of configurations there, for the proof that no plan exists).
 
 States are explicit ones of the search model, as bit masks
 (:class:`ethasp.planning.engines.task.Task`, which also gives the heuristic).
@@ -43,7 +43,7 @@ from ethasp.planning.engines.task import Task
 
 # The model features this engine handles (ethasp.planning.engines): not
 # exogenous events (the next state depends on the step, which the search does
-# not track); the planner gives models with events the exact layers instead
+# not track); on models with events the planner runs the exact layers instead
 # (explicit layers of configurations, ethasp.planning.engines.explicit).
 FEATURES = frozenset({CONDITIONAL_EFFECTS, DERIVED_VARIABLES})
 
