@@ -492,14 +492,9 @@ class Planner:
     def features(self) -> frozenset[str]:
         """The features of the ground model that not every engine handles
         (:data:`ethasp.planning.engines.ALL_FEATURES`)."""
-        from ethasp.planning import engines
+        from ethasp.planning.engines import ground_features
 
-        present = {
-            engines.EVENTS: self.has_events,
-            engines.CONDITIONAL_EFFECTS: bool(self.get("ceff", 4)),
-            engines.DERIVED_VARIABLES: bool(self.get("derived", 1)),
-        }
-        return frozenset(feature for feature, there in present.items() if there)
+        return ground_features(self)
 
     def handles(self, features: frozenset[str]) -> bool:
         """Does an engine that handles ``features`` (its module's ``FEATURES``)

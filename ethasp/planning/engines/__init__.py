@@ -95,6 +95,17 @@ def require(engine: str, features: frozenset[str], present: Iterable[str]) -> No
         raise Unhandled(f"{engine} does not model {' or '.join(missing)}")
 
 
+def ground_features(atoms) -> frozenset[str]:
+    """The features of a model's ground atoms (``atoms``: anything with the
+    planner's ``get(name, arity)``: the planner, or what an engine read of it)."""
+    present = {
+        EVENTS: bool(atoms.get("event_at", 2)),
+        CONDITIONAL_EFFECTS: bool(atoms.get("ceff", 4)),
+        DERIVED_VARIABLES: bool(atoms.get("derived", 1)),
+    }
+    return frozenset(feature for feature, there in present.items() if there)
+
+
 def model_features(model) -> frozenset[str]:
     """The features of a ground model of the engines
     (:class:`ethasp.planning.engines.reachability.GroundModel`)."""

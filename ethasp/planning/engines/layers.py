@@ -40,9 +40,7 @@ from ethasp.execution import spawner
 from ethasp.planning.budget import Budget
 from ethasp.planning.engines import (
     ALL_FEATURES,
-    CONDITIONAL_EFFECTS,
-    DERIVED_VARIABLES,
-    EVENTS,
+    ground_features,
     handles,
     model_features,
     require,
@@ -111,14 +109,8 @@ class Atoms:
 
     @property
     def features(self) -> frozenset[str]:
-        """The features of the ground model (as
-        :attr:`ethasp.planning.driver.planner.Planner.features`)."""
-        present = {
-            EVENTS: bool(self.model["event_at"]),
-            CONDITIONAL_EFFECTS: bool(self.model["ceff"]),
-            DERIVED_VARIABLES: bool(self.model["derived"]),
-        }
-        return frozenset(feature for feature, there in present.items() if there)
+        """The features of the ground model (as the planner's)."""
+        return ground_features(self)
 
 
 def search_model(atoms: Atoms) -> GroundModel:
