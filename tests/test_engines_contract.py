@@ -209,6 +209,25 @@ def test_the_planner_asks_before_it_uses_an_engine(name, monkeypatch):
         assert judgement.permissible == spec.permissible(plan, "utilitarianism")
 
 
+def test_without_an_engine_for_reachable_states_utilitarianism_is_bounded(monkeypatch):
+    """The principles ask too: were best_state declared to handle none of a
+    model's features, utilitarian verdicts and HPlans would answer bounded
+    (a better reachable state may exist), and explanations go without a
+    compared state, rather than fail."""
+    from ethasp.principles.restriction import plan_with_principles
+    from ethasp.reasons.reasons import judge as explain
+
+    monkeypatch.setattr(best_state, "FEATURES", frozenset())
+    model = Model.from_string(BASE + CONDITIONAL + "utility(b,true,1).")
+    assert "conditional effects" in best_state.unhandled(model.planner)
+    judgement = judge(model, Plan.parse("go"), ["utilitarianism"]).judgements[0]
+    assert judgement.status == "bounded" and judgement.permissible
+    assert "no engine here searches the reachable states" in judgement.proof
+    hplan = plan_with_principles(model, ["utilitarianism"])
+    assert hplan.status == "bounded" and hplan.plan is None
+    assert explain(model, Plan.parse("go"), ["utilitarianism"]).judgements[0].status == "bounded"
+
+
 # -- witnesses -------------------------------------------------------------------
 
 

@@ -56,6 +56,7 @@ from ethasp.planning.engines.best_state import (
     ReachableState,
     best_reachable,
     better_state,
+    unhandled,
 )
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
@@ -346,6 +347,9 @@ def _compare(
 ) -> _Compared:
     """Decide whether a reachable state is better than the final state."""
     planner = model.planner
+    why = unhandled(planner)
+    if why:
+        return _Compared(True, BOUNDED, f"{why}; a better reachable state may exist", None, None)
     comparison = better_state(planner, utility, budget, max_horizon)
     best = comparison.best
     if want_best and (best is None or best.status != PROVEN):

@@ -30,9 +30,11 @@ contract.
    diagram nodes, configurations, states), they claim nothing, and the
    search goes on without them or answers ``bounded``.
 5. **What an engine does not model, it does not answer.**  Each module
-   declares the model features it handles (``FEATURES``); the planner asks
+   declares the model features it handles (``FEATURES``); the searches ask
    :func:`handles` (:meth:`ethasp.planning.driver.planner.Planner.handles`)
-   before it uses any engine, and chooses another where the answer is no;
+   before they use any engine, and choose another where the answer is no
+   (the principles ask :func:`ethasp.planning.engines.best_state.unhandled`
+   before they compare reachable states, and answer ``bounded`` without it);
    an engine given a model with a feature it does not handle refuses it
    (:func:`require` raises :class:`Unhandled`): no answer comes from an
    engine that ignored part of the model (``tests/test_engines_contract.py``

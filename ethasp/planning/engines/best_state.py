@@ -684,6 +684,16 @@ def _better_by_search(
     return Comparison(BOUNDED, f"no better state within {steps(horizon)} (the maximal horizon)")
 
 
+def unhandled(planner: Planner) -> str:
+    """Why this engine does not serve the model ('' where it does): what the
+    callers ask before they use it (they answer ``bounded`` instead)."""
+    planner = getattr(planner, "planner", planner)
+    if planner.handles(FEATURES):
+        return ""
+    missing = " or ".join(sorted(planner.features - FEATURES))
+    return f"no engine here searches the reachable states of a model with {missing}"
+
+
 def best_reachable(
     planner: Planner,
     budget: Budget | None = None,
