@@ -7,12 +7,32 @@ from pathlib import Path
 
 import clingo
 import pytest
+from hypothesis import HealthCheck, settings
 
 ROOT = Path(__file__).resolve().parent.parent
 ENCODINGS = ROOT / "encodings"
 MODELS = ROOT / "asp"
 
-os.environ.setdefault("HYPOTHESIS_PROFILE", "ci")
+# The Hypothesis profiles of the property tests.  ``ci`` (continuous
+# integration, .ci/run): derandomised, so that every run draws the same
+# examples and a failure is the code's, never the draw's; no example
+# database, no deadline (a shared machine is slow at times), and a failing
+# example printed so that it can be replayed (@reproduce_failure).  ``dev``,
+# the default elsewhere: new random examples on every run, failures kept in
+# the local example database and tried first next time.  Each test sets its
+# own number of examples; HYPOTHESIS_PROFILE chooses the profile (``ci`` by
+# default where the variable CI is set, as CI services do).
+settings.register_profile(
+    "ci",
+    derandomize=True,
+    database=None,
+    deadline=None,
+    print_blob=True,
+    suppress_health_check=[HealthCheck.too_slow],
+)
+settings.register_profile("dev", deadline=None)
+PROFILE = os.environ.get("HYPOTHESIS_PROFILE") or ("ci" if os.environ.get("CI") else "dev")
+settings.load_profile(PROFILE)
 
 
 def answer_sets(files, program: str = "", arguments=("0",)) -> list[set[str]]:

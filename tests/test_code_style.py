@@ -4,6 +4,7 @@ the public API, as configured in pyproject.toml."""
 from __future__ import annotations
 
 import ast
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -56,3 +57,65 @@ def test_the_type_check_covers_every_export():
         for alias in node.names
     }
     assert typed == ethasp._HOMES
+
+
+def _given(function: ast.FunctionDef) -> bool:
+    """Is a test decorated with Hypothesis's ``@given(...)``?"""
+    for decorator in function.decorator_list:
+        called = decorator.func if isinstance(decorator, ast.Call) else decorator
+        name = called.attr if isinstance(called, ast.Attribute) else getattr(called, "id", "")
+        if name == "given":
+            return True
+    return False
+
+
+def _returns(function: ast.FunctionDef) -> list[ast.Return]:
+    """The return statements of a function's own body (not of nested ones)."""
+    found, stack = [], list(function.body)
+    while stack:
+        node = stack.pop()
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda, ast.ClassDef)):
+            continue
+        if isinstance(node, ast.Return):
+            found.append(node)
+        stack.extend(ast.iter_child_nodes(node))
+    return found
+
+
+def test_no_property_test_returns_early():
+    """A property test that returns early passes without checking anything:
+    an uninteresting draw is rejected with ``assume``, an expected outcome is
+    asserted."""
+    early = [
+        f"{path.name}:{node.lineno} ({function.name})"
+        for path in sorted((ROOT / "tests").glob("*.py"))
+        for function in ast.walk(ast.parse(path.read_text()))
+        if isinstance(function, (ast.FunctionDef, ast.AsyncFunctionDef)) and _given(function)
+        for node in _returns(function)
+    ]
+    assert not early, early
+
+
+def test_the_hypothesis_profile_is_loaded():
+    """The property tests run under the profile that tests/conftest.py loads;
+    under ``ci`` (set by .ci/run) every run draws the same examples."""
+    from conftest import PROFILE
+    from hypothesis import settings
+
+    assert settings.get_current_profile_name() == PROFILE
+    ci = settings.get_profile("ci")
+    assert ci.derandomize and ci.database is None and ci.deadline is None
+    assert "export HYPOTHESIS_PROFILE=ci" in (ROOT / ".ci" / "run").read_text()
+    probe = subprocess.run(
+        [
+            sys.executable,
+            "-c",
+            "import conftest; from hypothesis import settings; "
+            "print(settings.get_current_profile_name(), settings().derandomize)",
+        ],
+        cwd=ROOT / "tests",
+        env={**os.environ, "HYPOTHESIS_PROFILE": "ci"},
+        capture_output=True,
+        text=True,
+    )
+    assert probe.stdout.split() == ["ci", "True"], probe.stderr

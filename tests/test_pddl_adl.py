@@ -20,9 +20,6 @@ from ethasp.principles.restriction import plan_with_principles
 from ethasp.vocabulary import Action
 
 DATA = Path(__file__).resolve().parent / "data" / "ipc"
-# More IPC instances, from a folder of domain folders (domain.pddl, pN.pddl) named by
-# ETHASP_IPC; the tests that read them are skipped without it.
-IPC_FOLDER = Path(os.environ["ETHASP_IPC"]) if os.environ.get("ETHASP_IPC") else None
 
 
 def ethasp(*args: str, cwd=ROOT) -> subprocess.CompletedProcess:
@@ -416,32 +413,17 @@ def _plan_length(folder: Path, instance: str) -> int:
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("domain", sorted({d for d, _ in OPTIMAL}))
-def test_ipc_first_instances_plan_with_optimal_length(domain):
-    assert _plan_length(DATA / domain, "p1") == OPTIMAL[(domain, "p1")]
+@pytest.mark.parametrize("instance", sorted(f"{d}/{p}" for d, p in OPTIMAL))
+def test_ipc_instances_plan_with_optimal_length(instance):
+    domain, problem = instance.split("/")
+    assert _plan_length(DATA / domain, problem) == OPTIMAL[(domain, problem)]
 
 
 @pytest.mark.slow
-@pytest.mark.skipif(
-    IPC_FOLDER is None or not IPC_FOLDER.is_dir(),
-    reason="ETHASP_IPC names no folder of IPC domains",
-)
-def test_every_ipc_instance_of_the_folder_is_read():
-    domains = sorted(path for path in IPC_FOLDER.iterdir() if (path / "domain.pddl").is_file())
-    assert domains
+def test_every_ipc_instance_kept_is_read():
+    domains = sorted(path for path in DATA.iterdir() if (path / "domain.pddl").is_file())
+    assert len(domains) == 5
     for folder in domains:
         for problem in sorted(folder.glob("p*.pddl")):
             model = Model.load([folder / "domain.pddl", problem])  # read, translated, checked
             assert model.sources[0].text.count("\naction(") > 0, problem
-
-
-@pytest.mark.slow
-@pytest.mark.skipif(
-    IPC_FOLDER is None or not IPC_FOLDER.is_dir(),
-    reason="ETHASP_IPC names no folder of IPC domains",
-)
-@pytest.mark.parametrize("domain", sorted({d for d, _ in OPTIMAL}))
-def test_second_ipc_instances_plan_with_optimal_length(domain):
-    if not (IPC_FOLDER / domain).is_dir():
-        pytest.skip(f"{domain} is not in the ETHASP_IPC folder")
-    assert _plan_length(IPC_FOLDER / domain, "p2") == OPTIMAL[(domain, "p2")]

@@ -10,7 +10,7 @@ import random
 
 import pytest
 from conftest import answer_sets
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from oracle import plan_through, random_model
 
@@ -67,14 +67,14 @@ def test_validation_agrees_with_the_oracle(seed, choices):
         assert check.final_state == expected, (plan, check, spec)
 
 
-@settings(max_examples=200, deadline=None)
+# (About 3 in 10 drawn models have no plan through the walk; 140 of the others.)
+@settings(max_examples=140, deadline=None)
 @given(SEEDS, st.integers(min_value=0, max_value=6))
 def test_caused_counts_only_effects_that_fire(seed, walk):
     spec = spec_of(seed)
     rng = random.Random(seed)
     plan = plan_through(spec, rng, walk)
-    if plan is None:
-        return
+    assume(plan is not None)
     occurs = "".join(f"occurs({a},{t}). " for t, a in enumerate(plan, start=1))
     answer = answer_sets(
         ["planning/model.lp", "planning/trace.lp", "planning/trace_events.lp"],
@@ -103,9 +103,13 @@ def test_hplans_agree_with_the_oracle(seed, principles):
     expected = spec.shortest_permissible_length(principles)
     if expected is None:
         assert result.status == "none", (result, spec)
-        return
-    assert result.status == "found", (result, spec, expected)
-    plan = [str(action) for action in result.plan]
+        assert result.plan is None
+    else:
+        assert result.status == "found", (result, spec, expected)
+        _check_hplan(spec, [str(action) for action in result.plan], principles, expected)
+
+
+def _check_hplan(spec, plan, principles, expected) -> None:
     assert spec.is_plan(plan), (plan, spec)
     for principle in principles:
         assert spec.permissible(plan, principle), (principle, plan, spec)

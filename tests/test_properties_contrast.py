@@ -28,7 +28,8 @@ def meets(plan: list[str], kind: str, a: str, b: str | None) -> bool:
 
 
 @pytest.mark.slow
-@settings(max_examples=120, deadline=None)
+# (About 4 in 9 drawn models have no plan; 65 of the others.)
+@settings(max_examples=65, deadline=None)
 @given(
     st.integers(min_value=0, max_value=10**9),
     st.sampled_from(PRINCIPLES),
@@ -60,17 +61,12 @@ def test_contrast_plans_meet_the_constraints(seed, under, kind):
         )
     except InputError as error:
         refused(str(error), plan, kind, a, b)
-        answer = None
-    if answer is not None:
+    else:
         assert not meets(plan, kind, a, b)
-        assert answer.contrast is not None or answer.status in ("none", "bounded")
-    if answer is not None and answer.contrast is not None:
-        contrast = [str(x) for x in answer.contrast.plan]
-        assert spec.is_plan(contrast)
-        assert meets(contrast, kind, a, b)
-        if not answer.principle_dropped:
-            assert spec.permissible(contrast, under)
-        assert answer.contrast.judgement.permissible == spec.permissible(contrast, under)
+        if answer.contrast is None:
+            assert answer.status in ("none", "bounded")
+        else:
+            _check_contrast(spec, answer, under, kind, a, b)
 
 
 def refused(message: str, plan: list[str], kind: str, a: str, b: str) -> None:
@@ -84,3 +80,12 @@ def refused(message: str, plan: list[str], kind: str, a: str, b: str) -> None:
     else:
         assert "already meets" in message
         assert meets(plan, kind, a, b)
+
+
+def _check_contrast(spec, answer, under, kind, a, b) -> None:
+    contrast = [str(x) for x in answer.contrast.plan]
+    assert spec.is_plan(contrast)
+    assert meets(contrast, kind, a, b)
+    if not answer.principle_dropped:
+        assert spec.permissible(contrast, under)
+    assert answer.contrast.judgement.permissible == spec.permissible(contrast, under)

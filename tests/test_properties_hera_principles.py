@@ -6,7 +6,7 @@ verdicts on plans, and shortest HPlans or a proven "none"."""
 
 import random
 
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from oracle import features, plan_through, random_model
 
@@ -24,13 +24,13 @@ RESTRICTED = [
 HORIZON = 40
 
 
-@settings(max_examples=80, deadline=None)
+# (About half the drawn models have no plan through the walk; 40 of the others.)
+@settings(max_examples=40, deadline=None)
 @given(SEEDS, st.integers(min_value=0, max_value=5))
 def test_verdicts_agree_with_the_oracle(seed, walk):
     spec = random_model(seed, **features(seed))
     plan = plan_through(spec, random.Random(seed), walk)
-    if plan is None:
-        return
+    assume(plan is not None)
     report = judge(
         Model.from_string(spec.to_asp()), Plan.parse(" ".join(plan)), RESTRICTED, reasons_limit=0
     )
@@ -53,8 +53,8 @@ def test_hplans_agree_with_the_oracle(seed, principle):
     expected = spec.shortest_permissible_length([principle])
     if expected is None:
         assert result.status == "none", (result, spec)
-        return
-    assert result.status == "found", (result, spec, expected)
-    plan = [str(action) for action in result.plan]
-    assert spec.is_plan(plan) and spec.permissible(plan, principle), (plan, spec)
-    assert len(plan) == expected, (plan, expected, spec)
+    else:
+        assert result.status == "found", (result, spec, expected)
+        plan = [str(action) for action in result.plan]
+        assert spec.is_plan(plan) and spec.permissible(plan, principle), (plan, spec)
+        assert len(plan) == expected, (plan, expected, spec)

@@ -148,7 +148,11 @@ def test_relevance_picks_a_necessary_reason_of_least_cost(formula, pick, weight,
     )
     if not expected:
         assert found == []
-        return
+    else:
+        _check_least_cost(formula, expected, text, weight, worth)
+
+
+def _check_least_cost(formula, expected, text, weight, worth) -> None:
     chosen = reasons(
         ["reasons/necessary.lp", "reasons/relevance.lp"],
         text,

@@ -11,7 +11,7 @@ proof.  And every proof agrees with the oracle.
 
 import random
 
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from oracle import features, plan_through, random_model
 
@@ -61,15 +61,15 @@ def test_plans_are_bounded_only_where_the_horizon_cut_the_search(
     check(result, spec, principles, horizon)
 
 
-@settings(max_examples=100, deadline=None)
+# (About half the drawn models have no plan through the walk; 50 of the others.)
+@settings(max_examples=50, deadline=None)
 @given(SEEDS, HORIZONS, st.integers(min_value=0, max_value=3))
 def test_utilitarian_judgements_are_bounded_only_where_the_horizon_cut_the_search(
     seed, horizon, walk
 ):
     spec = random_model(seed, **features(seed))
     plan = plan_through(spec, random.Random(seed), walk)
-    if plan is None:
-        return
+    assume(plan is not None)
     judgement = judge(
         Model.from_string(spec.to_asp()),
         Plan.parse(" ".join(plan)),

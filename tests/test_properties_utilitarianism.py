@@ -11,7 +11,7 @@ from __future__ import annotations
 import random
 
 import pytest
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from oracle import RandomModel, features, plan_through, random_model
 
@@ -57,14 +57,16 @@ def dense_model(seed: int) -> RandomModel:
     return RandomModel(variables, actions, pre, eff, init, goal, action_utility, fact_utility)
 
 
+# (About 4 in 10 drawn models have no plan through the walk; 40 of the others.)
 @pytest.mark.slow
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=40, deadline=None)
 @given(SEEDS, st.integers(min_value=0, max_value=8))
 def test_utilitarian_verdicts_are_right_and_proven(seed, walk):
+    """Verdicts and best states against the oracle, each reported state with a
+    plan that reaches it (the better plan of an impermissible verdict)."""
     spec = dense_model(seed)
     plan = plan_through(spec, random.Random(seed), walk)
-    if plan is None:
-        return
+    assume(plan is not None)
     model = Model.from_string(spec.to_asp())
     judgement = judge(
         model, Plan.parse(" ".join(plan)), ["utilitarianism"], budget=Budget(120)
@@ -75,13 +77,16 @@ def test_utilitarian_verdicts_are_right_and_proven(seed, walk):
         better = judgement.compared
         state = frozenset(v for v in spec.variables if v in better.literals)
         assert better.utility == spec.state_utility(state) > spec.state_utility(spec.run(plan))
-        if spec.events:  # searched by horizons 0, 1, 2, 4, ...: within that many steps
-            assert spec.distances()[state] <= better.distance
-        else:  # found at its shortest distance
-            assert spec.distances()[state] == better.distance
+        # Found at its shortest distance (by the diagrams, or the explicit
+        # layers with events), with a plan that reaches it.
+        assert spec.distances()[state] == better.distance
+        assert judgement.better_plan == better.plan and len(better.plan) == better.distance
+        assert spec.run([str(a) for a in better.plan]) == state
     best = best_reachable(model.planner, Budget(120))
     assert best.status == "proven" and best.utility == spec.best_reachable_utility()
-    assert frozenset(v for v in spec.variables if v in best.state) in spec.distances()
+    state = frozenset(v for v in spec.variables if v in best.state)
+    assert state in spec.distances()
+    assert spec.run([str(a) for a in best.plan]) == state
 
 
 @pytest.mark.slow
@@ -95,11 +100,11 @@ def test_shortest_utilitarian_hplans_are_right_and_proven(seed):
     expected = spec.shortest_permissible_length(["utilitarianism"])
     if expected is None:
         assert result.status == "none", (result, spec)
-        return
-    assert result.status == "found", (result, spec)
-    plan = [str(action) for action in result.plan]
-    assert spec.is_plan(plan) and spec.permissible(plan, "utilitarianism"), (plan, spec)
-    assert len(plan) == expected, (plan, expected, spec)
+    else:
+        assert result.status == "found", (result, spec)
+        plan = [str(action) for action in result.plan]
+        assert spec.is_plan(plan) and spec.permissible(plan, "utilitarianism"), (plan, spec)
+        assert len(plan) == expected, (plan, expected, spec)
 
 
 @pytest.mark.slow
@@ -113,13 +118,12 @@ def test_utilitarian_hplans_with_other_principles_are_right(seed, principles):
     expected = spec.shortest_permissible_length(principles)
     if result.status == "bounded":  # the loop-free threshold may need long paths
         assert expected is None or expected > result.horizon
-        return
-    if expected is None:
+    elif expected is None:
         assert result.status == "none", (result, spec)
-        return
-    assert result.status == "found" and len(result.plan) == expected, (result, spec)
-    plan = [str(action) for action in result.plan]
-    assert all(spec.permissible(plan, p) for p in principles), (plan, spec)
+    else:
+        assert result.status == "found" and len(result.plan) == expected, (result, spec)
+        plan = [str(action) for action in result.plan]
+        assert all(spec.permissible(plan, p) for p in principles), (plan, spec)
 
 
 @pytest.mark.slow

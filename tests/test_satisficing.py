@@ -2,7 +2,6 @@
 under principles; against the oracle and on IPC instances."""
 
 import json
-import os
 import subprocess
 import sys
 from pathlib import Path
@@ -20,9 +19,6 @@ from ethasp.questions.dialogue import Dialogue
 
 RESCUE = str(MODELS / "rescue.lp")
 DATA = Path(__file__).resolve().parent / "data" / "ipc"
-# More IPC instances, from a folder of domain folders (domain.pddl, pN.pddl) named by
-# ETHASP_IPC; the tests that read them are skipped without it.
-IPC_FOLDER = Path(os.environ["ETHASP_IPC"]) if os.environ.get("ETHASP_IPC") else None
 
 
 def ethasp(*args: str) -> subprocess.CompletedProcess:
@@ -201,10 +197,7 @@ def test_ipc_first_instances_satisficing(domain):
     assert result.status == "found" and validate(model, result.plan).valid
 
 
-@pytest.mark.skipif(
-    IPC_FOLDER is None or not IPC_FOLDER.is_dir(),
-    reason="ETHASP_IPC names no folder of IPC domains",
-)
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "instance, length",
     [
@@ -216,9 +209,7 @@ def test_ipc_first_instances_satisficing(domain):
 )
 def test_ipc_instances_with_long_plans_are_solved_optimally(instance, length):
     folder, problem = instance.split("/")
-    model = Model.load(
-        [IPC_FOLDER / folder / "domain.pddl", IPC_FOLDER / folder / f"{problem}.pddl"]
-    )
+    model = Model.load([DATA / folder / "domain.pddl", DATA / folder / f"{problem}.pddl"])
     result = find_plan(model)
     assert result.status == "found" and result.optimal and len(result.plan) == length
     assert validate(model, result.plan).valid

@@ -529,6 +529,26 @@ def test_a_pddl_model_is_shown_and_asked_in_pddl_form():
 # -- the whole question language on the page -------------------------------------------------------
 
 
+def test_a_better_plan_is_named_and_drawn(client):
+    """refrain is impermissible under utilitarianism: a better reachable state
+    exists, and the better plan (pull) that reaches it is shown and drawn as a
+    contrast to the current plan."""
+    key = start(client, "do-no-harm", plan="refrain")
+    judgements = {j["principle"]: j for j in state(client, key)["current"]["judgements"]}
+    utilitarian = judgements["utilitarianism"]
+    assert utilitarian["better_plan"] == ["pull"]
+    assert utilitarian["compared_with"]["plan"] == ["pull"]
+    assert [a["shown"] for a in utilitarian["better_plan_shown"]] == ["pull"]
+    assert "better_plan" not in judgements["do-no-harm"]
+    picture = client.get(f"/api/sessions/{key}/better/utilitarianism.svg")
+    assert picture.status_code == 200 and picture.mimetype == "image/svg+xml"
+    drawn = picture.get_data(as_text=True)
+    assert "the better plan: pull" in drawn and "plan: refrain" in drawn
+    for principle in ("do-no-harm", "nonsense"):
+        missing = client.get(f"/api/sessions/{key}/better/{principle}.svg")
+        assert missing.status_code == 404 and "no better plan" in missing.json["error"]
+
+
 def test_model_offers_the_principles_that_can_restrict(client):
     data = client.get("/api/model").json
     assert "kantian-humanity" in data["principles"]

@@ -267,6 +267,17 @@ def test_conductor_example_in_the_browser(server, browser):
         "caused by the man's action."
     ) in cards["do-no-harm"]
     assert "not Caused(five_will_die)" in cards["do-no-harm"]
+    # A better reachable state makes refrain impermissible under utilitarianism:
+    # the better plan is named, and drawn as a contrast to the current plan.
+    assert "The better plan: pull" in cards["utilitarianism"]
+    wait_for(
+        driver,
+        lambda d: d.find_elements(By.CSS_SELECTOR, "#better-plans .picture svg"),
+        "the better plan's picture",
+    )
+    better = driver.find_element(By.CSS_SELECTOR, '#better-plans [data-principle="utilitarianism"]')
+    assert "The better plan under utilitarianism" in better.text
+    assert "the better plan: pull" in better.find_element(By.CSS_SELECTOR, ".picture").text
 
     # Click the action in the plan's picture and ask "why this rather than pull?".
     wait_for(

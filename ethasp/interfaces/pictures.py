@@ -1,6 +1,7 @@
 """The pictures of plans, judgements and answers, for the command line's
-``--svg FILE`` and for the page: a timeline of a plan with its verdicts, and
-an answer's contrast plan aligned with the plan asked about
+``--svg FILE`` and for the page: a timeline of a plan with its verdicts, an
+answer's contrast plan aligned with the plan asked about, and a plan that a
+better reachable state makes impermissible aligned with the better plan
 (:mod:`ethasp.interfaces.svg` draws them)."""
 
 from __future__ import annotations
@@ -88,6 +89,34 @@ class Pictures:
             if judgement.explanation is not None and judgement.explanation.text:
                 notes.append(judgement.explanation.text)
         return self.plan(report.plan, title, notes)
+
+    def better(self, report: JudgementReport, judgement: Judgement, words: bool = True) -> str:
+        """A plan that a better reachable state makes impermissible
+        (utilitarianism), drawn above the better plan that reaches that
+        state, their steps aligned (as a contrast); InputError where the
+        judgement has no better plan."""
+        better = judgement.better_plan
+        if better is None or judgement.compared is None:
+            raise InputError(f"{judgement.principle}: the plan has no better plan to draw")
+        principle = judgement.principle
+        notes = [judgement.proof] if words else []
+        if words and judgement.explanation is not None and judgement.explanation.text:
+            notes.append(judgement.explanation.text)
+        return contrast_svg(
+            self.timeline(report.plan),
+            self.timeline(better),
+            self.model.naming,
+            title=f"{principle}: a better reachable state, and a plan that reaches it",
+            notes=notes,
+            original_title=(
+                f"plan: {self._actions(report.plan)} \u2014 {principle}: {verdict(judgement)} "
+                f"(final state: utility {report.utility})"
+            ),
+            contrast_title=(
+                f"the better plan: {self._actions(better)} \u2014 final state: utility "
+                f"{judgement.compared.utility}"
+            ),
+        )
 
     def explained(self, explanation: StepsExplanation, title: str = "", words: bool = True) -> str:
         """A plan with its causal links as arrows from step to step (to the

@@ -139,7 +139,10 @@ class _Exact:
     (the layers know the model's plans, and every plan a setting allows is one
     of them).  With ``greedy`` (any-plan search) and ``read_plan`` (plain
     search), the greedy forward search (:mod:`ethasp.planning.engines.greedy`) runs
-    instead of the layers, started with the search."""
+    instead of the layers, started with the search.  Each engine only on a
+    model it handles (:meth:`~ethasp.planning.driver.planner.Planner.handles`):
+    the layers (for their proof that no plan exists) where the greedy search
+    does not handle the model (events), the solver alone where neither does."""
 
     def __init__(
         self,
@@ -165,10 +168,18 @@ class _Exact:
             return
         if greedy and read_plan:
             # Any-plan search: a greedy forward search proposes a plan (or
-            # proves that there is none) instead of the layers.
-            from ethasp.planning.engines.greedy import Greedy
+            # proves that there is none) instead of the layers, on a model
+            # it handles (not one with events: the layers serve those).
+            from ethasp.planning.engines import greedy as greedy_engine
 
-            self.greedy = Greedy(Atoms(planner), budget, read_plan=True).start()
+            if planner.handles(greedy_engine.FEATURES):
+                self.greedy = greedy_engine.Greedy(Atoms(planner), budget, read_plan=True).start()
+                return
+            # The layers, for the proof that no plan exists: the plan is the
+            # solver's (any-plan search reads no plan off the layers).
+            self.read_plan = read_plan = False
+        if not planner.handles(layers_module.FEATURES):
+            self.usable = False  # the solver alone
             return
         large = (
             len(planner.get("action", 1)) >= LAYERS_AT_ONCE_ACTIONS
@@ -463,7 +474,7 @@ def _external(
     try:
         task = sas.task(search_model(Atoms(planner)))
     except sas.NotCompiled as why:
-        systems.warn(f"Fast Downward does not search models with {why}: clingo searches instead")
+        systems.warn(f"{why}: clingo searches instead")
         return None
     outcome = downward.solve(task, budget, optimal)
     if outcome.status == downward.STOPPED:
@@ -725,11 +736,12 @@ def any_plan(
     search to horizon h finds the plans of at most h steps, so larger
     horizons leave it more room), the horizon and the slice growing by
     :data:`GROWTH`.  For plain plan search (no restriction, no question
-    constraint) a greedy forward search (:mod:`ethasp.planning.engines.greedy`)
-    runs beside it in a child process; its plan is the answer wherever it
-    finds one (the solver's plan only where it gives up), so that the answer
-    does not depend on which finished first.  Otherwise exact layers run
-    beside it, for the proof that no plan exists.  A plan from either engine
+    constraint) on a model without exogenous events, a greedy forward search
+    (:mod:`ethasp.planning.engines.greedy`) runs beside it in a child process;
+    its plan is the answer wherever it finds one (the solver's plan only where
+    it gives up), so that the answer does not depend on which finished first.
+    Otherwise (and on a model with events, which the greedy search does not
+    model) exact layers run beside it, for the proof that no plan exists.  A plan from either engine
     is checked by its trace.  ``none`` is proven as by :func:`shortest`:
     relaxed or exact reachability, or no path one step beyond a refuted
     horizon without a repeated state.

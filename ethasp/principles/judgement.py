@@ -56,6 +56,7 @@ from ethasp.planning.engines.best_state import (
     ReachableState,
     best_reachable,
     better_state,
+    unhandled,
 )
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
@@ -96,7 +97,9 @@ class Judgement:
     which a better reachable state could overturn), and ``proof`` says why.
     Principles that compare with reachable states report the state compared
     with (``compared``: a better state when impermissible, a best one when
-    permissible) and ``best_reachable`` when a best state was established.
+    permissible), each with a plan that reaches it (checked by its trace:
+    for an impermissible verdict, :attr:`better_plan`), and
+    ``best_reachable`` when a best state was established.
     ``formula`` is the ASP name of the principle's formula (``formula(N,F)``).
     ``explanation`` holds its reasons and words (:mod:`ethasp.reasons.reasons`).
     """
@@ -110,6 +113,14 @@ class Judgement:
     compared: ReachableState | None = None
     explanation: Explanation | None = None
 
+    @property
+    def better_plan(self) -> Plan | None:
+        """For an impermissible verdict that a better reachable state decided
+        (utilitarianism), a plan that reaches that state: the better plan."""
+        if self.permissible or self.compared is None:
+            return None
+        return self.compared.plan
+
     def to_json(self) -> dict:
         """The judgement as one JSON object (the single place that builds it)."""
         data: dict = {
@@ -120,6 +131,8 @@ class Judgement:
         }
         if self.compared is not None:
             data["compared_with"] = self.compared.to_json()
+        if self.better_plan is not None:
+            data["better_plan"] = self.better_plan.to_list()
         if self.best_reachable is not None:
             data["best_reachable"] = self.best_reachable.to_json()
         if self.explanation is not None:
@@ -334,6 +347,9 @@ def _compare(
 ) -> _Compared:
     """Decide whether a reachable state is better than the final state."""
     planner = model.planner
+    why = unhandled(planner)
+    if why:
+        return _Compared(True, BOUNDED, f"{why}; a better reachable state may exist", None, None)
     comparison = better_state(planner, utility, budget, max_horizon)
     best = comparison.best
     if want_best and (best is None or best.status != PROVEN):
@@ -356,7 +372,7 @@ def _compare(
             best = BestReachable(
                 PROVEN,
                 f"the final state is reachable and {comparison.proof}",
-                ReachableState(final, utility, len(plan)),
+                ReachableState(final, utility, len(plan), plan),
             )
         return _Compared(True, PROVEN, comparison.proof, None, best)
     return _Compared(

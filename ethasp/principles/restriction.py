@@ -31,7 +31,7 @@ from typing import Any
 from ethasp.errors import InputError
 from ethasp.planning.budget import Budget
 from ethasp.planning.driver.planner import Constraint, Setting
-from ethasp.planning.engines.best_state import PROVEN, BestReachable, best_reachable
+from ethasp.planning.engines.best_state import PROVEN, BestReachable, best_reachable, unhandled
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan, steps
 from ethasp.planning.search import (
@@ -202,6 +202,9 @@ def plan_with_principles(
     else:
         plans_are = f"{plans} is{permissible}"
     if any(principle.reads_alternatives for principle in chosen):
+        why = unhandled(model.planner)
+        if why:
+            return HPlanResult(BOUNDED, names, proof=f"no reachable state valued: {why}")
         best = best_reachable(model.planner, budget, max_horizon)
         if best.utility is None:
             return HPlanResult(

@@ -41,7 +41,7 @@ from ethasp.errors import InputError
 from ethasp.memo import results
 from ethasp.planning.budget import Budget
 from ethasp.planning.driver.planner import solve_configuration
-from ethasp.planning.engines.best_state import ReachableState, best_reachable
+from ethasp.planning.engines.best_state import ReachableState, best_reachable, unhandled
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
@@ -199,6 +199,8 @@ def other_state(
     at all.  Goal states first among equally good ones; None if there is none
     or none was found."""
     planner = model.planner
+    if unhandled(planner):
+        return None
     final = [
         (s.arguments[0], s.arguments[1].name == "true") for s in planner.trace(plan).get("final", 2)
     ]

@@ -48,6 +48,9 @@ def judgement_text(report: JudgementReport, model: Model) -> str:
                 f"  {kind}: {_state_words(compared.literals, final, naming)} "
                 f"(utility {compared.utility}, {steps(compared.distance)} away)"
             )
+        better = judgement.better_plan
+        if better is not None:
+            lines.append(f"  the better plan: {naming.actions(better) or '(empty)'}")
         if best is not None and best.found is not None:
             lines.append(
                 f"  best reachable state: {_state_words(best.state, final, naming)} "

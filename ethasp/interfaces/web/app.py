@@ -201,6 +201,15 @@ def create_app(workspace: Workspace, loopback: bool = True) -> Flask:
             )
         )
 
+    @app.get("/api/sessions/<key>/better/<principle>.svg")
+    def better_picture(key: str, principle: str):
+        dialogue = workspace.session(key).require()
+        report = workspace.report(dialogue.current_plan)
+        judgement = next((j for j in report.judgements if j.principle == principle), None)
+        if judgement is None or judgement.better_plan is None:
+            raise Refused(404, f"no better plan under {principle} for the current plan")
+        return _svg(workspace.pictures.better(report, judgement, words=_words()))
+
     @app.get("/api/sessions/<key>/explain.svg")
     def explain_picture(key: str):
         dialogue = workspace.session(key).require()

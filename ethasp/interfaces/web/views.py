@@ -103,6 +103,9 @@ def state_json(workspace: Workspace, session: Session) -> dict:
     # Whether "why not in N-1 steps" can have a contrast at all: for a plan of
     # one step, only when the empty plan is a plan.
     current["empty_plan_is_plan"] = workspace.empty_plan_is_plan
+    for judgement, shown in zip(report.judgements, current["judgements"], strict=True):
+        if judgement.better_plan is not None:  # utilitarianism: a better reachable state
+            shown["better_plan_shown"] = _actions(workspace, judgement.better_plan)
     current["final_shown"] = [naming.fact(literal) for literal in report.final_state]
     current["principle"] = dialogue.current_principle
     # Which question's contrast plan this is (0: the first plan), and whether

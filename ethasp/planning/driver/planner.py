@@ -496,34 +496,36 @@ class Planner:
     def features(self) -> frozenset[str]:
         """The features of the ground model that not every engine handles
         (:data:`ethasp.planning.engines.ALL_FEATURES`)."""
-        from ethasp.planning import engines
+        from ethasp.planning.engines import ground_features
 
-        present = {
-            engines.EVENTS: self.has_events,
-            engines.CONDITIONAL_EFFECTS: bool(self.get("ceff", 4)),
-            engines.DERIVED_VARIABLES: bool(self.get("derived", 1)),
-        }
-        return frozenset(feature for feature, there in present.items() if there)
+        return ground_features(self)
+
+    def handles(self, features: frozenset[str]) -> bool:
+        """Does an engine that handles ``features`` (its module's ``FEATURES``)
+        handle this model?  Asked before any engine is used
+        (:mod:`ethasp.planning.engines`)."""
+        from ethasp.planning.engines import handles
+
+        return handles(features, self.features)
 
     @property
     def exact_reachability(self) -> bool:
         """Does the exact reachability engine apply?  It knows actions,
         conditional effects and derived variables, not exogenous events:
         models with events get the explicit layers instead."""
-        from ethasp.planning.engines import handles, reachability
+        from ethasp.planning.engines import reachability
 
-        return handles(reachability.FEATURES, self.features)
+        return self.handles(reachability.FEATURES)
 
     @_locked
     def reachability(self) -> Reachability:
         """The exact reachability engine over this model (created once, expanded
         by whoever needs more layers).  Models with exogenous events have none
         (:attr:`exact_reachability`)."""
-        if not self.exact_reachability:
-            raise RuntimeError("exact reachability does not model exogenous events")
-        if self._reachability is None:
-            from ethasp.planning.engines import reachability
+        from ethasp.planning.engines import reachability, require
 
+        require("exact reachability", reachability.FEATURES, self.features)
+        if self._reachability is None:
             self._reachability = reachability.Reachability(
                 self.ground_model(), reachability.DEFAULT_NODE_LIMIT
             )

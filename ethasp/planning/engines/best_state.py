@@ -16,6 +16,14 @@ Utilitarianism compares the final state of a plan with every reachable state
   goal, at horizons 0, 1, 2, 4, 8, ...), proven by the relaxed upper bound
   or the loop-free threshold (``encodings/planning/loopfree.lp``).
 
+Each engine is used only on a model it handles (``FEATURES``, asked through
+:meth:`ethasp.planning.driver.planner.Planner.handles`).  Every state they
+report carries a plan that reaches it (:attr:`ReachableState.plan`: a path
+read off the layers, or the actions of the answer set), checked by its trace
+(``encodings/planning/trace.lp``) before it is reported: the trace must end
+in that state, of that utility.  So "a better reachable state exists" comes
+with the better plan.
+
 Both stop as soon as the question is decided: a state better than the final
 state decides "impermissible" at once; the search for the *best* state goes
 on only for answers that need it (HPlans, ``best_reachable``).  An upper
@@ -35,8 +43,8 @@ from clorm import Raw, unify
 from ethasp.memo import results
 from ethasp.planning.budget import Budget
 from ethasp.planning.driver.planner import Planner, Setting
-from ethasp.planning.engines import ALL_FEATURES
-from ethasp.planning.plan import steps
+from ethasp.planning.engines import ALL_FEATURES, require
+from ethasp.planning.plan import Plan, steps
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
 from ethasp.vocabulary import Alternative, AtHorizon, BestFact, Conj, UpperBound
 
@@ -61,11 +69,14 @@ def literal(variable: clingo.Symbol, value: bool) -> str:
 @dataclass
 class ReachableState:
     """A reachable state: its facts (variable, value), its utility, and the
-    length of a path to it (the shortest, when found by exact reachability)."""
+    length of a path to it (the shortest, when found by exact reachability or
+    the explicit layers); ``plan``, the actions of that path, is its witness
+    (:func:`witnessed`: its trace ends in the state)."""
 
     facts: list[tuple[clingo.Symbol, bool]]
     utility: int
     distance: int
+    plan: Plan | None = None
 
     @property
     def literals(self) -> list[str]:
@@ -79,7 +90,10 @@ class ReachableState:
         ]
 
     def to_json(self) -> dict:
-        return {"state": self.literals, "utility": self.utility, "distance": self.distance}
+        data: dict = {"state": self.literals, "utility": self.utility, "distance": self.distance}
+        if self.plan is not None:
+            data["plan"] = self.plan.to_list()
+        return data
 
 
 @dataclass
@@ -113,11 +127,20 @@ class BestReachable:
     def facts(self) -> list[tuple[clingo.Symbol, str]]:
         return [(v, "true" if b else "false") for v, b in self.found.facts] if self.found else []
 
+    def alternative_facts(self) -> list:
+        return self.found.asp_facts() if self.found else []
+
+    @property
+    def plan(self) -> Plan | None:
+        """A plan that reaches the state (its witness)."""
+        return self.found.plan if self.found else None
+
     def to_json(self) -> dict:
         return {
             "state": self.state,
             "utility": self.utility,
             "horizon": self.horizon,
+            "plan": self.plan.to_list() if self.plan is not None else None,
             "status": self.status,
             "proof": self.proof,
         }
@@ -142,8 +165,42 @@ class Comparison:
 # -- the exact engine -------------------------------------------------------------
 
 
-def _state(model_variables, best: Best) -> ReachableState:
-    return ReachableState([(v, v in best.state) for v in model_variables], best.utility, best.layer)
+def witnessed(
+    planner: Planner, facts: list[tuple[clingo.Symbol, bool]], utility: int, plan, engine: str
+) -> ReachableState:
+    """A reachable state that an engine found, with the plan that reaches it,
+    checked by the plan's trace (``encodings/planning/trace.lp``): the actions
+    apply one after the other, and the final state (after the events still
+    due) is that state, of that utility.  RuntimeError where the encodings
+    refute the engine.  The state keeps its state variables (derived ones
+    follow from them)."""
+    plan = Plan(tuple(plan))
+    trace = planner.trace(plan)
+    final = {
+        (atom.arguments[0], atom.arguments[1].name == "true") for atom in trace.get("final", 2)
+    }
+    variables = {variable for variable, _ in final}
+    facts = [fact for fact in facts if fact[0] in variables]
+    worth = [atom.arguments[0].number for atom in trace.get("utility_of_final", 1)]
+    if (
+        trace.get("invalid", 1)
+        or trace.get("failure", 1)
+        or final != set(facts)
+        or worth != [utility]
+    ):
+        raise RuntimeError(
+            f"{engine} found a state of utility {utility} reached by "
+            f"{plan or '(the empty plan)'}, which the encodings refute"
+        )
+    return ReachableState(facts, utility, len(plan), plan)
+
+
+def _state(planner: Planner, r: Reachability, best: Best) -> ReachableState:
+    """A state of the diagrams, with the least of the shortest paths to it (the
+    same plan on every run)."""
+    facts = [(v, v in best.state) for v in planner.ground_model().variables]
+    path = r.least_path(r.state(best.state), best.layer)
+    return witnessed(planner, facts, best.utility, path, "exact reachability")
 
 
 def upper_bound(planner: Planner) -> int:
@@ -250,14 +307,15 @@ def _configurations(planner: Planner):
 
 
 def _final_state(planner: Planner, layers, configuration) -> ReachableState:
-    """A configuration's final state, as a reachable state (shortest distance
-    of the configuration: its layer)."""
+    """A configuration's final state, as a reachable state, with a shortest
+    path to the configuration."""
     final = layers.events.finish(configuration)
     variables = planner.ground_model().variables
     index = layers.task.index
     facts = [(v, bool(final >> index[v] & 1)) for v in variables]
-    distance = next(k for k, layer in enumerate(layers.layers) if configuration in layer)
-    return ReachableState(facts, layers.task.utility(final), distance)
+    return witnessed(
+        planner, facts, layers.task.utility(final), layers.path(configuration), "explicit layers"
+    )
 
 
 def _best_explicit(
@@ -344,12 +402,27 @@ def _better_explicit(
     )
 
 
+def _engine(planner: Planner) -> str | None:
+    """The layers that serve the model: ``reachability`` (the diagrams) where
+    they handle it, else ``explicit`` (models with events), else None (the
+    searches in ASP alone)."""
+    from ethasp.planning.engines import explicit, reachability
+
+    if planner.handles(reachability.FEATURES):
+        return "reachability"
+    if planner.handles(explicit.FEATURES):
+        return "explicit"
+    return None
+
+
 def _best_exact(
     planner: Planner, budget: Budget, max_horizon: int, within: str, other_than
 ) -> BestReachable | None:
-    if not planner.exact_reachability:
-        # Exogenous events: explicit layers, else optimisation in ASP.
+    engine = _engine(planner)
+    if engine == "explicit":
         return _best_explicit(planner, budget, max_horizon, within, other_than)
+    if engine is None:
+        return None  # optimisation in ASP
     bound = upper_bound(planner)
     r = planner.reachability()
     restriction = _restriction(r, within, other_than)
@@ -366,12 +439,11 @@ def _best_exact(
         return False
 
     stopped = _grow(r, budget, max_horizon, decided, "best reachable state", "layers of states")
-    variables = planner.ground_model().variables
     searched = len(r.layers) - 1
     if hit:
         states = r.prefix(hit[0]) & attaining
         best = r.best_of(_goal_first(r, states))
-        return BestReachable(PROVEN, UB_PROOF.format(u=bound), _state(variables, best), searched)
+        return BestReachable(PROVEN, UB_PROOF.format(u=bound), _state(planner, r, best), searched)
     reached = r.prefix(searched)
     within_reached = reached if restriction is None else reached & restriction
     best = r.best_of(within_reached)
@@ -384,13 +456,13 @@ def _best_exact(
         )
         if best is None:
             return BestReachable(PROVEN, proof + "; none is in the set asked for", None, searched)
-        return BestReachable(PROVEN, proof, _state(variables, best), searched)
+        return BestReachable(PROVEN, proof, _state(planner, r, best), searched)
     if "diagram nodes" in stopped and not budget.expired():
         return None  # the exact engine gave up: optimisation takes over
     return BestReachable(
         BOUNDED,
         f"searched the states reached within {steps(searched)}; stopped: {stopped}",
-        _state(variables, best) if best else None,
+        _state(planner, r, best) if best else None,
         searched,
     )
 
@@ -441,7 +513,10 @@ def _better_state(planner: Planner, utility: int, budget: Budget, max_horizon: i
                 return _found_better(planner, outcome, horizon)
             if outcome.satisfiable is None and budget.expired():
                 return Comparison(BOUNDED, f"{budget.why_stopped()} at horizon {horizon}")
-    if not planner.exact_reachability:
+    engine = _engine(planner)
+    if engine is None:
+        return _better_by_search(planner, utility, budget, max_horizon)
+    if engine == "explicit":
         compared = _better_explicit(planner, utility, budget, max_horizon)
         return (
             compared
@@ -462,9 +537,8 @@ def _better_state(planner: Planner, utility: int, budget: Budget, max_horizon: i
         return False
 
     stopped = _grow(r, budget, max_horizon, decided, "a better reachable state", "layers of states")
-    variables = planner.ground_model().variables
     if found:
-        state = _state(variables, found[0])
+        state = _state(planner, r, found[0])
         return Comparison(
             PROVEN,
             f"a state of utility {state.utility} is reachable in {steps(state.distance)}",
@@ -479,7 +553,7 @@ def _better_state(planner: Planner, utility: int, budget: Budget, max_horizon: i
             PROVEN,
             f"every reachable state is known (exact reachability: "
             f"no new state after {steps(searched)})",
-            _state(variables, best),
+            _state(planner, r, best),
             searched,
         )
         return Comparison(PROVEN, f"no reachable state is better: {result.proof}", best=result)
@@ -525,7 +599,7 @@ def _planner_search(planner, ground, at_least: int, budget: Budget, goal: bool, 
     try:
         task = sas.task(ground, goal=goal, at_least=at_least)
     except sas.NotCompiled as why:
-        systems.warn(f"Fast Downward does not search models with {why}: clingo searches instead")
+        systems.warn(f"{why}: clingo searches instead")
         return "failed", str(why)
     outcome = downward.solve(task, budget, optimal)
     if outcome.status == downward.STOPPED:
@@ -678,7 +752,7 @@ def _best_by_optimisation(
             and outcome.cost
             and (best_cost is None or _lower(outcome.cost, best_cost))
         ):
-            best = ReachableState(_read_state(outcome.symbols, horizon), -outcome.cost[0], horizon)
+            best = _answer_state(planner, outcome, horizon, -outcome.cost[0])
             best_cost = outcome.cost
         if outcome.satisfiable is None:
             return BestReachable(
@@ -704,14 +778,23 @@ def _best_by_optimisation(
     )
 
 
+def _answer_state(planner: Planner, outcome, horizon: int, utility: int | None = None):
+    """The state at the horizon of an answer set, with the plan of its actions
+    (its utility computed where not given)."""
+    facts = _read_state(outcome.symbols, horizon)
+    if utility is None:
+        utility = planner.ground_model().utility(v for v, b in facts if b)
+    plan = Plan.from_symbols(outcome.symbols)
+    return witnessed(planner, facts, utility, plan, "clingo")
+
+
 def _found_better(planner: Planner, outcome, horizon: int) -> Comparison:
     """The better state of a satisfiable search for one, at ``horizon``."""
-    facts = _read_state(outcome.symbols, horizon)
-    worth = planner.ground_model().utility(v for v, b in facts if b)
+    state = _answer_state(planner, outcome, horizon)
     return Comparison(
         PROVEN,
-        f"a state of utility {worth} is reachable within {steps(horizon)}",
-        better=ReachableState(facts, worth, horizon),
+        f"a state of utility {state.utility} is reachable within {steps(horizon)}",
+        better=state,
     )
 
 
@@ -740,6 +823,16 @@ def _better_by_search(
     return Comparison(BOUNDED, f"no better state within {steps(horizon)} (the maximal horizon)")
 
 
+def unhandled(planner: Planner) -> str:
+    """Why this engine does not serve the model ('' where it does): what the
+    callers ask before they use it (they answer ``bounded`` instead)."""
+    planner = getattr(planner, "planner", planner)
+    if planner.handles(FEATURES):
+        return ""
+    missing = " or ".join(sorted(planner.features - FEATURES))
+    return f"no engine here searches the reachable states of a model with {missing}"
+
+
 def best_reachable(
     planner: Planner,
     budget: Budget | None = None,
@@ -755,6 +848,7 @@ def best_reachable(
     Results are kept by the planner: a question is searched once per model.
     """
     planner = getattr(planner, "planner", planner)
+    require("best reachable states", FEATURES, planner.features)
     with planner.lock:
         return _best_reachable(planner, budget or Budget(), max_horizon, within, other_than)
 
@@ -768,5 +862,6 @@ def better_state(
     """Is a reachable state better than ``utility``?  Stops at the first layer
     that has one (that state is then at its shortest distance)."""
     planner = getattr(planner, "planner", planner)
+    require("best reachable states", FEATURES, planner.features)
     with planner.lock:
         return _better_state(planner, utility, budget or Budget(), max_horizon)

@@ -29,7 +29,7 @@ from dataclasses import dataclass
 import clingo
 
 from ethasp.planning.budget import Budget
-from ethasp.planning.engines import ALL_FEATURES
+from ethasp.planning.engines import ALL_FEATURES, require
 from ethasp.planning.engines.task import Task, bit_masks
 
 # The model features this engine handles (ethasp.planning.engines).
@@ -114,6 +114,7 @@ class Configurations:
     """
 
     def __init__(self, task, events: Events, limit: int | None = None):
+        require("explicit layers", FEATURES, task.features)
         self.task = task
         self.events = events
         self.limit = CONFIGURATION_LIMIT if limit is None else limit

@@ -20,7 +20,11 @@ unreachable); running out of time or of its state limit, it stops without
 a claim.  Like the layers, it is started only where relaxed reachability
 found the goal reachable (the search model leaves out the goal literals on
 variables that never change).  It runs in a child process beside the
-solver (see :class:`Greedy`).
+solver (see :class:`Greedy`).  It does not model exogenous events (its
+states are states, not configurations of a state and a time): it refuses a
+model with events, and the planner runs the exact layers beside any-plan
+search on such a model instead (:mod:`ethasp.planning.engines.layers`,
+explicit layers of configurations there, for the proof that no plan exists).
 
 States are explicit ones of the search model, as bit masks
 (:class:`ethasp.planning.engines.task.Task`, which also gives the heuristic).
@@ -33,12 +37,15 @@ import heapq
 import clingo
 
 from ethasp.planning.budget import Budget
-from ethasp.planning.engines import ALL_FEATURES
+from ethasp.planning.engines import CONDITIONAL_EFFECTS, DERIVED_VARIABLES, require
 from ethasp.planning.engines.layers import Layers, search_model
 from ethasp.planning.engines.task import Task
 
-# The model features this engine handles (ethasp.planning.engines).
-FEATURES = ALL_FEATURES
+# The model features this engine handles (ethasp.planning.engines): not
+# exogenous events (the next state depends on the step, which the search does
+# not track); on models with events the planner runs the exact layers instead
+# (explicit layers of configurations, ethasp.planning.engines.explicit).
+FEATURES = frozenset({CONDITIONAL_EFFECTS, DERIVED_VARIABLES})
 
 
 # States generated beyond which the search gives up (memory).
@@ -57,7 +64,9 @@ def greedy_plan(
     task: Task, budget: Budget | None = None, state_limit: int = STATE_LIMIT
 ) -> tuple[list[clingo.Symbol] | None, str]:
     """A plan by lazy greedy best-first search (helpful actions first), or None
-    and why the search stopped."""
+    and why the search stopped (:class:`ethasp.planning.engines.Unhandled` for
+    a task with exogenous events)."""
+    require("greedy search", FEATURES, task.features)
     position = {id(s): i for i, s in enumerate(task.steps)}
     parents: dict[int, tuple[int, int] | None] = {task.init: None}
     # Two queues, taken in turn: every successor, and those by helpful actions.
@@ -118,19 +127,16 @@ class Greedy(Layers):
     exact layers are run (:class:`ethasp.planning.engines.layers.Layers`: a child
     process on Linux, else a thread); its :attr:`status` gets a ``plan`` (not
     a shortest one), ``complete`` (no goal state is reachable) or
-    ``stopped``."""
+    ``stopped``.  It refuses a model with exogenous events when started."""
+
+    NAME = "greedy search"
+
+    def features(self) -> frozenset[str]:
+        return FEATURES
 
     def _work(self, publish) -> None:
         atoms = self._atoms() if callable(self._atoms) else self._atoms
         self.model = search_model(atoms)
-        if self.model.events:
-            # Exogenous events: the next state depends on the step, which the
-            # greedy search does not track; explicit layers of configurations
-            # (a shortest plan) instead.
-            from ethasp.planning.engines import explicit
-
-            explicit.search_with_events(self.model, self._budget, publish, self._stop.is_set)
-            return
         plan, why = greedy_plan(Task(self.model), self._budget)
         if plan is None and why == EXHAUSTED:
             publish(complete=True)

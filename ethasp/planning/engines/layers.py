@@ -38,12 +38,20 @@ import clingo
 
 from ethasp.execution import spawner
 from ethasp.planning.budget import Budget
-from ethasp.planning.engines import ALL_FEATURES
+from ethasp.planning.engines import (
+    ALL_FEATURES,
+    ground_features,
+    handles,
+    model_features,
+    require,
+)
 
 if TYPE_CHECKING:  # imported in the thread that computes the layers
     from ethasp.planning.engines.reachability import GroundModel
 
-# The model features this engine handles (ethasp.planning.engines).
+# The model features this engine handles (ethasp.planning.engines): the
+# diagrams' (ethasp.planning.engines.reachability), and the others with the
+# explicit layers (ethasp.planning.engines.explicit).
 FEATURES = ALL_FEATURES
 
 
@@ -100,6 +108,11 @@ class Atoms:
 
     def get(self, name: str, arity: int) -> list[clingo.Symbol]:
         return self.model[name]
+
+    @property
+    def features(self) -> frozenset[str]:
+        """The features of the ground model (as the planner's)."""
+        return ground_features(self)
 
 
 def search_model(atoms: Atoms) -> GroundModel:
@@ -345,9 +358,19 @@ class Layers:
         self._child: spawner.Child | None = None
         self._lock = threading.Lock()
 
+    # What the engine is called in its refusals.
+    NAME = "exact layers"
+
+    def features(self) -> frozenset[str]:
+        """The model features the engine handles (its module's ``FEATURES``)."""
+        return FEATURES
+
     def start(self) -> Layers:
+        """Start the work (:class:`ethasp.planning.engines.Unhandled` for a model
+        with a feature the engine does not handle)."""
         if callable(self._atoms):  # read here, while the planner does not solve
             self._atoms = self._atoms()
+        require(self.NAME, self.features(), self._atoms.features)
         if can_fork():
             self._start_child()
         else:
@@ -407,7 +430,9 @@ class Layers:
     def _work(self, publish) -> None:
         atoms = self._atoms() if callable(self._atoms) else self._atoms
         self.model = search_model(atoms)
-        if self.model.events:
+        from ethasp.planning.engines import reachability
+
+        if not handles(reachability.FEATURES, model_features(self.model)):
             # Exogenous events: explicit layers of configurations (state, time).
             from ethasp.planning.engines import explicit
 

@@ -39,7 +39,7 @@ from dataclasses import dataclass, field
 import clingo
 
 from ethasp.planning.budget import Budget
-from ethasp.planning.engines import CONDITIONAL_EFFECTS, DERIVED_VARIABLES
+from ethasp.planning.engines import CONDITIONAL_EFFECTS, DERIVED_VARIABLES, model_features, require
 
 # The model features this engine handles (ethasp.planning.engines).
 FEATURES = frozenset({CONDITIONAL_EFFECTS, DERIVED_VARIABLES})
@@ -277,8 +277,7 @@ class Reachability:
     """
 
     def __init__(self, model: GroundModel, node_limit: int = DEFAULT_NODE_LIMIT):
-        if model.events:
-            raise ValueError("exact reachability does not model exogenous events")
+        require("exact reachability", FEATURES, model_features(model))
         self.model = model
         self.node_limit = node_limit
         module, compiled = _backend()

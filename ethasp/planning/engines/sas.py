@@ -42,7 +42,7 @@ from dataclasses import dataclass
 
 import clingo
 
-from ethasp.planning.engines import CONDITIONAL_EFFECTS
+from ethasp.planning.engines import CONDITIONAL_EFFECTS, Unhandled, model_features
 
 # The model features this compilation handles (ethasp.planning.engines).
 FEATURES = frozenset({CONDITIONAL_EFFECTS})
@@ -52,7 +52,7 @@ FEATURES = frozenset({CONDITIONAL_EFFECTS})
 COUNTING_LIMIT = 200_000
 
 
-class NotCompiled(ValueError):
+class NotCompiled(Unhandled):
     """The model has something this compilation does not write (a feature, or
     a goal utility whose count would be too large)."""
 
@@ -79,10 +79,9 @@ def task(model, goal: bool = True, at_least: int | None = None) -> Task:
     at least its goal utility, or ``at_least`` if given (a search model
     read with the utilities of facts: ``Atoms(planner, weights=True)``).  NotCompiled where
     it has events or derived variables, or a count too large."""
-    if model.events:
-        raise NotCompiled("exogenous events")
-    if model.axioms:
-        raise NotCompiled("derived variables")
+    missing = sorted(model_features(model) - FEATURES)  # read now: tests change FEATURES
+    if missing:
+        raise NotCompiled(f"Fast Downward's task does not model {' or '.join(missing)}")
     threshold = model.goal_utility if at_least is None else at_least - model.fixed_utility
     counting = _counting(model, threshold) if threshold is not None else None
     wanted = {v for v, _ in model.goal} if goal else set()
@@ -209,7 +208,7 @@ def _counting(model, threshold: int) -> tuple[list[tuple[clingo.Symbol, bool, in
     if need > sum(gain for _, _, gain in items):
         items, need = [], 1  # no state is worth enough: the counter never fills
     if len(items) * (need + 1) > COUNTING_LIMIT:
-        raise NotCompiled("a goal utility whose count is too large")
+        raise NotCompiled("Fast Downward's task does not count a goal utility this large")
     return items, need
 
 

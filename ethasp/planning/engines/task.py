@@ -24,6 +24,7 @@ from dataclasses import dataclass
 
 import clingo
 
+from ethasp.planning.engines import model_features
 from ethasp.planning.engines.reachability import dependency_groups
 
 # The step of a relaxed action that is an axiom (no action, no cost).
@@ -77,6 +78,9 @@ class Task:
     """
 
     def __init__(self, model):
+        # The model's features (ethasp.planning.engines): an engine that
+        # searches over the task refuses those it does not handle.
+        self.features = model_features(model)
         self.variables = list(model.variables)
         self.derived = sorted(model.axioms, key=str)
         index = {v: i for i, v in enumerate(self.variables + self.derived)}

@@ -421,7 +421,35 @@ function renderCurrent() {
       judgement.best_reachable && judgement.best_reachable.state
         ? el("p", { class: "proof", text: `Best reachable state found: utility ${judgement.best_reachable.utility}` })
         : null,
+      judgement.better_plan_shown
+        ? el("p", { class: "proof better-plan" }, "The better plan: ",
+            judgement.better_plan_shown.map((a) => a.shown).join(" ") || "(empty plan)",
+            ` (reaches utility ${judgement.compared_with.utility}; drawn below)`)
+        : null,
       reasonsOf(judgement, null, judgement.verdict_words || judgement.explanation)));
+  }
+  renderBetterPlans(current);
+}
+
+function renderBetterPlans(current) {
+  // A plan that a better reachable state makes impermissible (utilitarianism):
+  // the better plan that reaches that state, drawn as a contrast to the plan.
+  const box = clear($("better-plans"));
+  for (const judgement of current.judgements) {
+    if (!judgement.better_plan_shown) continue;
+    const principle = judgement.principle;
+    const path = `/api/sessions/${sid}/better/${encodeURIComponent(principle)}.svg`;
+    const id = `better-picture-${principle}`;
+    const picture = el("div", { id, class: "picture" });
+    box.append(el("section", { class: "better", "data-principle": principle },
+      el("h3", { text: `The better plan under ${principle}` }),
+      el("p", { class: "muted", text: `It reaches a state of utility ${judgement.compared_with.utility}, ` +
+        `better than this plan's final state (utility ${current.utility}): ${judgement.proof}.` }),
+      planNode(judgement.better_plan_shown, false),
+      picture,
+      el("p", { class: "links" }, el("a", { href: path, download: `ethasp-better-${principle}.svg` },
+        "Download this picture (SVG)"))));
+    showPicture(picture, `${path}?words=0`);
   }
 }
 
