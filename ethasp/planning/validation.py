@@ -8,6 +8,7 @@ schema is told which static precondition fails, by a small program of its own
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 import clingo
@@ -125,11 +126,13 @@ def validate(model: Model, plan: Plan) -> Validation:
     return read_validation(plan, model.planner.trace(plan).select(TRACE_ATOMS), model)
 
 
-def plan_atoms(model: Model, plan: Plan, encodings) -> list[clingo.Symbol]:
+def plan_atoms(
+    model: Model, plan: Plan, encodings, facts: Iterable[clingo.Symbol] = ()
+) -> list[clingo.Symbol]:
     """The shown atoms of programs about a plan (``encodings``, which include
-    its trace, ``planning/trace.lp``), in one clingo call; InputError if the
-    plan is not a plan of the model."""
-    ctl = model.planner.program(encodings, symbols=occurrences(plan))
+    its trace, ``planning/trace.lp``), given further ``facts``, in one clingo
+    call; InputError if the plan is not a plan of the model."""
+    ctl = model.planner.program(encodings, symbols=[*occurrences(plan), *facts])
     symbols: list[clingo.Symbol] = []
     with ctl.solve(yield_=True) as handle:
         for answer in handle:

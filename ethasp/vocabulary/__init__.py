@@ -66,6 +66,9 @@ _HOMES = {
     "StepUtility": "links",
     "StepCauses": "links",
     "Removable": "links",
+    "Demanded": "links",
+    "ELink": "links",
+    "DLink": "links",
 }
 
 if TYPE_CHECKING:  # the same names for type checkers, which do not run __getattr__
@@ -79,7 +82,17 @@ if TYPE_CHECKING:  # the same names for type checkers, which do not run __getatt
         UtilityOfFinal,
         Verdict,
     )
-    from ethasp.vocabulary.links import Chain, Link, Removable, ServesGoal, StepCauses, StepUtility
+    from ethasp.vocabulary.links import (
+        Chain,
+        Demanded,
+        DLink,
+        ELink,
+        Link,
+        Removable,
+        ServesGoal,
+        StepCauses,
+        StepUtility,
+    )
     from ethasp.vocabulary.model import Action, Error, Goal, Init, Variable
     from ethasp.vocabulary.pictures import (
         Caused,
@@ -143,6 +156,9 @@ __all__ = [
     "Conj",
     "Conjunct",
     "Contrast",
+    "DLink",
+    "Demanded",
+    "ELink",
     "Error",
     "EventChanged",
     "FactLabel",
