@@ -69,10 +69,15 @@ pushed down to atoms, ``forall`` and ``exists`` swapped under ``not``).
 
 Leniency, as planners have it: requirements used but not declared are
 accepted with one warning line per file on standard error; domain constants
-that only the problem declares (as objects) are accepted; an atom that the
-domain or problem uses is a state variable even if its arguments do not
-match the predicate's declared types; a type that the domain uses but that
-is declared nowhere and that no object has has no objects (with a warning).
+that only the problem declares (as objects) are accepted; names that the
+domain uses as constants and that nobody declares are objects (with a
+warning); a domain without ``:predicates`` has the predicates it and the
+problem use, with the arity of their first use and arguments of any type
+(with a warning; a predicate used with two arities is an error at the
+second use), its atoms the ones the task uses; an atom that the domain or
+problem uses is a state variable even if its arguments do not match the
+predicate's declared types; a type that the domain uses but that is
+declared nowhere and that no object has has no objects (with a warning).
 Action costs (``increase`` of ``total-cost``, numeric facts in the initial
 state and a ``:metric``) are ignored with a warning: plans are shortest in
 number of actions; so are numeric facts of undeclared functions.  Other
@@ -237,6 +242,11 @@ class _Translator:
         self.undeclared_functions: dict[str, None] = {}  # in numeric facts, not declared
         self.derived = {d.predicate for d in domain.derived}
         self.objects = {pddl_name_to_asp(p.name) for p in domain.constants + problem.objects}
+        # Predicates read from their uses (a domain without :predicates), and
+        # names the domain uses as constants that nobody declares: objects.
+        self.inferred = {} if domain.declares_predicates else self.infer_predicates()
+        self.implicit = self.implicit_constants()
+        self.objects |= set(self.implicit)
         self.names = {*domain.predicates, *self.derived}
         # Static predicates: base predicates that no effect (conditional or
         # not) adds or deletes.  Their atoms hold in every state exactly when
@@ -253,6 +263,62 @@ class _Translator:
 
     def emit(self, line: str) -> None:
         self.lines.append(line)
+
+    def uses(self):
+        """Every atom of the domain's actions and derived predicates and of the
+        problem's initial state and goal, with its file, in the order written."""
+        for action in self.domain.actions:
+            for atom in formula_atoms(action.precondition):
+                yield self.domain.file, atom
+            for atom in effect_atoms(action.effect):
+                yield self.domain.file, atom
+        for definition in self.domain.derived:
+            for atom in formula_atoms(definition.body):
+                yield self.domain.file, atom
+        for atom in self.problem.init:
+            yield self.problem.file, atom
+        for atom in formula_atoms(self.problem.goal):
+            yield self.problem.file, atom
+
+    def infer_predicates(self) -> dict[str, None]:
+        """The predicates of a domain without ``:predicates``: those its uses
+        name (derived ones aside), with the arity of the first use and
+        arguments of any type; a use with another arity is an error."""
+        inferred: dict[str, tuple[PddlFile, int]] = {}
+        for file, atom in self.uses():
+            if not isinstance(atom, Atom) or atom.predicate in self.derived:
+                continue
+            first = inferred.get(atom.predicate)
+            if first is None:
+                inferred[atom.predicate] = (file, atom.pos)
+                self.domain.predicates[atom.predicate] = tuple(
+                    Param(f"x{index}", ()) for index in range(len(atom.terms))
+                )
+                self.domain.predicate_pos[atom.predicate] = atom.pos
+                continue
+            arity = len(self.domain.predicates[atom.predicate])
+            if arity != len(atom.terms):
+                raise file.error(
+                    atom.pos,
+                    f"predicate {atom.predicate} is used with {len(atom.terms)} "
+                    f"argument{'s' if len(atom.terms) != 1 else ''} here and with {arity} at "
+                    f"{first[0].at(first[1])} (the domain has no :predicates)",
+                )
+        return dict.fromkeys(inferred)
+
+    def implicit_constants(self) -> dict[str, None]:
+        """Names the domain's actions and derived predicates use as constants
+        that neither the domain nor the problem declares (objects, as
+        plan-explainer's reader has them)."""
+        found: dict[str, None] = {}
+        for file, atom in self.uses():
+            if file is not self.domain.file:
+                continue
+            terms = atom.terms if isinstance(atom, Atom) else (atom.left, atom.right)
+            for term in terms:
+                if not term.startswith("?") and pddl_name_to_asp(term) not in self.objects:
+                    found.setdefault(pddl_name_to_asp(term))
+        return found
 
     # -- names and types --------------------------------------------------------
 
@@ -414,6 +480,8 @@ class _Translator:
                 self.emit(
                     f"pddl_object({pddl_name_to_asp(param.name)},{pddl_name_to_asp(type_name)})."
                 )
+        for name in sorted(self.implicit):
+            self.emit(f"pddl_object({name},object).")
 
     def predicates(self) -> None:
         for predicate, params in sorted(self.domain.predicates.items()):
@@ -421,7 +489,10 @@ class _Translator:
             kind = "derived" if predicate in self.derived else "variable"
             atom = term_of(pddl_name_to_asp(predicate), names)
             if pddl_name_to_asp(predicate) not in self.static:
-                self.emit(rule(f"{kind}({atom})", typing))
+                # (A predicate read from its uses has the atoms the task uses:
+                # planning/pddl.lp makes them variables.)
+                if predicate not in self.inferred:
+                    self.emit(rule(f"{kind}({atom})", typing))
             else:
                 # A static atom is a variable where the task uses it (pddl.lp):
                 # in the initial state, a precondition, a condition or the
@@ -594,6 +665,17 @@ class _Translator:
                     f"requirement{'s' if len(missing) > 1 else ''} "
                     f"{', '.join(missing)} used but not declared (read anyway)"
                 )
+            if file is self.domain.file and self.inferred:
+                names = ", ".join(
+                    f"{name}/{len(self.domain.predicates[name])}" for name in self.inferred
+                )
+                notes.append(f"no :predicates section (predicates read from their uses: {names})")
+            if file is self.domain.file and self.implicit:
+                names = ", ".join(self.implicit)
+                notes.append(
+                    f"constant{'s' if len(self.implicit) > 1 else ''} {names} used but not "
+                    "declared (read as objects)"
+                )
             if file is self.domain.file and self.undeclared_types:
                 names = ", ".join(self.undeclared_types)
                 notes.append(
@@ -664,6 +746,36 @@ class _Translator:
         for line in self.warnings():
             print(line, file=sys.stderr)
         return "\n".join(self.lines) + "\n"
+
+
+def formula_atoms(formula: Formula):
+    """The atoms and equalities of a formula, in the order written."""
+    if isinstance(formula, (Atom, Equal)):
+        yield formula
+    elif isinstance(formula, Not):
+        yield from formula_atoms(formula.argument)
+    elif isinstance(formula, (And, Or)):
+        for part in formula.parts:
+            yield from formula_atoms(part)
+    elif isinstance(formula, Imply):
+        yield from formula_atoms(formula.left)
+        yield from formula_atoms(formula.right)
+    elif isinstance(formula, (Exists, Forall)):
+        yield from formula_atoms(formula.body)
+
+
+def effect_atoms(effect: Effect):
+    """The atoms of an effect and of its conditions, in the order written."""
+    if isinstance(effect, Literal):
+        yield effect.atom
+    elif isinstance(effect, AllEffects):
+        for part in effect.parts:
+            yield from effect_atoms(part)
+    elif isinstance(effect, ForallEffect):
+        yield from effect_atoms(effect.effect)
+    elif isinstance(effect, When):
+        yield from formula_atoms(effect.condition)
+        yield from effect_atoms(effect.effect)
 
 
 def effect_predicates(effect: Effect) -> set[str]:

@@ -297,6 +297,7 @@ class Domain:
     constants: list[Param] = field(default_factory=list)
     predicates: dict[str, tuple[Param, ...]] = field(default_factory=dict)
     predicate_pos: dict[str, int] = field(default_factory=dict)
+    declares_predicates: bool = False  # has a :predicates section
     functions: set[str] = field(default_factory=set)
     actions: list[Action] = field(default_factory=list)
     derived: list[Derived] = field(default_factory=list)
@@ -652,6 +653,7 @@ def read_domain(file: PddlFile) -> Domain:
         elif head == ":constants":
             domain.constants += reader.typed_list(group[1:], False)
         elif head == ":predicates":
+            domain.declares_predicates = True
             reader.predicate_declarations(group, domain)
         elif head == ":functions":
             reader.use(":action-costs", group)
