@@ -108,7 +108,10 @@ def test_explain_json_and_svg(tmp_path):
     assert data["steps"][4]["links"][0]["to"] == "goal"
     assert first["chain"] == [1, 4, 5, "goal"] and first["bad"] is False
     svg = picture.read_text()
-    assert svg.count('marker-end="url(#arrowhead)"') == 6 and "at(r4) (goal)" in svg
+    # An arrow per E-link, and per D-link in their own colour.
+    assert svg.count('marker-end="url(#arrowhead)"') == len(data["e_links"]) > 0
+    assert svg.count('marker-end="url(#demandhead)"') == len(data["d_links"]) > 0
+    assert "at(r4) (goal)" in svg and "requires (D-link)" in svg
     # The model's own plan (a HERA situation's), with events.
     data = json.loads(ethasp("explain", FRANK, "--json").stdout)
     assert data["plan"] == ["lie_to_frank"] and data["steps"][0]["bad"] is True

@@ -26,7 +26,14 @@ DERIVED = "derived(d). axiom(d,1). axiom_pre(d,1,a,true).\n"
 
 
 def test_every_engine_declares_its_features_and_the_contract_lists_it():
-    assert set(ENGINES) == {"reachability", "explicit", "layers", "greedy", "best_state"}
+    assert set(ENGINES) == {
+        "reachability",
+        "explicit",
+        "layers",
+        "greedy",
+        "best_state",
+        "cheapest",
+    }
     for name in ENGINES:
         module = importlib.import_module(f"ethasp.planning.engines.{name}")
         assert module.FEATURES <= engines.ALL_FEATURES, name

@@ -64,6 +64,7 @@ MODEL_VOCABULARY: dict[tuple[str, int], str] = {
     ("goal", 2): "goal(V,B): the goal requires V to have value B",
     ("utility", 2): "utility(A,U): moral value of action A",
     ("utility", 3): "utility(V,B,U): moral value of the fact V=B",
+    ("cost", 2): "cost(A,N): the cost of action A (a model with costs plans cheapest plans)",
     ("event", 1): "event(E): an exogenous event",
     ("event_at", 2): "event_at(E,T): event E is due at step T (after the action of step T)",
     ("event_pre", 3): "event_pre(E,V,B): event E happens only if V has value B",

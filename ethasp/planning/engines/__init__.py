@@ -45,8 +45,12 @@ The engines and the features they handle:
 * ``best_state``: for utilitarianism, a reachable state better than a
   utility, or the best one, from the engines above or by clingo
   optimisation.  Every feature.
+* ``cheapest``: for models with action costs, uniform-cost search over
+  explicit configurations: a cheapest plan, a lower bound on the cost of
+  every plan, or "none" once every reachable configuration is expanded.
+  Every feature.
 
-``task`` holds what ``explicit`` and ``greedy`` search over: the explicit
+``task`` holds what ``explicit``, ``greedy`` and ``cheapest`` search over: the explicit
 states of the search model (bit masks), its actions and derived variables,
 and the FF heuristic.
 """

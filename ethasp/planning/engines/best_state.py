@@ -538,7 +538,7 @@ def _best_by_optimisation(
             and outcome.cost
             and (best_cost is None or _lower(outcome.cost, best_cost))
         ):
-            best = ReachableState(_read_state(outcome.symbols, horizon), -outcome.cost[0], horizon)
+            best = ReachableState(_read_state(outcome.symbols, horizon), -outcome.cost[-1], horizon)
             best_cost = outcome.cost
         if outcome.satisfiable is None:
             return BestReachable(
