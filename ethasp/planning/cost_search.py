@@ -234,12 +234,12 @@ def _cheapest(
             proposed = engine.plan()
             if proposed is not None:
                 best = checked(planner, proposed, "uniform-cost search")
-                horizon = len(best)
+                horizon, least = len(best), _cost(planner, best)
                 return found(
-                    f"no plan costs less than {status.cost}: uniform-cost search expanded every "
+                    f"no plan costs less than {least}: uniform-cost search expanded every "
                     "cheaper configuration",
                     best,
-                    _cost(planner, best),
+                    least,
                 )
             if status.complete:
                 return SearchResult(

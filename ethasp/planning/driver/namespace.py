@@ -100,6 +100,7 @@ PDDL_VOCABULARY: dict[tuple[str, int], str] = {
     ("pddl_static", 1): "pddl_static(V): V is an atom of a static predicate (no action of "
     "the domain changes it)",
     ("pddl_candidate", 1): "pddl_candidate(A): a term of a plan that is no action (validation)",
+    ("pddl_value", 2): "pddl_value(F,N): function F has value N in the initial state",
     ("pddl_schema_instance", 1): "pddl_schema_instance(A): candidate A is an instance of an "
     "action schema",
     ("pddl_static_failure", 3): "pddl_static_failure(A,V,B): static precondition V=B of the "
