@@ -11,7 +11,14 @@ PACKAGE = ROOT / "ethasp"
 
 # Lowest first: a group may import itself and the groups before it.
 LAYERS = ["core", "planning", "principles", "reasons", "questions", "batch", "interfaces"]
-CORE = {"ethasp", "ethasp.errors", "ethasp.memo", "ethasp.resources", "ethasp.vocabulary"}
+CORE = {
+    "ethasp",
+    "ethasp.errors",
+    "ethasp.execution",
+    "ethasp.memo",
+    "ethasp.resources",
+    "ethasp.vocabulary",
+}
 
 
 def _module(path: Path) -> str:
@@ -22,7 +29,7 @@ def _module(path: Path) -> str:
 
 
 def _group(module: str) -> str:
-    if module in CORE or module.startswith("ethasp.vocabulary."):
+    if module in CORE or module.startswith(("ethasp.vocabulary.", "ethasp.execution.")):
         return "core"
     return module.split(".")[1]
 
@@ -107,3 +114,21 @@ def test_no_import_cycles():
     for module in sorted(graph):
         if module not in state:
             visit(module, [module])
+
+
+def test_each_command_has_its_own_module():
+    """The command line is a package: a module per command holds its parser and
+    what it runs, and main() with how a command runs is one module of its own."""
+    import argparse
+
+    from ethasp.interfaces import cli
+    from ethasp.interfaces.cli import execution
+
+    parser = cli.build_parser()
+    commands = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    for name, sub in commands.choices.items():
+        module = sub.get_default("run").__module__
+        assert module == f"ethasp.interfaces.cli.{name}", (name, module)
+    assert cli.main is execution.main
+    assert not (PACKAGE / "interfaces" / "cli.py").exists()
+    assert (PACKAGE / "interfaces" / "cli" / "__main__.py").is_file()  # python -m ...cli
