@@ -47,13 +47,13 @@ def answer_text(answer: Answer, naming) -> str:
     original = answer.original
     lines.append(
         f"  plan asked about: {naming.actions(original.plan) or '(empty)'} "
-        f"({original.principle}: {_verdict(original)})"
+        f"({original.principle}: {_verdict(original)}{_cost(original.cost)})"
     )
     if answer.contrast is not None:
         contrast = answer.contrast
         lines.append(
             f"  contrast plan: {naming.actions(contrast.plan) or '(empty)'} "
-            f"({contrast.principle}: {_verdict(contrast)})"
+            f"({contrast.principle}: {_verdict(contrast)}{_cost(contrast.cost)})"
         )
     else:
         lines.append(f"  contrast plan: none ({answer.status}: {answer.proof})")
@@ -80,6 +80,11 @@ def answer_text(answer: Answer, naming) -> str:
             f"only for the contrast: {_literals(difference['contrast_only'])}"
         )
     return "\n".join(lines)
+
+
+def _cost(cost: int | None) -> str:
+    """``; cost 5`` for a plan of a model with action costs."""
+    return f"; cost {cost}" if cost is not None else ""
 
 
 def _literals(literals: list[str]) -> str:

@@ -265,13 +265,15 @@ def _draw_lane(
         faded = column.step < faded_until
         if faded:
             canvas.add('<g opacity="0.45">')
-        canvas.add(_text(x, top + 2, f"step {column.step}", 11, MUTED, "bold"))
+        cost = valuation.action_cost(column.action)
+        costs = f" \u00b7 cost {cost}" if cost is not None else ""
+        canvas.add(_text(x, top + 2, f"step {column.step}{costs}", 11, MUTED, "bold"))
         utility = valuation.action_utility(column.action)
         shown = naming.action(column.action)
         label = valuation.action_label(column.action)
         tip = (
             f"step {column.step}: {shown}: {label or 'no label'}; utility {utility} "
-            f"({moral(utility)})"
+            f"({moral(utility)})" + (f"; cost {cost}" if cost is not None else "")
         )
         attributes = (
             f' class="action" data-lane={quoteattr(lane.name)} '
@@ -300,7 +302,10 @@ def _draw_lane(
         lowest = max(lowest, y)
     # Final state: what changed, what is morally valued, what the goal asks.
     x = _column_x(end_index)
-    canvas.add(_text(x, top + 2, f"end \u00b7 utility {timeline.utility}", 11, MUTED, "bold"))
+    costs = f" \u00b7 cost {timeline.cost}" if timeline.cost is not None else ""
+    canvas.add(
+        _text(x, top + 2, f"end \u00b7 utility {timeline.utility}{costs}", 11, MUTED, "bold")
+    )
     moved = set(timeline.changed_variables())
     wanted = {fact.variable for fact in valuation.goal}
     y = boxes_top

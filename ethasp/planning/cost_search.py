@@ -127,11 +127,13 @@ def cheapest(
     all_plans: bool = False,
     task: str = "plan search",
     longest: int | None = None,
+    below: int | None = None,
 ) -> SearchResult:
     """A cheapest plan under a setting (all cheapest plans of fewest steps with
     ``all_plans``), searching horizons ``start`` to ``max_horizon``; the
     arguments are those of :func:`ethasp.planning.search.shortest` (see the
-    module docstring)."""
+    module docstring).  ``below``: only plans that cost less than this
+    (``none`` is then the proof that no plan costs less)."""
     if max_horizon < 0:
         raise InputError("the maximal horizon must be at least 0")
     if budget.expired() or not planner.prepare(budget):
@@ -152,7 +154,7 @@ def cheapest(
     )
     try:
         result = _cheapest(
-            planner, setting, budget, max_horizon, start, start_proof, task, engine, longest
+            planner, setting, budget, max_horizon, start, start_proof, task, engine, longest, below
         )
     finally:
         engine.stop()
@@ -179,9 +181,10 @@ def _all_cheapest(
 
 
 def _proven(cost: int, length: int, planner: Planner, least: int) -> str:
-    """Why a plan of this cost is a cheapest one, from arithmetic alone ('' if
-    that does not prove it): nothing costs less than 0, and with every action
-    costing at least ``least`` > 0 a cheaper plan has few steps."""
+    """Why no plan costs less than ``cost``, from arithmetic alone, given that
+    none of at most ``length`` steps does ('' if that does not prove it):
+    nothing costs less than 0, and with every action costing at least
+    ``least`` > 0 a cheaper plan has few steps."""
     if cost == 0:
         return "no plan costs less than 0"
     if least > 0 and (cost - 1) // least <= length:
@@ -202,6 +205,7 @@ def _cheapest(
     task: str,
     engine: _Engine,
     longest: int | None,
+    below: int | None = None,
 ) -> SearchResult:
     if longest is not None:
         max_horizon = min(max_horizon, longest)
@@ -210,6 +214,15 @@ def _cheapest(
     horizon = start
     plan: Plan | None = None  # the cheapest plan found so far
     cost = 0
+    # Every plan sought costs less than `limit` (the cheapest plan's cost so far,
+    # or the bound asked for).
+    limit = below
+
+    def cheaper(proof: str) -> SearchResult:
+        """The search proved that no plan costs less than ``limit``."""
+        if plan is not None:
+            return found(proof, plan, cost)
+        return SearchResult(NONE, horizon=horizon, proof=proof)
 
     def found(proof: str, found_plan: Plan, found_cost: int) -> SearchResult:
         return SearchResult(FOUND, plan=found_plan, horizon=horizon, proof=proof, cost=found_cost)
@@ -234,12 +247,17 @@ def _cheapest(
             proposed = engine.plan()
             if proposed is not None:
                 best = checked(planner, proposed, "uniform-cost search")
-                horizon, least = len(best), _cost(planner, best)
+                horizon, lowest = len(best), _cost(planner, best)
+                if limit is not None and lowest >= limit:
+                    return cheaper(
+                        f"no plan costs less than {limit}: uniform-cost search found a cheapest "
+                        f"plan, of cost {lowest}"
+                    )
                 return found(
-                    f"no plan costs less than {least}: uniform-cost search expanded every "
+                    f"no plan costs less than {lowest}: uniform-cost search expanded every "
                     "cheaper configuration",
                     best,
-                    least,
+                    lowest,
                 )
             if status.complete:
                 return SearchResult(
@@ -248,21 +266,18 @@ def _cheapest(
                     proof="uniform-cost search expanded every reachable configuration without "
                     "meeting a goal state: no goal state is reachable",
                 )
-            if plan is not None and status.cost_bound >= cost:
-                return found(
-                    f"no plan costs less than {cost}: uniform-cost search expanded every "
-                    f"configuration reachable for less",
-                    plan,
-                    cost,
+            if limit is not None and status.cost_bound >= limit:
+                return cheaper(
+                    f"no plan costs less than {limit}: uniform-cost search expanded every "
+                    f"configuration reachable for less"
                 )
         if horizon > max_horizon:
             if longest is not None and plan is None:
                 return SearchResult(NONE, horizon=max_horizon, proof=too_long(longest, start_proof))
             return cut(f"the maximal horizon is {max_horizon}")
         budget.report(task, horizon=horizon)
-        incumbent = cost if plan is not None else None
-        settled = functools.partial(engine.settled, incumbent)
-        searching = replace(setting, max_cost=cost - 1 if plan is not None else None)
+        settled = functools.partial(engine.settled, limit)
+        searching = replace(setting, max_cost=limit - 1 if limit is not None else None)
         outcome = planner.solve(horizon, searching, budget.until(settled), moot=settled)
         if outcome.satisfiable is None:
             if budget.expired():
@@ -270,28 +285,24 @@ def _cheapest(
             continue  # the engine proved more: look again
         if outcome.satisfiable:
             plan = plans_of([outcome.symbols])[0]
-            cost = _cost(planner, plan)
-        if plan is not None:
+            cost = limit = _cost(planner, plan)
+        if limit is not None:
             if longest is not None and horizon >= longest:
-                return found(
-                    f"no plan of at most {steps(horizon)} costs less than {cost}, and the "
-                    f"question allows at most {steps(longest)}",
-                    plan,
-                    cost,
+                return cheaper(
+                    f"no plan of at most {steps(horizon)} costs less than {limit}, and the "
+                    f"question allows at most {steps(longest)}"
                 )
-            proof = _proven(cost, horizon, planner, least)
+            proof = _proven(limit, horizon, planner, least)
             if proof:
-                return found(proof, plan, cost)
+                return cheaper(proof)
             if horizon in checks or horizon >= max_horizon:
-                bounded = replace(setting, max_cost=cost - 1)
+                bounded = replace(setting, max_cost=limit - 1)
                 exists = planner.simple_path_exists(horizon + 1, bounded, budget.until(settled))
                 if exists is False:
-                    return found(
-                        f"no plan of at most {steps(horizon)} costs less than {cost}, and no "
+                    return cheaper(
+                        f"no plan of at most {steps(horizon)} costs less than {limit}, and no "
                         f"path of {steps(horizon + 1)} without a repeated state does (a "
-                        "cheaper plan would have such a path as its first steps)",
-                        plan,
-                        cost,
+                        "cheaper plan would have such a path as its first steps)"
                     )
                 if exists is None and budget.expired():
                     return cut(f"{budget.why_stopped()} at horizon {horizon}")

@@ -317,6 +317,7 @@ def shortest(
     task: str = "plan search",
     longest: int | None = None,
     threads: bool = True,
+    below: int | None = None,
 ) -> SearchResult:
     """A shortest plan under a setting, searching horizons ``start`` to ``max_horizon``.
 
@@ -334,14 +335,26 @@ def shortest(
     (in an HModel: restrictions, questions) keep one.
 
     A model with action costs gets a cheapest plan instead
-    (:func:`ethasp.planning.cost_search.cheapest`).
+    (:func:`ethasp.planning.cost_search.cheapest`), of cost less than
+    ``below`` if given.
     """
     if planner.has_costs:
         from ethasp.planning.cost_search import cheapest
 
         return cheapest(
-            planner, setting, budget, max_horizon, start, start_proof, all_plans, task, longest
+            planner,
+            setting,
+            budget,
+            max_horizon,
+            start,
+            start_proof,
+            all_plans,
+            task,
+            longest,
+            below,
         )
+    if below is not None:
+        raise InputError("a bound on the cost of plans needs a model with action costs")
     if max_horizon < 0:
         raise InputError("the maximal horizon must be at least 0")
     if budget.expired() or not planner.prepare(budget):

@@ -71,6 +71,7 @@ class Validation:
     static: bool = False
     unmet_goals: list[str] = field(default_factory=list)
     final_state: list[str] = field(default_factory=list)
+    cost: int | None = None  # the plan's cost, in a model with action costs
 
     def message(self, naming: Naming = ASP_NAMING) -> str:
         """One line saying why the sequence is not a plan ('' if it is one).
@@ -110,6 +111,7 @@ class Validation:
             },
             "unmet_goals": self.unmet_goals,
             "final_state": self.final_state,
+            **({"cost": self.cost} if self.cost is not None else {}),
         }
 
 
@@ -123,7 +125,11 @@ def _problem(problem: clingo.Symbol, naming: Naming = ASP_NAMING) -> str:
 def validate(model: Model, plan: Plan) -> Validation:
     """Validate a plan (its trace, computed once per plan by the model's
     planner); raise InputError if it names unknown actions."""
-    return read_validation(plan, model.planner.trace(plan).select(TRACE_ATOMS), model)
+    answer = model.planner.trace(plan)
+    validation = read_validation(plan, answer.select(TRACE_ATOMS), model)
+    if model.planner.has_costs:
+        validation.cost = answer.get("plan_cost", 1)[0].arguments[0].number
+    return validation
 
 
 def plan_atoms(

@@ -49,6 +49,7 @@ from ethasp.vocabulary import (
     DLink,
     ELink,
     Link,
+    PlanCost,
     Removable,
     ServesGoal,
     StepCauses,
@@ -247,10 +248,12 @@ class StepsExplanation:
     text: str = ""
     e_links: list[ProducerLink] = field(default_factory=list)
     d_links: list[ProducerLink] = field(default_factory=list)
+    cost: int | None = None  # the plan's cost, in a model with action costs
 
     def to_json(self, naming=None) -> dict:
         return {
             "plan": self.plan.to_list(),
+            **({"cost": self.cost} if self.cost is not None else {}),
             "steps": [step.to_json(naming) for step in self.steps],
             "events": [event.to_json(naming) for event in self.events if event.links],
             "e_links": [link.to_json() for link in self.e_links],
@@ -612,8 +615,16 @@ def explain_steps(model: Model, plan: Plan) -> StepsExplanation:
         key=_producer_order,
     )
     labels = model_labels(model)
+    costs = [atom.cost for atom in unify([PlanCost], symbols).query(PlanCost).all()]
     return StepsExplanation(
-        plan, steps, events, labels, plan_text(labels, plan, steps, events), e_links, d_links
+        plan,
+        steps,
+        events,
+        labels,
+        plan_text(labels, plan, steps, events),
+        e_links,
+        d_links,
+        costs[0] if costs and model.planner.has_costs else None,
     )
 
 
