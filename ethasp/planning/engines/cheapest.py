@@ -1,5 +1,10 @@
 """Uniform-cost search for cheapest plans, beside a plan search with action costs.
 
+On models without exogenous events it runs symbolic uniform-cost search
+(:mod:`ethasp.planning.engines.cost_layers`, decision diagrams) in turns
+with the explicit search below (:func:`race`): the first that settles the
+question answers.
+
 With action costs (``cost/2``, :mod:`ethasp.planning.cost_search`) the solver
 finds the cheapest plan of each horizon, but a cheaper plan may have more
 steps, and with actions of cost 0 nothing bounds its length.  This engine
@@ -30,13 +35,14 @@ configurations kept, claiming nothing then.
 from __future__ import annotations
 
 import heapq
+from collections.abc import Iterator
 
 import clingo
 
 from ethasp.planning.budget import Budget
 from ethasp.planning.engines import ALL_FEATURES
 from ethasp.planning.engines.explicit import Events
-from ethasp.planning.engines.layers import Atoms, Layers, search_model
+from ethasp.planning.engines.layers import Atoms, Layers, _import_diagrams, search_model
 from ethasp.planning.engines.task import Task
 
 # The model features this engine handles (ethasp.planning.engines).
@@ -46,6 +52,8 @@ FEATURES = ALL_FEATURES
 CONFIGURATION_LIMIT = 1_000_000
 # Configurations expanded between two checks of the budget.
 CHECK_EVERY = 256
+# A key in the queue is cost * STEPS + steps (more steps than this: never kept).
+STEPS = 1 << 32
 
 
 class CostAtoms(Atoms):
@@ -63,56 +71,92 @@ def cheapest_plan(
     events: Events,
     costs: dict[clingo.Symbol, int],
     budget: Budget | None,
-    publish,
     limit: int = CONFIGURATION_LIMIT,
-) -> None:
-    """Uniform-cost search (see the module docstring), reporting through
-    ``publish`` as the exact layers do (``cost_bound``, then ``plan`` with
-    ``cost``, or ``complete``, or ``stopped``)."""
-    step_cost = [costs.get(step.name, 0) for step in task.steps]
-    position = {id(step): number for number, step in enumerate(task.steps)}
+) -> Iterator[dict]:
+    """Uniform-cost search (see the module docstring), as a generator of its
+    findings as the exact layers report them (``cost_bound``, then ``plan``
+    with ``cost``, or ``complete``, or ``stopped``), and of empty findings
+    every :data:`CHECK_EVERY` configurations (where another search may take
+    a turn).
+
+    A configuration is the number ``state * (last + 1) + time`` (the time up
+    to the last event, 0 without events), and its key in the queue is
+    ``cost * STEPS + steps``: one integer each, compared and hashed fast."""
+    cost_of = {id(step): costs.get(step.name, 0) for step in task.steps}
+    number_of = {id(step): number for number, step in enumerate(task.steps)}
     last = events.last
-    start = (task.init, 0)
-    best: dict[tuple[int, int], tuple[int, int]] = {start: (0, 0)}
-    parents: dict[tuple[int, int], tuple[tuple[int, int], int] | None] = {start: None}
-    queue = [(0, 0, 0, start)]
+    span = last + 1
+    derived = bool(task.strata)
+    start = task.init * span
+    best: dict[int, int] = {start: 0}
+    parents: dict[int, tuple[int, int] | None] = {start: None}
+    queue = [(0, 0, start)]
     counter = 0
-    closed: set[tuple[int, int]] = set()
+    closed: set[int] = set()
     bound = 0
     while queue:
-        cost, steps, _, configuration = heapq.heappop(queue)
+        key, _, configuration = heapq.heappop(queue)
         if configuration in closed:
             continue
         closed.add(configuration)
+        cost = key // STEPS
         if cost > bound:
             bound = cost
-            publish(cost_bound=bound)
-        if task.is_goal(task.full(events.finish(configuration))):
-            publish(plan=tuple(_path(task, parents, configuration)), cost=cost)
+            yield {"cost_bound": bound}
+        state, time = divmod(configuration, span)
+        final = events.finish((state, time)) if last else state
+        if task.is_goal(task.full(final) if derived else final):
+            yield {"plan": tuple(_path(task, parents, configuration)), "cost": cost}
             return
-        if len(closed) % CHECK_EVERY == 0 and budget is not None and budget.expired():
-            publish(stopped=f"uniform-cost search: {budget.why_stopped()}")
-            return
-        state, time = configuration
-        full = task.full(state)
+        if len(closed) % CHECK_EVERY == 0:
+            if budget is not None and budget.expired():
+                yield {"stopped": f"uniform-cost search: {budget.why_stopped()}"}
+                return
+            yield {}
+        full = task.full(state) if derived else state
         step = time + 1
         for action in task.applicable(full):
-            number = position[id(action)]
             after = action.apply(full) & task.base
             if step <= last:
                 after = events.happen(after, step)
-            successor = (after, min(step, last))
-            key = (cost + step_cost[number], steps + 1)
-            if successor in closed or key >= best.get(successor, (key[0] + 1, 0)):
+            successor = after * span + (step if step < last else last)
+            if successor in closed:
                 continue
-            best[successor] = key
-            parents[successor] = (configuration, number)
+            successor_key = key + cost_of[id(action)] * STEPS + 1
+            if successor_key >= best.get(successor, successor_key + 1):
+                continue
+            best[successor] = successor_key
+            parents[successor] = (configuration, number_of[id(action)])
             counter += 1
-            heapq.heappush(queue, (key[0], key[1], counter, successor))
+            heapq.heappush(queue, (successor_key, counter, successor))
         if len(best) > limit:
-            publish(stopped=f"uniform-cost search: more than {limit} configurations")
+            yield {"stopped": f"uniform-cost search: more than {limit} configurations"}
             return
-    publish(complete=True)
+    yield {"complete": True}
+
+
+def race(searches: list[Iterator[dict]], publish) -> None:
+    """Run searches in turns (a turn: until a search yields), publishing what
+    settles the question (a plan, or that no goal state is reachable) from
+    the first that tells, and the greatest cost bound of them all; a search
+    that stops leaves the others on; when all have stopped, the first's
+    reason is published."""
+    bounds: dict[int, int] = {}
+    stopped: list[str] = []
+    running = dict(enumerate(searches))
+    while running:
+        for number, search in list(running.items()):
+            changes = next(search, {"stopped": "ended"})
+            if "plan" in changes or "complete" in changes:
+                publish(**changes)
+                return
+            if "stopped" in changes:
+                stopped.append(changes["stopped"])
+                del running[number]
+            elif "cost_bound" in changes:
+                bounds[number] = changes["cost_bound"]
+                publish(cost_bound=max(bounds.values()))
+    publish(stopped="; ".join(stopped) or "stopped")
 
 
 def _path(task: Task, parents: dict, configuration) -> list[clingo.Symbol]:
@@ -133,5 +177,15 @@ class Cheapest(Layers):
         assert isinstance(atoms, CostAtoms)
         self.model = search_model(atoms)
         task = Task(self.model)
-        events = Events(self.model.events, task.index)
-        cheapest_plan(task, events, atoms.costs, self._budget, publish)
+        searches = [
+            cheapest_plan(task, Events(self.model.events, task.index), atoms.costs, self._budget)
+        ]
+        if not self.model.events:
+            # Symbolic layers too (they know no events), in turns with the
+            # explicit search: each does well where the other does badly.
+            from ethasp.planning.engines.cost_layers import CostLayers
+
+            _import_diagrams()
+            layers = CostLayers(self.model, atoms.costs, self.node_limit)
+            searches.append(layers.search(self._budget))
+        race(searches, publish)
