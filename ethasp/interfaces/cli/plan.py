@@ -156,8 +156,10 @@ def run_permissible(args: argparse.Namespace, model: Model) -> int:
             model.naming.actions(plan) if len(plan) else "(empty plan)"
             for plan in (result.plans if args.all else [result.plan])
         ]
+        comma = "," if result.cost is not None else ""
         head = (
-            f"{plan_head(len(result.plan), result.cost, result.optimal)} permissible under {under}"
+            f"{plan_head(len(result.plan), result.cost, result.optimal)}{comma} permissible "
+            f"under {under}"
         )
         length = len(result.plan) if result.cost is not None else result.horizon
         costs = f", cost {result.cost}" if result.cost is not None else ""
