@@ -222,6 +222,8 @@ def _cheapest(
         """The search proved that no plan costs less than ``limit``."""
         if plan is not None:
             return found(proof, plan, cost)
+        if not proof.startswith("no plan costs less"):
+            proof = f"no plan costs less than {limit}: {proof}"
         return SearchResult(NONE, horizon=horizon, proof=proof)
 
     def found(proof: str, found_plan: Plan, found_cost: int) -> SearchResult:

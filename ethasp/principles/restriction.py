@@ -209,6 +209,8 @@ def plan_with_principles(
     permissible = f" permissible under {under}" if names else ""
     if not names:  # the question alone: "no plan meets the question"
         plans_are = "plan meets the question" if constraints else "plan exists"
+        if below is not None and not constraints:
+            plans_are = f"plan costs less than {below}"
     else:
         plans_are = f"{plans} is{permissible}"
     if any(principle.reads_alternatives for principle in chosen):
@@ -313,7 +315,14 @@ def plan_with_principles(
         # With utilitarianism the search asked for utility >= best.utility, a lower
         # bound of the best reachable utility: no such goal state, no permissible plan.
         return HPlanResult(
-            NONE, names, None, result.horizon, f"no {plans_are}: {result.proof}", best=best
+            NONE,
+            names,
+            None,
+            result.horizon,
+            result.proof
+            if result.proof.startswith(f"no {plans_are}")
+            else f"no {plans_are}: {result.proof}",
+            best=best,
         )
     return HPlanResult(
         BOUNDED,

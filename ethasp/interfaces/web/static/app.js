@@ -128,7 +128,7 @@ function remembered() {
 function setBusy(job) {
   running = Boolean(job && job.state === "running");
   $("status").hidden = !running;
-  for (const button of document.querySelectorAll("#ask-form button, #undo, #start, #action-menu button, #drop-question, #shorter, #explain-plan")) {
+  for (const button of document.querySelectorAll("#ask-form button, #undo, #start, #action-menu button, #drop-question, #shorter, #cheaper, #explain-plan")) {
     button.disabled = running;
   }
   $("under").disabled = running;
@@ -354,8 +354,11 @@ function renderCurrent() {
   const unanswered = later > 0
     ? `; ${later === 1 ? `question ${state.steps.length} has` : `questions ${source + 1} to ${state.steps.length} have`} no contrast plan, so it stays the current plan`
     : "";
+  const cost = current.cost === undefined || current.cost === null ? "" : `, cost ${current.cost}`;
   $("current-summary").textContent =
-    `${count}: ${origin}; final state utility ${current.utility}${unanswered}`;
+    `${count}${cost}: ${origin}; final state utility ${current.utility}${unanswered}`;
+  // A model with action costs: ask for a cheaper plan (none costs less than 0).
+  $("cheaper").hidden = !current.cost;
   $("shorter").hidden = steps === 0;
   $("shorter").textContent = steps > 0 ? `Why not in ${steps - 1} ${steps - 1 === 1 ? "step" : "steps"}?` : "";
   const plan = planNode(current.shown, true);
@@ -585,6 +588,10 @@ async function explainStep(step) {
   data.lines.forEach((line, index) => list.append(el("li", {
     class: data.step && data.steps[data.step - 1] && line.startsWith(`Step ${data.step},`) ? "viewing" : null,
     text: line })));
+  const links = clear($("explain-links"));
+  (data.link_lines || []).forEach((line) => links.append(el("li", {
+    class: data.step && line.startsWith(`Step ${data.step},`) ? "viewing" : null,
+    text: line })));
   const removable = data.steps.filter((s) => s.removable).map((s) => s.step);
   $("explain-removable").textContent = removable.length
     ? `Not needed (the plan without them is still a plan): step ${removable.join(", ")}.`
@@ -632,6 +639,7 @@ function bind() {
   $("undo").addEventListener("click", () => move(() => post(`/api/sessions/${sid}/undo`, {}),
     $("history-messages")));
   $("explain-plan").addEventListener("click", () => explainStep(null));
+  $("cheaper").addEventListener("click", () => askText("why not a cheaper plan"));
   $("shorter").addEventListener("click", () => {
     const steps = state.current.plan.length;
     if (steps > 0) askText(`why not in ${steps - 1} ${steps - 1 === 1 ? "step" : "steps"}`);
