@@ -33,6 +33,7 @@ def test_every_engine_declares_its_features_and_the_contract_lists_it():
         "greedy",
         "best_state",
         "cheapest",
+        "cost_layers",
     }
     for name in ENGINES:
         module = importlib.import_module(f"ethasp.planning.engines.{name}")

@@ -100,6 +100,7 @@ def test_the_vocabulary_is_not_reserved_and_the_time_domain_is():
         ("pddl_schema_instance", 1),
         ("pddl_static_failure", 3),
         ("pddl_static", 1),
+        ("pddl_value", 2),
     }
 
 

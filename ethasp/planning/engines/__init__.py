@@ -49,6 +49,9 @@ The engines and the features they handle:
   explicit configurations: a cheapest plan, a lower bound on the cost of
   every plan, or "none" once every reachable configuration is expanded.
   Every feature.
+* ``cost_layers``: the same claims from layers of states by cost, with
+  diagrams (run in turns with ``cheapest``).  Conditional effects and
+  derived variables; no exogenous events.
 
 ``task`` holds what ``explicit``, ``greedy`` and ``cheapest`` search over: the explicit
 states of the search model (bit masks), its actions and derived variables,
