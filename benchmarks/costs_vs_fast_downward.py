@@ -26,15 +26,13 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import re
 import subprocess
 import sys
-import tempfile
 import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from fast_downward import fast_downward_driver
+from fast_downward import fast_downward_driver, run_fast_downward
 
 ROOT = Path(__file__).resolve().parent.parent
 DATA = ROOT / "tests" / "data" / "ipc-costs"
@@ -93,31 +91,9 @@ def run_ethasp(instance: Instance, time_limit: float) -> Run:
     return Run(data.get("cost"), seconds, how, len(data["plan"]))
 
 
-def run_fast_downward(driver: Path, instance: Instance, time_limit: float) -> Run:
-    with tempfile.TemporaryDirectory() as work:
-        plan_file = Path(work) / "plan"
-        command = [
-            sys.executable,
-            str(driver),
-            "--plan-file",
-            str(plan_file),
-            str(instance.domain),
-            str(instance.problem),
-            "--search",
-            "astar(lmcut())",
-        ]
-        start = time.perf_counter()
-        try:
-            subprocess.run(command, capture_output=True, text=True, cwd=work, timeout=time_limit)
-        except subprocess.TimeoutExpired:
-            return Run(None, time.perf_counter() - start, "time limit")
-        seconds = time.perf_counter() - start
-        if not plan_file.is_file():
-            return Run(None, seconds, "no plan")
-        text = plan_file.read_text()
-        cost = re.search(r"; cost = (\d+)", text)
-        steps = [line for line in text.splitlines() if line.strip() and not line.startswith(";")]
-        return Run(int(cost.group(1)) if cost else None, seconds, "", len(steps))
+def fast_downward(driver: Path, instance: Instance, time_limit: float) -> Run:
+    run = run_fast_downward(driver, instance.domain, instance.problem, time_limit)
+    return Run(run.cost, run.seconds, run.note, len(run.steps) if run.steps is not None else None)
 
 
 def main() -> int:
@@ -145,7 +121,7 @@ def main() -> int:
     solved = agreed = differ = 0
     for instance in instances(args.folder, problems):
         ours = run_ethasp(instance, args.time_limit)
-        theirs = run_fast_downward(driver, instance, args.time_limit) if driver else None
+        theirs = fast_downward(driver, instance, args.time_limit) if driver else None
         same = "-"
         if ours.cost is not None:
             solved += 1

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import os
+import subprocess
+import sys
 from pathlib import Path
 
 import clingo
@@ -13,6 +15,19 @@ ENCODINGS = ROOT / "encodings"
 MODELS = ROOT / "asp"
 
 os.environ.setdefault("HYPOTHESIS_PROFILE", "ci")
+
+
+def ethasp_process(*args: str, cwd: Path = ROOT) -> subprocess.CompletedProcess:
+    """``python -m ethasp.interfaces.cli ARGS`` as a process, run from ``cwd``
+    with the checkout's ethasp, its output captured as text."""
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    return subprocess.run(
+        [sys.executable, "-m", "ethasp.interfaces.cli", *args],
+        capture_output=True,
+        text=True,
+        cwd=cwd,
+        env=env,
+    )
 
 
 def answer_sets(files, program: str = "", arguments=("0",)) -> list[set[str]]:

@@ -8,12 +8,10 @@ test_cheapest.py."""
 from __future__ import annotations
 
 import json
-import os
-import subprocess
-import sys
 
 import pytest
-from conftest import MODELS, ROOT, answer_sets
+from conftest import MODELS, answer_sets
+from conftest import ethasp_process as ethasp
 
 import ethasp.planning.cost_search as cost_search
 from ethasp import InputError, Model, Plan, find_plan, plan_with_principles, validate
@@ -40,17 +38,6 @@ pre(bus,waited,true). eff(bus,town,true). eff(bus,stop,false).
 goal(town,true).
 cost(taxi,5). cost(bus,1). cost(go_to_stop,0). cost(wait,0).
 """
-
-
-def ethasp(*args: str, cwd=ROOT) -> subprocess.CompletedProcess:
-    env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    return subprocess.run(
-        [sys.executable, "-m", "ethasp.interfaces.cli", *args],
-        capture_output=True,
-        text=True,
-        cwd=cwd,
-        env=env,
-    )
 
 
 # -- the vocabulary --------------------------------------------------------------------

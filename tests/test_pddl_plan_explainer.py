@@ -13,13 +13,10 @@ for it; the others are worked out from the definitions (see the comments).
 from __future__ import annotations
 
 import json
-import os
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
-from conftest import ROOT
+from conftest import ethasp_process as ethasp
 
 from ethasp import InputError, Model, Plan
 from ethasp.questions.steps import explain_steps
@@ -150,17 +147,6 @@ def test_passing_links_with_an_undeclared_constant_and_a_negative_goal(tmp_path)
     e_links, d_links = links(model, "(Squeeze) (Apologise)")
     assert d_links == [("init", "at(spot)", False, 1), (1, "offended", True, 2)]
     assert e_links == [(1, "at(spot)", True, "goal"), (2, "offended", False, "goal")]
-
-
-def ethasp(*args: str, cwd: Path) -> subprocess.CompletedProcess:
-    env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    return subprocess.run(
-        [sys.executable, "-m", "ethasp.interfaces.cli", *args],
-        capture_output=True,
-        text=True,
-        cwd=cwd,
-        env=env,
-    )
 
 
 def test_one_warning_line_and_the_links_in_json(tmp_path):

@@ -39,7 +39,6 @@ from __future__ import annotations
 import functools
 from dataclasses import replace
 
-from ethasp.errors import InputError
 from ethasp.planning.budget import Budget
 from ethasp.planning.driver.planner import Planner, Setting
 from ethasp.planning.engines.layers import Status, can_fork
@@ -49,13 +48,12 @@ from ethasp.planning.search_base import (
     FOUND,
     NONE,
     SearchResult,
-    before_search,
     checked,
     checkpoints,
-    impossible_constraint,
     one_plan_wanted,
     plans_of,
     searched,
+    settled_before,
     too_long,
 )
 
@@ -134,19 +132,9 @@ def cheapest(
     arguments are those of :func:`ethasp.planning.search.shortest` (see the
     module docstring).  ``below``: only plans that cost less than this
     (``none`` is then the proof that no plan costs less)."""
-    if max_horizon < 0:
-        raise InputError("the maximal horizon must be at least 0")
-    if budget.expired() or not planner.prepare(budget):
-        return SearchResult(BOUNDED, horizon=start, proof=before_search(budget, planner))
-    if setting.goal and planner.is_fact("unreachable_goal"):
-        return SearchResult(
-            NONE, horizon=0, proof="the goal is unreachable even ignoring delete effects"
-        )
-    impossible = impossible_constraint(planner, setting)
-    if impossible:
-        return SearchResult(NONE, horizon=0, proof=impossible)
-    if longest is not None and start > longest:
-        return SearchResult(NONE, horizon=start, proof=too_long(longest, start_proof))
+    settled = settled_before(planner, setting, budget, max_horizon, start, start_proof, longest)
+    if settled is not None:
+        return settled
     plain = not setting.constraints
     engine = _Engine(planner, setting, budget, read_plan=plain)
     setting = replace(

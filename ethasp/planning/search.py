@@ -35,6 +35,7 @@ from ethasp.planning.search_base import (
     NONE,
     SearchResult,
     plans_of,
+    settled_before,
 )
 from ethasp.planning.search_base import before_search as _before
 from ethasp.planning.search_base import checked as _checked
@@ -355,19 +356,9 @@ def shortest(
         )
     if below is not None:
         raise InputError("a bound on the cost of plans needs a model with action costs")
-    if max_horizon < 0:
-        raise InputError("the maximal horizon must be at least 0")
-    if budget.expired() or not planner.prepare(budget):
-        return SearchResult(BOUNDED, horizon=start, proof=_before(budget, planner))
-    if setting.goal and planner.is_fact("unreachable_goal"):
-        return SearchResult(
-            NONE, horizon=0, proof="the goal is unreachable even ignoring delete effects"
-        )
-    impossible = _impossible(planner, setting)
-    if impossible:
-        return SearchResult(NONE, horizon=0, proof=impossible)
-    if longest is not None and start > longest:
-        return SearchResult(NONE, horizon=start, proof=_too_long(longest, start_proof))
+    settled = settled_before(planner, setting, budget, max_horizon, start, start_proof, longest)
+    if settled is not None:
+        return settled
     if start > max_horizon:
         return SearchResult(
             BOUNDED,

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from ethasp.errors import InputError
 from ethasp.planning.budget import Budget
 from ethasp.planning.driver.planner import Planner, Setting
 from ethasp.planning.plan import Plan, steps
@@ -126,3 +127,33 @@ def too_long(longest: int, why: str) -> str:
         f"every plan has more than {steps(longest)} ({why}), and the question allows at "
         f"most {steps(longest)}"
     )
+
+
+def settled_before(
+    planner: Planner,
+    setting: Setting,
+    budget: Budget,
+    max_horizon: int,
+    start: int,
+    start_proof: str,
+    longest: int | None,
+) -> SearchResult | None:
+    """What a search for a best plan (shortest, cheapest) answers before it
+    solves anything, if anything: the budget spent before it began, a goal
+    that relaxed reachability excludes, a question constraint that no plan can
+    meet, a lower bound beyond the most steps the question allows; else
+    None.  (InputError for a negative maximal horizon.)"""
+    if max_horizon < 0:
+        raise InputError("the maximal horizon must be at least 0")
+    if budget.expired() or not planner.prepare(budget):
+        return SearchResult(BOUNDED, horizon=start, proof=before_search(budget, planner))
+    if setting.goal and planner.is_fact("unreachable_goal"):
+        return SearchResult(
+            NONE, horizon=0, proof="the goal is unreachable even ignoring delete effects"
+        )
+    impossible = impossible_constraint(planner, setting)
+    if impossible:
+        return SearchResult(NONE, horizon=0, proof=impossible)
+    if longest is not None and start > longest:
+        return SearchResult(NONE, horizon=start, proof=too_long(longest, start_proof))
+    return None

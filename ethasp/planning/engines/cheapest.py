@@ -43,7 +43,7 @@ from ethasp.planning.budget import Budget
 from ethasp.planning.engines import ALL_FEATURES
 from ethasp.planning.engines.explicit import Events
 from ethasp.planning.engines.layers import Atoms, Layers, _import_diagrams, search_model
-from ethasp.planning.engines.task import Task
+from ethasp.planning.engines.task import Task, path
 
 # The model features this engine handles (ethasp.planning.engines).
 FEATURES = ALL_FEATURES
@@ -106,7 +106,7 @@ def cheapest_plan(
         state, time = divmod(configuration, span)
         final = events.finish((state, time)) if last else state
         if task.is_goal(task.full(final) if derived else final):
-            yield {"plan": tuple(_path(task, parents, configuration)), "cost": cost}
+            yield {"plan": tuple(path(task, parents, configuration)), "cost": cost}
             return
         if len(closed) % CHECK_EVERY == 0:
             if budget is not None and budget.expired():
@@ -157,14 +157,6 @@ def race(searches: list[Iterator[dict]], publish) -> None:
                 bounds[number] = changes["cost_bound"]
                 publish(cost_bound=max(bounds.values()))
     publish(stopped="; ".join(stopped) or "stopped")
-
-
-def _path(task: Task, parents: dict, configuration) -> list[clingo.Symbol]:
-    actions = []
-    while parents[configuration] is not None:
-        configuration, number = parents[configuration]
-        actions.append(task.steps[number].name)
-    return actions[::-1]
 
 
 class Cheapest(Layers):
