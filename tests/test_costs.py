@@ -10,8 +10,7 @@ from __future__ import annotations
 import json
 
 import pytest
-from conftest import MODELS, answer_sets
-from conftest import ethasp_process as ethasp
+from conftest import MODELS, answer_sets, ethasp_process
 
 import ethasp.planning.cost_search as cost_search
 from ethasp import InputError, Model, Plan, find_plan, plan_with_principles, validate
@@ -137,7 +136,7 @@ def test_a_horizon_too_small_to_prove_is_bounded_with_the_plan_found(solver_alon
 def test_the_bounded_text_on_the_command_line(tmp_path):
     path = tmp_path / "town.lp"
     path.write_text(TOWN + "cost(walk1,2). cost(walk2,2). cost(walk3,2).\n")
-    run = ethasp("plan", str(path), "--max-horizon", "1")
+    run = ethasp_process("plan", str(path), "--max-horizon", "1")
     assert run.returncode == 0, run.stderr
     first = run.stdout.splitlines()[0]
     # Uniform-cost search may prove the bus plan before the horizon ends the search.
@@ -232,31 +231,31 @@ def test_why_not_a_cheaper_plan_needs_costs_and_a_plan_that_costs():
 
 
 def test_the_command_line_shows_costs():
-    run = ethasp("plan", "errand")
+    run = ethasp_process("plan", "errand")
     assert run.stdout == "plan of 2 steps, cost 2: cross_lawn hand_over\n", run.stderr
-    run = ethasp("plan", "errand", "--all")
+    run = ethasp_process("plan", "errand", "--all")
     assert run.stdout.splitlines()[0] == "1 cheapest plans of 2 steps, cost 2:"
-    run = ethasp("plan", "errand", "--principle", "do-no-harm", "--json")
+    run = ethasp_process("plan", "errand", "--principle", "do-no-harm", "--json")
     data = json.loads(run.stdout)
     assert data["cost"] == 5 and data["principle_cost"]["cost"] == 3
-    run = ethasp("plan", "errand", "--principle", "deontology")
+    run = ethasp_process("plan", "errand", "--principle", "deontology")
     assert run.stdout.splitlines()[0].startswith(
         "plan of 3 steps, cost 5, permissible under deontology:"
     )
     assert run.stdout.splitlines()[-1].startswith("what deontology costs: 3")
-    run = ethasp("validate", "errand", "--plan", "drive hand_over")
+    run = ethasp_process("validate", "errand", "--plan", "drive hand_over")
     assert run.stdout.startswith("valid plan of 2 steps, cost 9;")
-    run = ethasp("explain", "errand", "--plan", "drive hand_over", "--json")
+    run = ethasp_process("explain", "errand", "--plan", "drive hand_over", "--json")
     assert json.loads(run.stdout)["cost"] == 9
-    run = ethasp("explain", "errand", "--plan", "drive hand_over")
+    run = ethasp_process("explain", "errand", "--plan", "drive hand_over")
     assert run.stdout.startswith("plan of 2 steps, cost 9: drive hand_over")
-    run = ethasp("plan", "errand", "--satisficing")
+    run = ethasp_process("plan", "errand", "--satisficing")
     assert "(not proven cheapest)" in run.stdout or "cost 2:" in run.stdout
 
 
 def test_pictures_show_costs(tmp_path):
     picture = tmp_path / "errand.svg"
-    run = ethasp("plan", "errand", "--svg", str(picture))
+    run = ethasp_process("plan", "errand", "--svg", str(picture))
     assert run.returncode == 0, run.stderr
     svg = picture.read_text()
     assert "step 1 \u00b7 cost 1" in svg and "cost 2</text>" in svg

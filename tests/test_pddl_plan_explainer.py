@@ -16,7 +16,7 @@ import json
 from pathlib import Path
 
 import pytest
-from conftest import ethasp_process as ethasp
+from conftest import ethasp_process
 
 from ethasp import InputError, Model, Plan
 from ethasp.questions.steps import explain_steps
@@ -152,7 +152,7 @@ def test_passing_links_with_an_undeclared_constant_and_a_negative_goal(tmp_path)
 def test_one_warning_line_and_the_links_in_json(tmp_path):
     (tmp_path / "d.pddl").write_text(PASSING)
     (tmp_path / "p.pddl").write_text(PASSING_PROBLEM)
-    run = ethasp(
+    run = ethasp_process(
         "explain", "d.pddl", "p.pddl", "--plan", "(Squeeze);(Apologise)", "--json", cwd=tmp_path
     )
     assert run.returncode == 0, run.stderr
