@@ -22,6 +22,7 @@ Commands:
   why A | why not A | why A rather than B | why A before B | why A after B
   why A at T | why not A at T | why A within T1..T2 | why not A within T1..T2
   why F | why not F | why F at T | why not F at T | why not in N steps
+  why not a cheaper plan (a model with action costs)
                      ask about the current plan (A, B actions, F a state
                      variable, T, N step numbers; 'why action X' or 'why
                      fact X' for a name that is both); the question's

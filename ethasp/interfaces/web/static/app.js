@@ -556,7 +556,7 @@ async function ask() {
   if (!text) {
     place($("ask-messages"));
     showNote(null);
-    showError("question: expected 'why ...' (forms: why A | why not A | why A rather than B | why A before B | why A after B | why [not] A at T | why [not] A within T1..T2 | why [not] F | why [not] F at T | why not in N steps | why step T)");
+    showError("question: expected 'why ...' (forms: why A | why not A | why A rather than B | why A before B | why A after B | why [not] A at T | why [not] A within T1..T2 | why [not] F | why [not] F at T | why not in N steps | why not a cheaper plan | why step T)");
     return;
   }
   const step = /^why\s+step\s+(\S+?)\s*\??$/i.exec(text);
