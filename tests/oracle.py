@@ -216,6 +216,33 @@ class RandomModel:
         """The least cost of a plan (Dijkstra over configurations), or None."""
         return self.cheapest_permissible_cost(())
 
+    def least_shortest_plan(self) -> list[str] | None:
+        """The least shortest plan: plans of the shortest length compared step
+        by step, step 1 first, by their actions in clingo's order of terms;
+        None if there is no plan."""
+        import clingo
+
+        length = self.shortest_plan_length()
+        if length is None:
+            return None
+        order = sorted(self.actions, key=clingo.parse_term)
+        dead: set[tuple[tuple[frozenset, int], int]] = set()
+
+        def search(config: tuple[frozenset, int], depth: int) -> list[str] | None:
+            if depth == length:
+                return [] if self.is_goal(self.finish(config)) else None
+            if (config, depth) in dead:
+                return None
+            for action in order:
+                if self.applicable(config[0], action):
+                    rest = search(self.successor(config, action), depth + 1)
+                    if rest is not None:
+                        return [action, *rest]
+            dead.add((config, depth))
+            return None
+
+        return search((self.init, 0), 0)
+
     def state_utility(self, state: frozenset) -> int:
         return sum(self.fact_utility.get((var, var in state), 0) for var in self.variables)
 

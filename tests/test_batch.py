@@ -90,7 +90,7 @@ def test_manifests_give_cases_their_plans_principles_and_questions(tmp_path):
     (tmp_path / "cases.csv").write_text(
         "name,files,plan,principles,questions\n"
         f'pulled,{MODELS / "trolley.lp"},pull,"deontology, utilitarianism",\n'
-        f"asked,{MODELS / 'trolley.lp'},,deontology,why refrain\n"
+        f"asked,{MODELS / 'trolley.lp'},,deontology,why pull\n"
     )
     (tmp_path / "cases.yaml").write_text(
         yaml.safe_dump(
@@ -101,14 +101,14 @@ def test_manifests_give_cases_their_plans_principles_and_questions(tmp_path):
     assert csv_cases[0] == Case(
         (str(MODELS / "trolley.lp"),), "pulled", "pull", ("deontology", "utilitarianism")
     )
-    assert csv_cases[1].questions == ("why refrain",)
+    assert csv_cases[1].questions == ("why pull",)
     lines = run([tmp_path / "cases.csv", tmp_path / "cases.yaml"], workers=2)
     pulled = [line for line in lines if line["case"] == "pulled"]
     assert {line["principle"] for line in pulled} == {"deontology", "utilitarianism"}
     assert all(line["task"] == "judge" and line["plan"] == ["pull"] for line in pulled)
     asked = [line for line in lines if line["case"] == "asked"]
     assert len(asked) == 1 and asked[0]["task"] == "ask"
-    assert asked[0]["question"] == "why refrain" and asked[0]["contrast_plan"] is not None
+    assert asked[0]["question"] == "why pull" and asked[0]["contrast_plan"] is not None
     situation = [line for line in lines if line["case"].endswith("trolley.yaml")]
     assert sorted(line["principle"] for line in situation) == sorted(HERA)
 
@@ -183,8 +183,15 @@ def test_resume_computes_only_the_missing_lines(tmp_path):
 def test_bad_cases_get_their_line_and_the_batch_goes_on(tmp_path):
     pulled = Case((str(MODELS / "trolley.lp"),), "pulled", plan="pull")
     cases = [FIXTURES / "syntax.lp", FIXTURES / "script.lp", MODELS / "trolley.lp", pulled]
+    # (A limit over before any search starts; the grace lets the cases load.)
     lines = run(
-        cases, ["paper"], workers=2, time_limit=1e-6, task="judge", output=tmp_path / "out.jsonl"
+        cases,
+        ["paper"],
+        workers=2,
+        time_limit=1e-6,
+        grace=30.0,
+        task="judge",
+        output=tmp_path / "out.jsonl",
     )
     by_case = {}
     for line in lines:
@@ -218,7 +225,7 @@ def test_a_case_stuck_in_grounding_loses_its_worker_not_the_batch(tmp_path):
         grace=1.0,
     )
     [line] = [line for line in lines if line["case"] == str(stuck)]
-    assert "no answer within the time limit of 0.2 s" in line["error"]
+    assert "no answer within the limits: the time limit of 0.2 s was reached" in line["error"]
     assert [line["status"] for line in lines if line["case"] != str(stuck)] == ["proven"]
 
 

@@ -56,7 +56,7 @@ def test_a_model_from_standard_input(tmp_path):
     both = ethasp(
         "plan", str(tmp_path / "rules.lp"), "-", "--principle", "deontology", stdin=labels
     )
-    assert both.returncode == 0 and "The man can refrain from action." in both.stdout, both.stderr
+    assert both.returncode == 0 and "The man can pull the lever." in both.stdout, both.stderr
 
 
 def test_bad_models_from_standard_input_are_one_line():
@@ -82,7 +82,7 @@ def test_svg_to_standard_output_and_the_answer_to_standard_error():
     assert "deontology: permissible (proven)" in run.stderr
     as_json = ethasp("plan", "trolley", "--svg", "-", "--json")
     assert as_json.stdout.startswith("<svg ")
-    assert json.loads(as_json.stderr)["plan"] == ["refrain"]
+    assert json.loads(as_json.stderr)["plan"] == ["pull"]  # the least shortest plan
     none = ethasp(
         "plan",
         "-",

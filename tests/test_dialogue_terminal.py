@@ -176,14 +176,14 @@ def test_tab_completion_and_a_history_across_runs(tmp_path):
     env = {"ETHASP_HISTORY": str(history)}
     first = Terminal("trolley", "--save", "-", env=env)
     first.wait_for("ethasp> ")
-    mark = first.type("why re\trather than pu\t\n")  # completion adds the spaces
-    first.wait_for("Alternatively, the man could pull the lever.", mark)
+    mark = first.type("why pu\trather than re\t\n")  # completion adds the spaces
+    first.wait_for("Alternatively, the man could refrain from action.", mark)
     mark = first.type("princ\tutil\t\n")
     first.wait_for("next contrasts must satisfy: utilitarianism", mark)
     first.type("quit\n")
     assert first.end() == 0
     assert history.read_text().splitlines() == [
-        "why refrain rather than pull ",
+        "why pull rather than refrain ",
         "principle utilitarianism ",
         "quit",
     ]
@@ -192,7 +192,7 @@ def test_tab_completion_and_a_history_across_runs(tmp_path):
     second = Terminal("trolley", "--save", "-", env=env)
     second.wait_for("ethasp> ")
     mark = second.type("\x1b[A\x1b[A\x1b[A\n")
-    second.wait_for("Alternatively, the man could pull the lever.", mark)
+    second.wait_for("Alternatively, the man could refrain from action.", mark)
     second.type("quit\n")
     assert second.end() == 0
 
@@ -202,7 +202,7 @@ def test_a_history_that_cannot_be_kept_is_no_error(tmp_path):
     blocker.write_text("not a folder")
     terminal = Terminal("trolley", "--save", "-", env={"ETHASP_HISTORY": str(blocker / "history")})
     terminal.wait_for("ethasp> ")
-    mark = terminal.type("why refrain\n")
+    mark = terminal.type("why pull\n")
     terminal.wait_for("contrast plan", mark)
     terminal.type("quit\n")
     assert terminal.end() == 0

@@ -189,3 +189,51 @@ def test_a_command_stuck_in_a_grounding_answers_bounded_at_its_time_limit(tmp_pa
         "status": "bounded",
         "proof": "the time limit of 2 s was reached before an answer was found",
     }
+
+
+DRIVER = """
+import sys, time
+import ethasp.reasons.reasons as reasons
+judge = reasons.judge
+
+def slow_reasons(*args, reasons_limit=0, **kwargs):
+    if reasons_limit:
+        time.sleep(60)  # as where clingo cannot be stopped
+    return judge(*args, reasons_limit=reasons_limit, **kwargs)
+
+reasons.judge = slow_reasons
+from ethasp.interfaces.cli import main
+sys.exit(main(sys.argv[1:], worker=True))
+"""
+
+
+@pytest.mark.slow
+def test_a_command_ended_at_its_time_limit_answers_with_what_it_found():
+    """The verdicts are found, their reasons are not: the answer is the
+    verdicts, bounded, in words and in JSON."""
+    arguments = ["judge", "trolley", "--plan", "pull", "--principle", "do-no-harm"]
+    began = time.monotonic()
+    words = subprocess.run(
+        [sys.executable, "-c", DRIVER, *arguments, "--time-limit", "3"],
+        capture_output=True,
+        text=True,
+        timeout=HANG,
+    )
+    assert time.monotonic() - began < 4.0 + STARTUP
+    assert words.returncode == 0, words.stderr
+    assert "do-no-harm: impermissible (proven)" in words.stdout
+    assert words.stdout.rstrip().endswith(
+        "bounded: the time limit of 3 s was reached before the reasons were found"
+    )
+    data = json.loads(
+        subprocess.run(
+            [sys.executable, "-c", DRIVER, *arguments, "--time-limit", "3", "--json"],
+            capture_output=True,
+            text=True,
+            timeout=HANG,
+        ).stdout
+    )
+    assert data["bounded"] == "the time limit of 3 s was reached before the reasons were found"
+    assert [(j["principle"], j["permissible"]) for j in data["judgements"]] == [
+        ("do-no-harm", False)
+    ]

@@ -77,10 +77,10 @@ def test_a_cancelled_budget_answers_bounded():
     assert result.status == "bounded" and "cancelled" in result.proof
 
 
-def test_a_budget_share_ends_with_its_parent():
+def test_a_budget_until_a_condition_ends_with_its_parent():
     parent = Budget(100)
-    part = parent.share(50)
-    assert not part.expired() and part.remaining() <= 50
+    part = parent.until(lambda: False)
+    assert not part.expired() and part.remaining() <= 100
     parent.cancel()
     assert part.expired() and part.why_stopped() == "the search was cancelled"
     with pytest.raises(ValueError):

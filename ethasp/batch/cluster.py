@@ -9,13 +9,16 @@ private temporary folder, loads the model from there and deletes them.
 Messages name the files as the batch's machine knows them, so the lines are
 the same as those of the local pool.
 
-Dask reschedules the tasks of a worker that is lost (its machine ends, its
-process is killed) on the workers left: no case is lost.  A task whose
-workers die again and again (the scheduler's
+Each Dask worker computes its cases in a worker process of its own
+(:func:`ethasp.batch.task.run_limited`: the mechanism of the local pool and
+of the command line), which holds the case's time and memory limits and is
+ended at them.  Dask reschedules the tasks of a worker that is lost (its
+machine ends, its process is killed) on the workers left: no case is lost.
+A task whose workers die again and again (the scheduler's
 ``distributed.scheduler.allowed-failures``, 3 by default) becomes an error
-line.  A case stuck where clingo cannot be interrupted keeps its worker's
-thread busy; past ``2 x time limit + grace`` the batch records it as an
-error line and goes on without it (restart that worker to free the thread).
+line.  Should a case still run past ``2 x time limit + grace`` (a Dask
+worker that does not answer), the batch records it as an error line and
+goes on without it.
 """
 
 from __future__ import annotations
@@ -27,10 +30,12 @@ from collections.abc import Iterable, Iterator
 from dataclasses import replace
 
 import ethasp.batch.task as task
-from ethasp.batch.pool import OVERRUN_GRACE
 from ethasp.batch.task import Settings, Work, error_line
 from ethasp.errors import InputError
 
+# Seconds past twice the time limit after which a case is given up (its Dask
+# worker ends it at the limit; this is for a worker that does not answer).
+OVERRUN_GRACE = 10.0
 # Seconds to wait for the scheduler when connecting.
 CONNECT_TIMEOUT = 20
 
@@ -48,11 +53,18 @@ def _distributed():
 class DaskCluster:
     """The workers of a running Dask scheduler (see the module docstring)."""
 
-    def __init__(self, address: str, settings: Settings, grace: float = OVERRUN_GRACE):
+    def __init__(
+        self,
+        address: str,
+        settings: Settings,
+        grace: float = OVERRUN_GRACE,
+        memory_limit: float | None = None,
+    ):
         distributed = _distributed()
         self.address = address
         self.settings = settings
         self.grace = grace
+        self.memory_limit = memory_limit
         try:
             self.client = distributed.Client(address, timeout=CONNECT_TIMEOUT, set_as_default=False)
         except (OSError, TimeoutError, ValueError) as error:
@@ -81,7 +93,9 @@ class DaskCluster:
             inputs = read_inputs(work.case)
             shipped = replace(work, contents={**inputs.files, **inputs.included})
             key = f"ethasp-case-{uuid.uuid4().hex}"
-            future = self.client.submit(task.run, shipped, self.settings, key=key, pure=False)
+            future = self.client.submit(
+                task.run_limited, shipped, self.settings, self.memory_limit, key=key, pure=False
+            )
             futures[future] = work
         limit = self.settings.time_limit
         overrun = None if not limit else 2 * limit + self.grace

@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING
 
 from ethasp.batch.cases import Case, discover, read_inputs
 from ethasp.batch.output import Output, line_hash
-from ethasp.batch.pool import OVERRUN_GRACE, LocalPool, default_workers
+from ethasp.batch.pool import LocalPool, default_workers
 from ethasp.batch.task import ASK, CASE, TASKS, Key, Settings, Work, version
 from ethasp.errors import InputError
 
@@ -57,9 +57,11 @@ class Batch:
         output: Output | None,
         workers: int,
         scheduler: str | None,
-        grace: float,
+        grace: float | None,
+        memory_limit: float | None = None,
     ):
         self.cases = cases
+        self.memory_limit = memory_limit
         self.settings = settings
         self.output = output
         self.workers = workers
@@ -118,8 +120,12 @@ class Batch:
         if self.scheduler is not None:
             from ethasp.batch.cluster import DaskCluster
 
-            return DaskCluster(self.scheduler, self.settings, self.grace)
-        return LocalPool(self.workers, self.settings, self.grace)
+            if self.grace is None:
+                return DaskCluster(self.scheduler, self.settings, memory_limit=self.memory_limit)
+            return DaskCluster(self.scheduler, self.settings, self.grace, self.memory_limit)
+        if self.grace is None:
+            return LocalPool(self.workers, self.settings, memory_limit=self.memory_limit)
+        return LocalPool(self.workers, self.settings, self.memory_limit, self.grace)
 
     def start(self) -> LocalPool | DaskCluster:
         """Connect to the cluster (or prepare the local pool) before iterating;
@@ -206,8 +212,9 @@ def batch(
     allow_scripts: bool = False,
     glob: str | None = None,
     retry_errors: bool = False,
-    grace: float = OVERRUN_GRACE,
+    grace: float | None = None,
     settings: Settings | None = None,
+    memory_limit: float | None = None,
 ) -> Batch:
     """Compute many cases at once; iterate the result to get each line as it finishes.
 
@@ -220,8 +227,13 @@ def batch(
     resumed (lines already there are not computed again; ``retry_errors``
     computes the error lines again).  ``workers``: local worker processes
     (default: every core); ``scheduler``: the address of a Dask scheduler
-    instead.  ``time_limit``: seconds per case (None: none); a case still
-    running ``2 x time_limit + grace`` seconds is stopped as an error.
+    instead.  ``time_limit``: seconds per case (None: none), ``memory_limit``:
+    gigabytes per case (None: none), held as by the command line: the
+    searches stop at them and answer ``bounded``, and a case stuck where
+    clingo cannot be stopped is ended there as an error line
+    (:mod:`ethasp.batch.pool`; ``grace``: the seconds past the time limit
+    at which a local worker is ended, or past twice the time limit at which
+    the cluster gives up a case whose Dask worker does not answer).
 
     Raises InputError for bad options or inputs (before anything runs).
     """
@@ -267,7 +279,15 @@ def batch(
         raise InputError("no case given")
     results = Output(output, retry_errors) if output is not None else None
     try:
-        return Batch(found, settings, results, workers or default_workers(), scheduler, grace)
+        return Batch(
+            found,
+            settings,
+            results,
+            workers or default_workers(),
+            scheduler,
+            grace,
+            memory_limit or None,
+        )
     except BaseException:
         if results is not None:
             results.close()

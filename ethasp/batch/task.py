@@ -30,11 +30,13 @@ import os
 import shutil
 import tempfile
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from ethasp.batch.cases import Case
 from ethasp.errors import InputError
+from ethasp.execution.limits import Limits
+from ethasp.execution.worker import DIED, DONE, Outcome, Worker
 
 JUDGE, PLAN, ASK = "judge", "plan", "ask"
 TASKS = (JUDGE, PLAN, ASK)
@@ -147,6 +149,51 @@ def warm() -> None:
 
     available_principles()
     version()
+
+
+def case_lines(work: Work, outcome: Outcome) -> list[dict] | None:
+    """The lines of a case from how its call in a worker ended: None where it
+    should be retried (its worker died on a first attempt)."""
+    if outcome.status == DONE:
+        return outcome.value
+    if outcome.status == DIED and work.attempt < 2:
+        return None
+    if outcome.status == DIED:
+        cause = outcome.message.removeprefix("the worker process ended ").strip("()")
+        message = (
+            f"its worker process ended while computing it, twice ({cause}): out of "
+            "memory, or a crash"
+        )
+    elif outcome.limited:
+        message = (
+            f"no answer within the limits: {outcome.message} while clingo was grounding "
+            "or solving, where it cannot be stopped (does the model's grounding end?)"
+        )
+    else:
+        message = f"internal error: {outcome.message.strip().splitlines()[-1]} (please report it)"
+    line = error_line(work.case, message)
+    line["seconds"] = round(outcome.seconds, 6)
+    return [line]
+
+
+_worker: Worker | None = None
+
+
+def run_limited(work: Work, settings: Settings, memory_limit: float | None = None) -> list[dict]:
+    """The lines of one case computed in a worker process of this process
+    under the case's limits (how a Dask worker computes a case: the same
+    mechanism as the local pool's), retried once on a fresh worker if its
+    worker dies."""
+    global _worker
+    if _worker is None:
+        _worker = Worker(warm, "ethasp-batch-worker", own_tree=True)
+    while True:
+        _worker.ready()  # a case's limits count the case, not the warm-up
+        limits = Limits.of(settings.time_limit, memory_limit)
+        lines = case_lines(work, _worker.call(run, work, settings, limits=limits))
+        if lines is not None:
+            return lines
+        work = replace(work, attempt=work.attempt + 1)
 
 
 def run(work: Work, settings: Settings) -> list[dict]:

@@ -44,15 +44,21 @@ PAGE = os.sysconf("SC_PAGE_SIZE") if hasattr(os, "sysconf") else 4096
 class Limits:
     """A time limit (seconds) and a memory limit (bytes) of some work, measured
     from ``started`` (a :func:`time.monotonic` reading, shared by every
-    process of this machine); None: no limit."""
+    process of this machine); None: no limit.  The work's processes are
+    ended ``grace`` seconds after the time limit."""
 
     time: float | None = None
     memory: int | None = None
     started: float = 0.0
+    grace: float = GRACE
 
     @classmethod
     def of(
-        cls, seconds: float | None, gigabytes: float | None, started: float | None = None
+        cls,
+        seconds: float | None,
+        gigabytes: float | None,
+        started: float | None = None,
+        grace: float = GRACE,
     ) -> Limits:
         """Limits from the command line's units, starting at ``started`` (a
         :func:`time.monotonic` reading; None: now)."""
@@ -60,11 +66,12 @@ class Limits:
             seconds if seconds else None,
             int(gigabytes * GB) if gigabytes else None,
             time.monotonic() if started is None else started,
+            grace,
         )
 
     def restarted(self) -> Limits:
         """The same limits, from now."""
-        return Limits(self.time, self.memory, time.monotonic())
+        return Limits(self.time, self.memory, time.monotonic(), self.grace)
 
     def deadline(self) -> float | None:
         """When the work must have ended (before the grace)."""
@@ -79,7 +86,7 @@ class Limits:
 
     def hard_deadline(self) -> float | None:
         """When a front end ends the work's processes."""
-        return None if self.time is None else self.started + self.time + GRACE
+        return None if self.time is None else self.started + self.time + self.grace
 
     def remaining(self) -> float | None:
         """Seconds to the soft deadline (None: no limit; never below 0)."""

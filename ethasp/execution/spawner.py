@@ -9,24 +9,24 @@ are forked by a *spawner*, a small process forked early, while its parent
 still had one thread (:func:`start`, called by every worker process when it
 starts): it only ever forks, on request, and hands the new child's pipe back
 over a Unix socket.  A process that has no spawner of its own (a program
-that uses the Python API from a thread) gets its children from
-``multiprocessing``'s forkserver instead.
+that uses the Python API from a thread) starts them as new Python processes
+instead (fork and exec at once, safe with threads; slower to start).
 
 A child runs ``target(*args, out)``: it writes lines to ``out``, a text
 stream, and ends.  Each child is killed when its parent (the spawner, or the
-forkserver) ends, and the spawner when the process that started it ends.
+parent) ends, and the spawner when the process that started it ends.
 """
 
 from __future__ import annotations
 
 import contextlib
 import gc
-import multiprocessing
 import os
 import pickle
 import signal
 import socket
 import struct
+import subprocess
 import sys
 import threading
 from collections.abc import Callable, Iterator
@@ -34,9 +34,6 @@ from typing import Any
 
 from ethasp.execution import symbols  # noqa: F401 (symbols pickle as text)
 from ethasp.execution.limits import limit_data
-
-# Modules a forkserver imports before it forks children.
-PRELOAD = ["ethasp.planning.engines.layers"]
 
 
 def end_with_parent() -> None:
@@ -201,64 +198,62 @@ class Spawner:
         return Child(pid, lines(), end)
 
 
-def _forkserver_target(target: Callable, args: tuple, connection, memory: int | None) -> None:
-    end_with_parent()
+def child_main() -> None:
+    """A child started by :class:`SubprocessSpawner`: its target from standard
+    input, its lines to standard output; it ends when standard input closes
+    (its parent ended, or ended it)."""
+    source = sys.stdin.buffer
+    (size,) = struct.unpack("!Q", source.read(8))
+    target, args, memory = pickle.loads(source.read(size))
 
-    class Out:
-        def write(self, text: str) -> None:
-            connection.send_bytes(text.encode())
+    def watch() -> None:
+        source.read()  # until the parent closes it
+        os._exit(0)
 
-        def flush(self) -> None:
-            pass
+    threading.Thread(target=watch, name="ethasp-parent-watch", daemon=True).start()
+    out = sys.stdout
+    code = _run(target, args, out, memory)
+    out.flush()
+    os._exit(code)
 
-    sys.exit(_run(target, args, Out(), memory))
 
-
-class ForkserverSpawner:
-    """Children from ``multiprocessing``'s forkserver (or spawn), for a process
-    without a spawner of its own."""
-
-    def __init__(self):
-        methods = multiprocessing.get_all_start_methods()
-        if "forkserver" in methods:
-            self.context = multiprocessing.get_context("forkserver")
-            self.context.set_forkserver_preload(PRELOAD)
-        else:
-            self.context = multiprocessing.get_context("spawn")
+class SubprocessSpawner:
+    """Children as new Python processes (fork and exec at once: safe from a
+    process with threads), for a process without a spawner of its own."""
 
     def spawn(self, target: Callable, args: tuple, memory: int | None = None) -> Child:
-        mine, theirs = self.context.Pipe(duplex=False)
-        process = self.context.Process(
-            target=_forkserver_target, args=(target, args, theirs, memory), daemon=True
+        data = pickle.dumps((target, args, memory))
+        process = subprocess.Popen(
+            [sys.executable, "-c", "from ethasp.execution.spawner import child_main; child_main()"],
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            text=False,
+            # The child imports the target as this process would.
+            env={**os.environ, "PYTHONPATH": os.pathsep.join(p for p in sys.path if p)},
         )
-        process.start()
-        theirs.close()
+        process.stdin.write(struct.pack("!Q", len(data)) + data)
+        process.stdin.flush()
 
         def lines() -> Iterator[str]:
-            pending = ""
             try:
-                while True:
-                    try:
-                        pending += mine.recv_bytes().decode()
-                    except (EOFError, OSError):
-                        break
-                    *complete, pending = pending.split("\n")
-                    for line in complete:
-                        yield line + "\n"
-                if pending:
-                    yield pending
+                for line in process.stdout:
+                    yield line.decode()
             finally:
-                mine.close()
-                process.join(0)
+                process.stdout.close()
+                end()
 
         def end() -> None:
-            with contextlib.suppress(OSError, ValueError, AttributeError):
+            with contextlib.suppress(OSError, ValueError):
                 process.kill()
+            with contextlib.suppress(OSError, ValueError):
+                process.stdin.close()
+            with contextlib.suppress(OSError, subprocess.TimeoutExpired):
+                process.wait(1.0)
 
-        return Child(process.pid or 0, lines(), end)
+        return Child(process.pid, lines(), end)
 
 
-_spawner: Spawner | ForkserverSpawner | None = None
+_spawner: Spawner | SubprocessSpawner | None = None
 _lock = threading.Lock()
 
 
@@ -273,8 +268,8 @@ def start() -> None:
             _spawner = Spawner()
 
 
-def get() -> Spawner | ForkserverSpawner:
-    """This process's spawner (a forkserver where it started none)."""
+def get() -> Spawner | SubprocessSpawner:
+    """This process's spawner (new Python processes where it has none)."""
     global _spawner
     with _lock:
         owned = _spawner is not None and (
@@ -286,7 +281,7 @@ def get() -> Spawner | ForkserverSpawner:
         start()
     with _lock:
         if _spawner is None:
-            _spawner = ForkserverSpawner()
+            _spawner = SubprocessSpawner()
         return _spawner
 
 

@@ -50,8 +50,10 @@ from typing import Any
 
 from ethasp.errors import InputError
 from ethasp.execution import context as context_module
-from ethasp.execution import spawner
-from ethasp.execution import symbols  # noqa: F401 (symbols pickle as text)
+from ethasp.execution import (
+    spawner,
+    symbols,  # noqa: F401 (symbols pickle as text)
+)
 from ethasp.execution.limits import (
     HARD_MEMORY,
     POLL,
@@ -233,6 +235,7 @@ class Worker:
         self._connection = None
         self._process: multiprocessing.process.BaseProcess | None = None
         self._ready = False
+        self.exit_code: int | None = None  # of the last worker process that ended
         self._calls = 0
         self._lock = threading.Lock()  # one call at a time
 
@@ -243,12 +246,27 @@ class Worker:
         if self.pid is None:
             return False
         if self._process is not None:
-            return self._process.is_alive()
+            alive = self._process.is_alive()
+            if not alive:
+                self.exit_code = self._process.exitcode
+            return alive
         try:
-            ended, _ = os.waitpid(self.pid, os.WNOHANG)
+            ended, status = os.waitpid(self.pid, os.WNOHANG)
         except ChildProcessError:
             return False
+        if ended:
+            self.exit_code = os.waitstatus_to_exitcode(status)
         return ended == 0
+
+    def death(self) -> str:
+        """How the last worker process ended: a signal or an exit code."""
+        code = self.exit_code
+        if code is not None and code < 0:
+            try:
+                return f"killed by signal {signal.Signals(-code).name}"
+            except ValueError:
+                return f"killed by signal {-code}"
+        return f"exit code {code}"
 
     def start(self) -> None:
         """Start the worker process, unless it runs."""
@@ -282,6 +300,31 @@ class Worker:
         theirs.close()
         self._connection = mine
         self._ready = False
+
+    def ready(self, timeout: float | None = None) -> bool:
+        """Start the worker if it does not run, and wait until it is ready for
+        a call (its warm-up done); False if it is not within ``timeout``
+        seconds or ended.  A front end whose limits count the call only (a
+        batch's case), not the worker's start, waits for this first."""
+        with self._lock:
+            self.start()
+            end = None if timeout is None else time.monotonic() + timeout
+            while not self._ready:
+                wait = 0.25 if end is None else max(0.0, min(0.25, end - time.monotonic()))
+                try:
+                    if self._connection.poll(wait):
+                        kind, _ = self._receive()
+                        self._ready = kind == "ready" or self._ready
+                        continue
+                except (EOFError, OSError):
+                    self.kill()
+                    return False
+                if not self.alive:
+                    self.kill()
+                    return False
+                if end is not None and time.monotonic() >= end:
+                    return False
+            return True
 
     def _forget(self) -> None:
         if self._connection is not None:
@@ -381,7 +424,13 @@ class Worker:
                 try:
                     kind, value = self._receive()
                 except (EOFError, OSError):
-                    kind, value = DIED, None
+                    # The pipe closed: the worker is ending; how, its status says.
+                    end = time.monotonic() + 1.0
+                    while self.alive and time.monotonic() < end:
+                        time.sleep(0.005)
+                    cause = self.death() if not self.alive else "its pipe closed"
+                    self.kill()
+                    return self._ended(outcome, DIED, f"the worker process ended ({cause})", limits)
                 if kind == "ready":
                     self._ready = True
                 elif kind in handlers:

@@ -75,7 +75,6 @@ class Budget:
         self.on_progress = on_progress
         self._cancelled = threading.Event()
         self._reason: list[str] = []  # why it was cancelled, if a reason was given
-        self._share = False
         running = execution_context.current()
         if running is not None:
             self._cancelled = running.cancelled
@@ -86,19 +85,6 @@ class Budget:
                 self.time_limit = running.limits.time
             if self.on_progress is None:
                 self.on_progress = running.progress
-
-    def share(self, seconds: float) -> Budget:
-        """A part of this budget: at most ``seconds`` more, cancelled with it,
-        reporting to the same callback."""
-        part = Budget(None, self.on_progress)
-        part.started = self.started
-        part._cancelled = self._cancelled
-        part._reason = self._reason
-        end = time.monotonic() + seconds
-        part.deadline = end if self.deadline is None else min(end, self.deadline)
-        part.time_limit = self.time_limit
-        part._share = True
-        return part
 
     def until(self, condition: Callable[[], bool]) -> Budget:
         """This budget, also expired as soon as ``condition()`` holds (for a
@@ -139,8 +125,6 @@ class Budget:
         """Words for a search cut short by this budget."""
         if self.cancelled:
             return self._reason[0] if self._reason else "the search was cancelled"
-        if self._share:
-            return "its share of the time was used"
         if self.time_limit is None:
             return "the search was stopped"
         return f"the time limit of {self.time_limit:g} s was reached"
@@ -193,7 +177,6 @@ class _Until(Budget):
         self.time_limit = parent.time_limit
         self._cancelled = parent._cancelled
         self._reason = parent._reason
-        self._share = parent._share
         self.parent = parent
         self.condition = condition
 

@@ -40,22 +40,26 @@ import functools
 from dataclasses import replace
 
 from ethasp.planning.budget import Budget
-from ethasp.planning.driver.planner import Planner, Setting
+from ethasp.planning.driver.planner import GroundingStopped, Planner, Setting
 from ethasp.planning.engines.layers import Status, can_fork
 from ethasp.planning.plan import Plan, steps
 from ethasp.planning.search_base import (
     BOUNDED,
     FOUND,
     NONE,
+    SEARCHED,
     SearchResult,
     checked,
     checkpoints,
     one_plan_wanted,
     plans_of,
-    searched,
     settled_before,
     too_long,
 )
+
+# Least plans are found by the solver's heuristic only where its levels fit in
+# clingo's numbers (steps times usable actions), as in ethasp.planning.search.
+LEAST_LEVELS = 2**30
 
 # Whether uniform-cost search runs beside the solver (tests turn it off to
 # test the solver's proofs alone).
@@ -121,7 +125,6 @@ def cheapest(
     budget: Budget,
     max_horizon: int,
     start: int = 0,
-    start_proof: str = "",
     all_plans: bool = False,
     task: str = "plan search",
     longest: int | None = None,
@@ -132,7 +135,7 @@ def cheapest(
     arguments are those of :func:`ethasp.planning.search.shortest` (see the
     module docstring).  ``below``: only plans that cost less than this
     (``none`` is then the proof that no plan costs less)."""
-    settled = settled_before(planner, setting, budget, max_horizon, start, start_proof, longest)
+    settled = settled_before(planner, setting, budget, max_horizon, start, longest)
     if settled is not None:
         return settled
     plain = not setting.constraints
@@ -141,9 +144,8 @@ def cheapest(
         setting, cheapest=True, canonical=plain and not all_plans and one_plan_wanted(setting)
     )
     try:
-        result = _cheapest(
-            planner, setting, budget, max_horizon, start, start_proof, task, engine, longest, below
-        )
+        search = _Search(planner, setting, budget, max_horizon, start, task, engine, longest)
+        result = search.run(below)
     finally:
         engine.stop()
     if all_plans and result.status == FOUND and result.plan is not None:
@@ -156,171 +158,206 @@ def _all_cheapest(
 ) -> list[Plan]:
     """Every cheapest plan of as few steps as ``found.plan``: every plan of at
     most that many steps that costs no more (``found`` is proven cheapest, of
-    the fewest steps among the cheapest)."""
+    the fewest steps among the cheapest), least first."""
     assert found.plan is not None and found.cost is not None
     outcome = planner.solve(
         len(found.plan),
-        replace(setting, canonical=False, max_cost=found.cost),
+        replace(setting, canonical=False, least=False, max_cost=found.cost),
         budget,
         models=0,
     )
     plans = plans_of(outcome.models) if outcome.satisfiable else []
-    return plans if found.plan in plans else [found.plan, *plans]
+    return sorted(set(plans) | {found.plan}, key=lambda plan: plan.actions)
 
 
-def _proven(cost: int, length: int, planner: Planner, least: int) -> str:
-    """Why no plan costs less than ``cost``, from arithmetic alone, given that
-    none of at most ``length`` steps does ('' if that does not prove it):
-    nothing costs less than 0, and with every action costing at least
-    ``least`` > 0 a cheaper plan has few steps."""
-    if cost == 0:
-        return "no plan costs less than 0"
-    if least > 0 and (cost - 1) // least <= length:
-        return (
-            f"every action costs at least {least}, so a plan of cost below {cost} would have "
-            f"at most {steps((cost - 1) // least)}, and none up to horizon {length} costs less"
+def _arithmetic(cost: int, length: int, least: int) -> bool:
+    """Does arithmetic alone prove that no plan costs less than ``cost``, given
+    that none of at most ``length`` steps does?  Nothing costs less than 0,
+    and with every action costing at least ``least`` > 0 a plan of cost below
+    ``cost`` has at most (cost - 1) // least steps."""
+    return cost == 0 or (least > 0 and (cost - 1) // least <= length)
+
+
+def _least_cheapest(
+    planner: Planner, setting: Setting, budget: Budget, cost: int, witness: Plan
+) -> Plan:
+    """The least plan (step by step, by the actions' terms, as
+    :func:`ethasp.planning.search.shortest` reports shortest plans) of the
+    cheapest plans of the fewest steps, ``witness`` one of them: the optimum
+    of ``planning/cost.lp`` and ``planning/lexicographic.lp`` at that horizon,
+    under the bound ``cost``, so that the plan does not depend on which
+    search proved what first.  Where the budget stops that first, the witness
+    (a cheapest plan all the same)."""
+    length = len(witness)
+    usable = len(planner.search_atoms("usable", 1))
+    if length == 0 or (length + 1) * max(1, usable) >= LEAST_LEVELS:
+        return witness
+    try:
+        planner.use_least(budget)
+    except GroundingStopped:
+        return witness
+    least = replace(setting, least=True, satisficing=False, canonical=False, max_cost=cost)
+    outcome = planner.solve(length, least, budget)
+    if not outcome.satisfiable:
+        return witness
+    return plans_of([outcome.symbols])[0]
+
+
+class _Search:
+    """One search for a cheapest plan (see the module docstring).
+
+    ``plan`` and ``cost``: the cheapest plan found so far; ``limit``: every
+    plan sought costs less (the cost of ``plan``, or a bound asked for).
+    The answer does not depend on which search proved what first: a cheapest
+    plan is reported as :func:`_least_cheapest` makes it, with one proof text
+    ("no plan costs less than C"); at the maximal horizon without a proof the
+    search waits for uniform-cost search to decide (within the budget)."""
+
+    def __init__(
+        self,
+        planner: Planner,
+        setting: Setting,
+        budget: Budget,
+        max_horizon: int,
+        start: int,
+        task: str,
+        engine: _Engine,
+        longest: int | None,
+    ):
+        self.planner, self.setting, self.budget = planner, setting, budget
+        self.max_horizon = min(max_horizon, longest) if longest is not None else max_horizon
+        self.horizon, self.task, self.engine, self.longest = start, task, engine, longest
+        self.plan: Plan | None = None
+        self.cost = 0
+        self.limit: int | None = None
+
+    # -- answers ------------------------------------------------------------------------
+
+    def proven(self) -> SearchResult:
+        """No plan costs less than :attr:`limit` (proven)."""
+        if self.plan is None:
+            return SearchResult(
+                NONE, horizon=self.horizon, proof=f"no plan costs less than {self.limit}"
+            )
+        return self.least(self.plan, self.cost)
+
+    def least(self, witness: Plan, cost: int) -> SearchResult:
+        """The answer for a proven least cost and a cheapest plan of the fewest
+        steps (``witness``)."""
+        plan = _least_cheapest(self.planner, self.setting, self.budget, cost, witness)
+        return SearchResult(
+            FOUND, plan=plan, horizon=len(plan), proof=f"no plan costs less than {cost}", cost=cost
         )
-    return ""
 
-
-def _cheapest(
-    planner: Planner,
-    setting: Setting,
-    budget: Budget,
-    max_horizon: int,
-    start: int,
-    start_proof: str,
-    task: str,
-    engine: _Engine,
-    longest: int | None,
-    below: int | None = None,
-) -> SearchResult:
-    if longest is not None:
-        max_horizon = min(max_horizon, longest)
-    checks = checkpoints(max_horizon)
-    least = _least_cost(planner)
-    horizon = start
-    plan: Plan | None = None  # the cheapest plan found so far
-    cost = 0
-    # Every plan sought costs less than `limit` (the cheapest plan's cost so far,
-    # or the bound asked for).
-    limit = below
-
-    def cheaper(proof: str) -> SearchResult:
-        """The search proved that no plan costs less than ``limit``."""
-        if plan is not None:
-            return found(proof, plan, cost)
-        if not proof.startswith("no plan costs less"):
-            proof = f"no plan costs less than {limit}: {proof}"
-        return SearchResult(NONE, horizon=horizon, proof=proof)
-
-    def found(proof: str, found_plan: Plan, found_cost: int) -> SearchResult:
-        return SearchResult(FOUND, plan=found_plan, horizon=horizon, proof=proof, cost=found_cost)
-
-    def cut(why: str) -> SearchResult:
+    def cut(self, why: str) -> SearchResult:
         """Bounded: the cheapest plan so far (if any) is not proven cheapest."""
-        if plan is None:
-            return SearchResult(BOUNDED, horizon=horizon, proof=why)
+        if self.plan is None:
+            return SearchResult(BOUNDED, horizon=self.horizon, proof=why)
         return SearchResult(
             BOUNDED,
-            plan=plan,
-            horizon=horizon,
-            cost=cost,
+            plan=self.plan,
+            horizon=self.horizon,
+            cost=self.cost,
             optimal=False,
-            proof=f"a plan of cost {cost} found; no plan of at most {steps(horizon)} costs "
-            f"less, but a longer one may ({why})",
+            proof=f"a plan of cost {self.cost} found; no plan of at most "
+            f"{steps(self.horizon)} costs less, but a longer one may ({why})",
         )
 
-    while True:
-        status = engine.status
-        if status is not None:
-            proposed = engine.plan()
-            if proposed is not None:
-                best = checked(planner, proposed, "uniform-cost search")
-                horizon, lowest = len(best), _cost(planner, best)
-                if limit is not None and lowest >= limit:
-                    return cheaper(
-                        f"no plan costs less than {limit}: uniform-cost search found a cheapest "
-                        f"plan, of cost {lowest}"
-                    )
-                return found(
-                    f"no plan costs less than {lowest}: uniform-cost search expanded every "
-                    "cheaper configuration",
-                    best,
-                    lowest,
-                )
-            if status.complete:
-                return SearchResult(
-                    NONE,
-                    horizon=horizon,
-                    proof="uniform-cost search expanded every reachable configuration without "
-                    "meeting a goal state: no goal state is reachable",
-                )
-            if limit is not None and status.cost_bound >= limit:
-                return cheaper(
-                    f"no plan costs less than {limit}: uniform-cost search expanded every "
-                    f"configuration reachable for less"
-                )
-        if horizon > max_horizon:
-            if longest is not None and plan is None:
-                return SearchResult(NONE, horizon=max_horizon, proof=too_long(longest, start_proof))
-            return cut(f"the maximal horizon is {max_horizon}")
-        budget.report(task, horizon=horizon)
-        settled = functools.partial(engine.settled, limit)
-        searching = replace(setting, max_cost=limit - 1 if limit is not None else None)
-        outcome = planner.solve(horizon, searching, budget.until(settled), moot=settled)
-        if outcome.satisfiable is None:
-            if budget.expired():
-                return cut(f"{budget.why_stopped()} at horizon {horizon}")
-            continue  # the engine proved more: look again
-        if outcome.satisfiable:
-            plan = plans_of([outcome.symbols])[0]
-            cost = limit = _cost(planner, plan)
-        if limit is not None:
-            if longest is not None and horizon >= longest:
-                return cheaper(
-                    f"no plan of at most {steps(horizon)} costs less than {limit}, and the "
-                    f"question allows at most {steps(longest)}"
-                )
-            proof = _proven(limit, horizon, planner, least)
-            if proof:
-                return cheaper(proof)
-            if horizon in checks or horizon >= max_horizon:
-                bounded = replace(setting, max_cost=limit - 1)
-                exists = planner.simple_path_exists(horizon + 1, bounded, budget.until(settled))
+    def decided(self) -> SearchResult | None:
+        """What uniform-cost search has decided, if anything: a cheapest plan (of
+        at most the maximal horizon's steps), no plan at all, or no plan
+        costing less than :attr:`limit`."""
+        status = self.engine.status
+        if status is None:
+            return None
+        proposed = self.engine.plan()
+        if proposed is not None:
+            best = checked(self.planner, proposed, "uniform-cost search")
+            lowest = _cost(self.planner, best)
+            if self.limit is not None and lowest >= self.limit:
+                return self.proven()
+            if len(best) <= self.max_horizon:
+                return self.least(best, lowest)
+        if status.complete:
+            return SearchResult(NONE, horizon=0, proof=SEARCHED)
+        if self.limit is not None and status.cost_bound >= self.limit:
+            return self.proven()
+        return None
+
+    # -- the search ---------------------------------------------------------------------
+
+    def run(self, below: int | None) -> SearchResult:
+        self.limit = below
+        planner, setting, budget = self.planner, self.setting, self.budget
+        checks = checkpoints(self.max_horizon)
+        least = _least_cost(planner)
+        while True:
+            decided = self.decided()
+            if decided is not None:
+                return decided
+            horizon = self.horizon
+            budget.report(self.task, horizon=horizon)
+            settled = functools.partial(self.engine.settled, self.limit)
+            searching = replace(
+                setting, max_cost=self.limit - 1 if self.limit is not None else None
+            )
+            outcome = planner.solve(horizon, searching, budget.until(settled), moot=settled)
+            if outcome.satisfiable is None:
+                if budget.expired():
+                    return self.cut(f"{budget.why_stopped()} at horizon {horizon}")
+                continue  # the engine decided: look again
+            if outcome.satisfiable:
+                self.plan = plans_of([outcome.symbols])[0]
+                self.cost = self.limit = _cost(planner, self.plan)
+            at_most = replace(setting, max_cost=self.limit - 1 if self.limit is not None else None)
+            if self.limit is not None:
+                if self.longest is not None and horizon >= self.longest:
+                    return self.proven()
+                if _arithmetic(self.limit, horizon, least):
+                    return self.proven()
+            elif self.longest is not None and horizon >= self.longest:
+                return SearchResult(NONE, horizon=self.longest, proof=too_long(self.longest))
+            if horizon in checks or horizon >= self.max_horizon:
+                # No path one step longer without a repeated state (costing less
+                # than the limit): every (cheaper) plan has at most `horizon` steps.
+                exists = planner.simple_path_exists(horizon + 1, at_most, budget.until(settled))
                 if exists is False:
-                    return cheaper(
-                        f"no plan of at most {steps(horizon)} costs less than {limit}, and no "
-                        f"path of {steps(horizon + 1)} without a repeated state does (a "
-                        "cheaper plan would have such a path as its first steps)"
-                    )
+                    if self.limit is None:
+                        return SearchResult(NONE, horizon=0, proof=SEARCHED)
+                    return self.proven()
                 if exists is None and budget.expired():
-                    return cut(f"{budget.why_stopped()} at horizon {horizon}")
-        else:
-            if longest is not None and horizon >= longest:
-                return SearchResult(
-                    NONE,
-                    horizon=horizon,
-                    proof=f"no plan up to horizon {horizon}, and the question allows at most "
-                    f"{steps(longest)}",
-                )
-            if horizon in checks:
-                exists = planner.simple_path_exists(
-                    horizon + 1, replace(setting, cheapest=False), budget.until(settled)
-                )
-                if exists is False:
-                    return SearchResult(NONE, horizon=horizon, proof=searched(horizon))
-                if exists is None and budget.expired():
-                    return cut(f"{budget.why_stopped()} at horizon {horizon}")
-        if horizon >= max_horizon:
-            if plan is None:
-                return SearchResult(
-                    BOUNDED,
-                    horizon=max_horizon,
-                    proof=f"no plan up to horizon {max_horizon} (the maximal horizon)",
-                )
-            return cut(f"the maximal horizon is {max_horizon}")
-        horizon += 1
+                    return self.cut(f"{budget.why_stopped()} at horizon {horizon}")
+            if horizon >= self.max_horizon:
+                return self.at_maximum()
+            self.horizon += 1
+
+    def at_maximum(self) -> SearchResult:
+        """At the maximal horizon without a proof: what uniform-cost search
+        decides, waited for within the budget; else bounded."""
+        engine = self.engine.engine
+        while engine is not None and not self.budget.expired():
+            decided = self.decided()
+            if decided is not None:
+                return decided
+            if not engine.status.working:
+                break
+            engine.news.wait(0.05)
+            engine.news.clear()
+        decided = self.decided()
+        if decided is not None:
+            return decided
+        why = (
+            f"{self.budget.why_stopped()} at horizon {self.max_horizon}"
+            if self.budget.expired()
+            else f"the maximal horizon is {self.max_horizon}"
+        )
+        if self.plan is None:
+            return SearchResult(
+                BOUNDED,
+                horizon=self.max_horizon,
+                proof=f"no plan up to horizon {self.max_horizon} ({why})",
+            )
+        return self.cut(why)
 
 
 def cost_of(planner: Planner, plan: Plan) -> int:

@@ -15,6 +15,19 @@ goal, restrictions, question constraints, utility thresholds) and a
   searched;
 * ``bounded``: the search stopped at the maximal horizon or the budget
   (time limit, cancellation) without a plan; a plan may still exist.
+
+Engines race for speed, never for the answer: while no limit is hit, a search
+answers the same on every run, whichever engine proves what first.  The plan
+of a shortest search is the *least* shortest plan (plans of a length compared
+step by step, step 1 first, by their actions' terms), read off the exact
+layers (:meth:`~ethasp.planning.engines.reachability.Reachability.least_path`)
+or found by the solver's least-plan heuristic (``planning/lexicographic.lp``);
+each kind of claim has one proof text; and ``none`` at the maximal horizon is
+claimed exactly when the layers know every reachable state within one step
+beyond it, or no path one step beyond it lacks a repeated state, however far
+the race got.  Any-plan searches take the greedy search's plan where it runs
+and finds one, else the solver's, whose horizons and slices are measured in
+conflicts, not seconds.
 """
 
 from __future__ import annotations
@@ -25,7 +38,7 @@ from dataclasses import replace
 
 from ethasp.errors import InputError
 from ethasp.planning.budget import Budget
-from ethasp.planning.driver.planner import MUTEX_AFTER, Planner, Setting
+from ethasp.planning.driver.planner import MUTEX_AFTER, GroundingStopped, Planner, Setting
 from ethasp.planning.engines import layers as layers_module
 from ethasp.planning.engines.layers import Atoms, Layers, Status
 from ethasp.planning.plan import Plan, steps
@@ -33,6 +46,7 @@ from ethasp.planning.search_base import (
     BOUNDED,
     FOUND,
     NONE,
+    SEARCHED,
     SearchResult,
     plans_of,
     settled_before,
@@ -42,7 +56,6 @@ from ethasp.planning.search_base import checked as _checked
 from ethasp.planning.search_base import checkpoints as _checkpoints
 from ethasp.planning.search_base import impossible_constraint as _impossible
 from ethasp.planning.search_base import one_plan_wanted as _one_plan_wanted
-from ethasp.planning.search_base import searched as _searched
 from ethasp.planning.search_base import too_long as _too_long
 
 DEFAULT_MAX_HORIZON = 64
@@ -67,22 +80,20 @@ LAYERS_AT_ONCE_VARIABLES = 1000
 # fewer free cores than processes).
 HEAD_START = 0.3
 
-# Seconds a solve takes before the h^2 mutexes are grounded while the layers
+# Conflicts a solve meets before the h^2 mutexes are grounded while the layers
 # still work: often they end the search first, and the grounding (which
 # cannot be interrupted) would only delay the end (freecell p01: 0.7 s).
-# (Waiting longer, as long as their grounding is expected to take, slowed IPC
-# scanalyzer on an idle machine: p4 found no shortest plan in 30 s instead of
-# 24 s.)
-MUTEX_AFTER_LAYERS = 0.25
+MUTEX_AFTER_LAYERS = 5 * MUTEX_AFTER
 
 # Solver threads for plain plan search once the layers have given up (their
 # core is free): clasp's competing portfolio, about 1.3x to 1.8x faster on
 # the hard horizons of depots.
 SOLVER_THREADS = 2
 
-# Any-plan search: seconds of solving a horizon gets before the search moves
-# on to a larger one, and the factor by which horizons (and slices) grow then.
-SLICE = 0.25
+# Any-plan search: conflicts a horizon's solve may meet before the search
+# moves on to a larger one (work, not seconds: the same horizons on every
+# run), and the factor by which horizons (and slices) grow then.
+SLICE = 2000
 GROWTH = 1.5
 
 
@@ -171,79 +182,116 @@ class _Exact:
         """The actions of a plan the greedy search proposed, if any (unchecked)."""
         return self.greedy.status.plan if self.greedy is not None else None
 
+    def greedy_working(self) -> bool:
+        return self.greedy is not None and self.greedy.status.working
+
+    def greedy_news(self) -> None:
+        """Wait a moment for news of the greedy search."""
+        if self.greedy is not None:
+            self.greedy.news.wait(0.05)
+            self.greedy.news.clear()
+
     def greedy_complete(self) -> bool:
         """Did the greedy search expand every reachable state without a goal state?"""
         return self.greedy is not None and self.greedy.status.complete
 
     def settle(self, horizon: int) -> bool:
-        """At the maximal horizon, with no plan of at most ``horizon`` steps: is
-        every reachable state (configuration) within ``horizon`` steps, so that
-        no plan exists at all?  The engine beside the search (started now if it
-        has not been) is waited for until it tells: the layers once they have
-        layer ``horizon + 1`` or know every state; the greedy search once it
-        has expanded every state or stopped.  False where it cannot tell
-        within the budget, or where no engine serves the setting."""
-        if not self.usable:
+        """At the maximal horizon, with no plan of at most ``horizon`` steps: do
+        the layers know every reachable state (configuration) within
+        ``horizon + 1`` steps, so that no plan exists at all?  The layers
+        (started now if they have not been) are waited for until they tell:
+        once they know every state, or have a layer beyond ``horizon + 1``,
+        or stopped.  The answer does not depend on how far they got before
+        (:meth:`complete`): the same on every run.  False where they cannot
+        tell within the budget, or where they do not serve the setting."""
+        if not self.usable or self.greedy is not None:
             return False
         self.start()
-        engine = self.greedy if self.greedy is not None else self.layers
+        engine = self.layers
         if engine is None:
             return False
         while not self.budget.expired():
-            status = engine.status
-            if status.complete:
+            if self.complete(horizon):
                 return True
+            status = engine.status
             if not status.working or status.bound > horizon + 1:
                 return False
             engine.news.wait(0.05)
             engine.news.clear()
         return False
 
+    def complete(self, horizon: int) -> bool:
+        """Did the layers find every reachable state within ``horizon + 1``
+        layers, none a goal state?  (Completeness found later is not claimed:
+        another run might have stopped waiting before.)"""
+        status = self.status()
+        return status is not None and status.complete and status.bound <= horizon + 1
+
+    def least_plan(self, length: int) -> tuple | None:
+        """The least plan of ``length`` steps read off the layers, for a search
+        whose plans they know (plain plan search): waited for while they work
+        (the solver may have found the length first); None where they do not
+        serve it, or stopped."""
+        if self.layers is None or not self.read_plan:
+            return None
+        while not self.budget.expired():
+            status = self.layers.status
+            if status.plan is not None:
+                return status.plan if len(status.plan) == length else None
+            if not status.working or status.bound > length:
+                return None
+            self.layers.news.wait(0.05)
+            self.layers.news.clear()
+        return None
+
     def moot(self, horizon: int) -> bool:
-        """Is a solve at this horizon made pointless by what the layers proved
-        (or by a plan that the greedy search proposed, of at most
-        :attr:`max_horizon` steps)?"""
+        """Is a solve at this horizon made pointless by what another engine
+        proved (:meth:`done`), or by a lower bound of the layers beyond it?"""
+        if self.done():
+            return True
+        status = self.status()
+        return status is not None and status.bound > horizon
+
+    def done(self) -> bool:
+        """Did an engine end the search: a plan of at most :attr:`max_horizon`
+        steps proposed, or every reachable state searched (the layers: within
+        one layer beyond the maximal horizon, see :meth:`complete`)?  (A bound
+        that makes one horizon moot does not: the search goes on, and the
+        groundings a slow solve asks for pay there.)"""
         proposed = self.greedy_plan()
         if (proposed is not None and len(proposed) <= self.max_horizon) or self.greedy_complete():
             return True
         status = self.status()
         if status is None:
             return False
-        return (
-            (status.plan is not None and len(status.plan) <= self.max_horizon)
-            or status.complete
-            or status.bound > horizon
-        )
-
-    def done(self) -> bool:
-        """Did an engine end the search: a plan proposed, or every reachable
-        state searched?  (A bound that makes one horizon moot does not: the
-        search goes on, and the groundings a slow solve asks for pay there.)"""
-        if self.greedy_plan() is not None or self.greedy_complete():
-            return True
-        status = self.status()
-        return status is not None and (status.plan is not None or status.complete)
+        read = status.plan is not None and len(status.plan) <= self.max_horizon
+        return read or self.complete(self.max_horizon)
 
     def mutex_after(self) -> float:
-        """Seconds a solve takes before the h^2 mutexes are grounded."""
-        if self.greedy is not None and self.greedy.status.working:
-            # Never while the greedy search works: at the large horizons of
-            # any-plan search their grounding takes seconds, uninterrupted.
+        """Conflicts a solve meets before the h^2 mutexes are grounded."""
+        if self.greedy is not None:
+            # Never beside the greedy search: at the large horizons of any-plan
+            # search their grounding takes seconds, uninterrupted.  (Not "while
+            # it works": the program the solver's plan comes from must not
+            # depend on how far another engine got.)
             return float("inf")
         status = self.status()
         if status is not None and status.working:
             return MUTEX_AFTER_LAYERS
         return MUTEX_AFTER
 
-    def watch(self, horizon: int) -> Budget:
-        """The budget of a solve at this horizon: it also stops when the layers
-        make it moot (and starts them once the solver has worked long enough)."""
+    def watch(self, horizon: int, bounds: bool = True) -> Budget:
+        """The budget of a solve at this horizon: it also stops when another
+        engine ends the search, or (``bounds``) when the layers make it moot
+        (and starts them once the solver has worked long enough).  Any-plan
+        searches do without ``bounds``: where a solve stops must not depend
+        on how far the layers got, since the solver's plan is their answer."""
         started = time.monotonic()
 
         def moot() -> bool:
             if self.layers is None and self.solving + time.monotonic() - started > LAYERS_AFTER:
                 self.start()
-            return self.moot(horizon)
+            return self.moot(horizon) if bounds else self.done()
 
         return self.budget.until(moot)
 
@@ -278,33 +326,59 @@ def _cores() -> int:
         return os.cpu_count() or 1
 
 
-def _settled(horizon: int) -> str:
-    """Why there is no plan, where the engine beside the search knew every
-    reachable state by the maximal horizon."""
-    return (
-        f"no plan up to horizon {horizon} (the maximal horizon), and exact reachability "
-        "knows every reachable state: none is a goal state"
-    )
-
-
-def _bound_proof(bound: int, why: str, horizon: int) -> str:
-    """Why no plan has fewer than ``horizon`` steps, horizons below ``bound``
-    refuted by ``why`` and the others by solves."""
-    if horizon == 0:
+def _shortest_proof(length: int) -> str:
+    """Why a plan of ``length`` steps is a shortest one."""
+    if length == 0:
         return "the goal holds in the initial state"
-    if bound <= 0:
-        return f"no plan has fewer than {steps(horizon)} (every smaller horizon refuted)"
-    if bound >= horizon:
-        return f"no plan has fewer than {steps(horizon)}: {why}"
-    return (
-        f"no plan has fewer than {steps(horizon)}: none has fewer than {steps(bound)} ({why}), "
-        f"and the horizons {bound} to {horizon - 1} refuted"
-    )
+    return f"no plan has fewer than {steps(length)}"
+
+
+def _at_maximum(horizon: int) -> str:
+    """Why a search ended bounded at the maximal horizon."""
+    return f"no plan up to horizon {horizon} (the maximal horizon)"
 
 
 def _layers_plan(planner: Planner, status: Status) -> Plan:
     """A plan read off the exact layers, checked by its trace (the encodings)."""
     return _checked(planner, status.plan, "exact reachability")
+
+
+# Least plans are found by the solver's heuristic only where its levels fit in
+# clingo's numbers (steps times usable actions).
+LEAST_LEVELS = 2**30
+
+
+def _least(
+    planner: Planner,
+    setting: Setting,
+    budget: Budget,
+    exact: _Exact,
+    length: int,
+    witness: Plan,
+) -> Plan:
+    """The least plan of ``length`` steps under the setting, ``length`` being
+    the length of a shortest one and ``witness`` one of them: read off the
+    layers where they know the setting's plans, else the solver's optimum of
+    ``planning/lexicographic.lp`` at that horizon.  Where the budget stops
+    that first, the witness (a shortest plan all the same)."""
+    if length == 0:
+        return witness
+    read = exact.least_plan(length)
+    if read is not None:
+        return _checked(planner, read, "exact reachability")
+    usable = len(planner.search_atoms("usable", 1))
+    if (length + 1) * max(1, usable) >= LEAST_LEVELS:
+        return witness
+    planner.threads(1)
+    try:
+        planner.use_least(budget)
+    except GroundingStopped:
+        return witness
+    least = replace(setting, least=True, satisficing=False, optimize=True)
+    outcome = planner.solve(length, least, budget)
+    if not outcome.satisfiable:
+        return witness
+    return plans_of([outcome.symbols])[0]
 
 
 def shortest(
@@ -343,20 +417,11 @@ def shortest(
         from ethasp.planning.cost_search import cheapest
 
         return cheapest(
-            planner,
-            setting,
-            budget,
-            max_horizon,
-            start,
-            start_proof,
-            all_plans,
-            task,
-            longest,
-            below,
+            planner, setting, budget, max_horizon, start, all_plans, task, longest, below
         )
     if below is not None:
         raise InputError("a bound on the cost of plans needs a model with action costs")
-    settled = settled_before(planner, setting, budget, max_horizon, start, start_proof, longest)
+    settled = settled_before(planner, setting, budget, max_horizon, start, longest)
     if settled is not None:
         return settled
     if start > max_horizon:
@@ -404,47 +469,24 @@ def _shortest(
     if longest is not None:
         max_horizon = min(max_horizon, longest)
     checkpoints = _checkpoints(max_horizon)
-    bound, why = start, start_proof  # every plan has at least `bound` steps
+    bound = start  # every plan has at least `bound` steps
     horizon = start
     exact.head_start()
     while True:
         status = exact.status()
         if status is not None:
-            if status.plan is not None and len(status.plan) <= max_horizon:
-                plan = _layers_plan(planner, status)
+            if status.plan is not None and len(status.plan) <= max_horizon and not all_plans:
+                plan = _layers_plan(planner, status)  # the least shortest plan
                 return SearchResult(
-                    FOUND,
-                    plan=plan,
-                    horizon=len(plan),
-                    proof=(
-                        f"no plan has fewer than {steps(len(plan))}: exact reachability found no "
-                        f"goal state within {steps(len(plan) - 1)}"
-                        if len(plan)
-                        else "the goal holds in the initial state"
-                    ),
+                    FOUND, plan=plan, horizon=len(plan), proof=_shortest_proof(len(plan))
                 )
-            if status.complete:
-                return SearchResult(
-                    NONE,
-                    horizon=horizon,
-                    proof=(
-                        "exact reachability layers ran out of new states without meeting a goal "
-                        "state: no goal state is reachable"
-                    ),
-                )
-            if status.bound > bound:
-                bound = status.bound
-                why = f"exact reachability found no goal state within {steps(bound - 1)}"
+            if exact.complete(max_horizon):
+                return SearchResult(NONE, horizon=0, proof=SEARCHED)
+            bound = max(bound, status.bound)
         if bound > horizon:
             horizon = bound
         if horizon > max_horizon:
-            if longest is not None and max_horizon >= longest:
-                return SearchResult(NONE, horizon=max_horizon, proof=_too_long(longest, why))
-            return SearchResult(
-                BOUNDED,
-                horizon=max_horizon,
-                proof=f"every plan has more than {steps(max_horizon)} ({why}), the maximal horizon",
-            )
+            return _at_max(planner, setting, budget, exact, max_horizon, longest)
         budget.report(task, horizon=horizon)
         if exact.spare_core():
             planner.threads(SOLVER_THREADS)  # the layers' core, for the solver
@@ -465,30 +507,20 @@ def _shortest(
                 )
             continue  # the layers proved more: look again
         if outcome.satisfiable:
-            plans = plans_of(outcome.models if all_plans else [outcome.symbols])
-            return SearchResult(
-                FOUND,
-                plan=plans[0],
-                horizon=horizon,
-                proof=_bound_proof(bound, why, horizon),
-                plans=plans if all_plans else [],
-            )
+            proof = _shortest_proof(horizon)
+            if all_plans:
+                plans = sorted(plans_of(outcome.models), key=lambda plan: plan.actions)
+                return SearchResult(FOUND, plan=plans[0], horizon=horizon, proof=proof, plans=plans)
+            witness = plans_of([outcome.symbols])[0]
+            plan = _least(planner, setting, budget, exact, horizon, witness)
+            return SearchResult(FOUND, plan=plan, horizon=horizon, proof=proof)
         if longest is not None and horizon >= longest:
-            return SearchResult(
-                NONE,
-                horizon=horizon,
-                proof=(
-                    f"no plan up to horizon {horizon}, and the question allows at most "
-                    f"{steps(longest)}"
-                ),
-            )
+            return SearchResult(NONE, horizon=longest, proof=_too_long(longest))
         if horizon in checkpoints:
             # No plan of at most h steps, and no simple path of h + 1 steps: every
             # reachable state is within h steps of the initial one (a shortest
             # path to a state is simple), so none is a goal state.
-            began = time.monotonic()
             exists = planner.simple_path_exists(horizon + 1, setting, exact.watch(horizon))
-            exact.solved(time.monotonic() - began)
             if exists is None:
                 if budget.expired():
                     return SearchResult(
@@ -497,16 +529,43 @@ def _shortest(
                         proof=f"{budget.why_stopped()} at horizon {horizon}",
                     )
             elif not exists:
-                return SearchResult(NONE, horizon=horizon, proof=_searched(horizon))
+                return SearchResult(NONE, horizon=0, proof=SEARCHED)
         if horizon >= max_horizon:
-            if exact.settle(max_horizon):
-                return SearchResult(NONE, horizon=horizon, proof=_settled(max_horizon))
-            return SearchResult(
-                BOUNDED,
-                horizon=max_horizon,
-                proof=f"no plan up to horizon {max_horizon} (the maximal horizon)",
-            )
+            return _at_max(planner, setting, budget, exact, max_horizon, longest)
         horizon += 1
+
+
+def _at_max(
+    planner: Planner,
+    setting: Setting,
+    budget: Budget,
+    exact: _Exact,
+    max_horizon: int,
+    longest: int | None,
+    optimal: bool = True,
+) -> SearchResult:
+    """No plan of at most ``max_horizon`` steps (proven): ``none`` if the
+    question allows no more, or if the layers know every reachable state
+    within one step beyond, or if no path one step beyond has no repeated
+    state; else ``bounded``.  Both checks are made here, whatever the race
+    proved before, so that the claim is the same on every run."""
+    if longest is not None and max_horizon >= longest:
+        return SearchResult(NONE, horizon=longest, optimal=optimal, proof=_too_long(longest))
+    if exact.settle(max_horizon):
+        return SearchResult(NONE, horizon=0, optimal=optimal, proof=SEARCHED)
+    exists = planner.simple_path_exists(max_horizon + 1, setting, budget)
+    if exists is False:
+        return SearchResult(NONE, horizon=0, optimal=optimal, proof=SEARCHED)
+    if exists is None and budget.expired():
+        return SearchResult(
+            BOUNDED,
+            horizon=max_horizon,
+            optimal=optimal,
+            proof=f"{budget.why_stopped()} at horizon {max_horizon}",
+        )
+    return SearchResult(
+        BOUNDED, horizon=max_horizon, optimal=optimal, proof=_at_maximum(max_horizon)
+    )
 
 
 def any_plan(
@@ -522,17 +581,20 @@ def any_plan(
     """Some plan under a setting, found fast and not proven shortest
     (``optimal`` False); ``longest`` as in :func:`shortest`.
 
-    The solver gets each horizon for a slice of time only: a horizon it
-    refutes in time is a lower bound (as in :func:`shortest`); one it cannot
-    decide in time is left for a larger one (a search to horizon h finds the
-    plans of at most h steps, so larger horizons leave it more room), the
-    horizon and the slice growing by :data:`GROWTH`.  For plain plan search
-    (no restriction, no question constraint) a greedy forward search
-    (:mod:`ethasp.planning.engines.greedy`) runs beside it in a child process and
-    may deliver a plan (or the proof that none exists) first; otherwise exact
-    layers run beside it as in :func:`shortest`.  A plan from either engine is
-    checked by its trace.  ``none`` is proven as by :func:`shortest`: relaxed or exact
-    reachability, or a refuted horizon without a simple path of its length.
+    The solver gets each horizon for a slice of work only (:data:`SLICE`
+    conflicts): a horizon it refutes within it is a lower bound (as in
+    :func:`shortest`); one it cannot decide is left for a larger one (a
+    search to horizon h finds the plans of at most h steps, so larger
+    horizons leave it more room), the horizon and the slice growing by
+    :data:`GROWTH`.  For plain plan search (no restriction, no question
+    constraint) a greedy forward search (:mod:`ethasp.planning.engines.greedy`)
+    runs beside it in a child process; its plan is the answer wherever it
+    finds one (the solver's plan only where it gives up), so that the answer
+    does not depend on which finished first.  Otherwise exact layers run
+    beside it, for the proof that no plan exists.  A plan from either engine
+    is checked by its trace.  ``none`` is proven as by :func:`shortest`:
+    relaxed or exact reachability, or no path one step beyond a refuted
+    horizon without a repeated state.
     """
     if max_horizon < 0:
         raise InputError("the maximal horizon must be at least 0")
@@ -549,9 +611,7 @@ def any_plan(
     if impossible:
         return SearchResult(NONE, horizon=0, optimal=False, proof=impossible)
     if longest is not None and start > longest:
-        return SearchResult(
-            NONE, horizon=start, optimal=False, proof=_too_long(longest, start_proof)
-        )
+        return SearchResult(NONE, horizon=longest, optimal=False, proof=_too_long(longest))
     plain = not setting.constraints
     exact = _Exact(planner, setting, budget, read_plan=plain, greedy=True)
     exact.max_horizon = max_horizon
@@ -582,8 +642,8 @@ def _any_plan(
 ) -> SearchResult:
     if longest is not None:
         max_horizon = min(max_horizon, longest)
-    bound, why = start, start_proof  # every plan has at least `bound` steps
-    horizon, slice_, checked = start, SLICE, 0
+    horizon, slice_, checked = start, float(SLICE), 0
+    witness: Plan | None = None  # the solver's plan, if the greedy search gives up
     exact.head_start()
     while True:
         proposed = exact.greedy_plan()
@@ -596,68 +656,31 @@ def _any_plan(
                 optimal=False,
                 proof="a plan found by greedy forward search (not proven shortest)",
             )
-        if exact.greedy_complete():
+        if exact.greedy_complete() or exact.complete(max_horizon):
+            return SearchResult(NONE, horizon=0, optimal=False, proof=SEARCHED)
+        if witness is not None:
+            if exact.greedy_working() and not budget.expired():
+                exact.greedy_news()  # the greedy search has the first word
+                continue
             return SearchResult(
-                NONE,
-                horizon=horizon,
+                FOUND,
+                plan=witness,
+                horizon=len(witness),
                 optimal=False,
-                proof=(
-                    "greedy forward search expanded every reachable state (but those from "
-                    "which even the relaxed goal is unreachable), and none is a goal state"
-                ),
+                proof=f"a plan found at horizon {horizon} (not proven shortest)",
             )
-        status = exact.status()
-        if status is not None:
-            if status.plan is not None and len(status.plan) <= max_horizon:
-                plan = _layers_plan(planner, status)
-                return SearchResult(
-                    FOUND,
-                    plan=plan,
-                    horizon=len(plan),
-                    optimal=False,
-                    proof="a plan read off exact reachability layers",
-                )
-            if status.complete:
-                return SearchResult(
-                    NONE,
-                    horizon=horizon,
-                    optimal=False,
-                    proof=(
-                        "exact reachability layers ran out of new states without meeting a goal "
-                        "state: no goal state is reachable"
-                    ),
-                )
-            if status.bound > bound:
-                bound = status.bound
-                why = f"exact reachability found no goal state within {steps(bound - 1)}"
-        horizon = max(horizon, bound)
         if horizon > max_horizon:
-            if longest is not None and max_horizon >= longest:
-                return SearchResult(
-                    NONE, horizon=max_horizon, optimal=False, proof=_too_long(longest, why)
-                )
-            return SearchResult(
-                BOUNDED,
-                horizon=max_horizon,
-                optimal=False,
-                proof=f"no plan found up to horizon {max_horizon} (the maximal "
-                f"horizon; every plan has at least {steps(bound)})",
-            )
+            return _at_max(planner, setting, budget, exact, max_horizon, longest, optimal=False)
         budget.report(task, horizon=horizon)
         began = time.monotonic()
-        end = began + slice_
-        watch = exact.watch(horizon)
-
-        def past(end: float = end) -> bool:
-            return time.monotonic() > end
-
         outcome = planner.solve(
             horizon,
             setting,
-            watch.until(past),
+            exact.watch(horizon, bounds=False),
             models=1,
             mutex_after=exact.mutex_after(),
             moot=exact.done,
+            conflicts=int(slice_),
         )
         exact.solved(time.monotonic() - began)
         if outcome.satisfiable is None:
@@ -668,37 +691,25 @@ def _any_plan(
                     optimal=False,
                     proof=f"{budget.why_stopped()} at horizon {horizon}",
                 )
-            if exact.moot(horizon):
-                continue  # the layers proved more: look again
-            # The slice ran out: more room, and more time for it.
+            if exact.done():
+                continue  # another engine ended the search
+            # The slice ran out: more room, and more work for it.
+            if horizon >= max_horizon:
+                slice_ *= GROWTH
+                continue
             horizon = min(max_horizon, max(horizon + 1, int(horizon * GROWTH) + 1))
             slice_ *= GROWTH
             continue
         if outcome.satisfiable:
-            plan = plans_of([outcome.symbols])[0]
-            return SearchResult(
-                FOUND,
-                plan=plan,
-                horizon=horizon,
-                optimal=False,
-                proof=f"a plan found at horizon {horizon} (not proven shortest)",
-            )
-        bound, why = horizon + 1, f"horizon {horizon} refuted"
+            witness = plans_of([outcome.symbols])[0]
+            continue
         if longest is not None and horizon >= longest:
-            return SearchResult(
-                NONE,
-                horizon=horizon,
-                optimal=False,
-                proof=(
-                    f"no plan up to horizon {horizon}, and the question allows at most "
-                    f"{steps(longest)}"
-                ),
-            )
+            return SearchResult(NONE, horizon=longest, optimal=False, proof=_too_long(longest))
         if horizon >= 4 * checked or horizon == max_horizon:
             checked = max(horizon, 1)
-            exists = planner.simple_path_exists(horizon + 1, setting, exact.watch(horizon))
+            exists = planner.simple_path_exists(horizon + 1, setting, exact.watch(horizon, False))
             if exists is False:
-                return SearchResult(NONE, horizon=horizon, optimal=False, proof=_searched(horizon))
+                return SearchResult(NONE, horizon=0, optimal=False, proof=SEARCHED)
             if exists is None and budget.expired():
                 return SearchResult(
                     BOUNDED,
@@ -707,16 +718,7 @@ def _any_plan(
                     proof=f"{budget.why_stopped()} at horizon {horizon}",
                 )
         if horizon >= max_horizon:
-            if exact.settle(max_horizon):
-                return SearchResult(
-                    NONE, horizon=horizon, optimal=False, proof=_settled(max_horizon)
-                )
-            return SearchResult(
-                BOUNDED,
-                horizon=max_horizon,
-                optimal=False,
-                proof=f"no plan up to horizon {max_horizon} (the maximal horizon)",
-            )
+            return _at_max(planner, setting, budget, exact, max_horizon, longest, optimal=False)
         horizon += 1
 
 

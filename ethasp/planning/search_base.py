@@ -85,13 +85,8 @@ def before_search(budget: Budget, planner: Planner) -> str:
     return f"{budget.why_stopped()} before the search began{grounding}"
 
 
-def searched(horizon: int) -> str:
-    """Why there is no plan: plans up to the horizon refuted, and no path one
-    step longer without a repeated state."""
-    return (
-        f"no plan up to horizon {horizon}, and no path of {steps(horizon + 1)} without a "
-        "repeated state: every reachable state was searched"
-    )
+# One proof text for each kind of claim, whichever engine proved it first.
+SEARCHED = "every reachable state was searched, and none is a goal state"
 
 
 def checked(planner: Planner, actions, engine: str) -> Plan:
@@ -121,12 +116,9 @@ def impossible_constraint(planner: Planner, setting: Setting) -> str:
     )
 
 
-def too_long(longest: int, why: str) -> str:
+def too_long(longest: int) -> str:
     """Why no plan exists when every plan has more steps than the question allows."""
-    return (
-        f"every plan has more than {steps(longest)} ({why}), and the question allows at "
-        f"most {steps(longest)}"
-    )
+    return f"no plan has at most {steps(longest)}, and the question allows no more"
 
 
 def settled_before(
@@ -135,7 +127,6 @@ def settled_before(
     budget: Budget,
     max_horizon: int,
     start: int,
-    start_proof: str,
     longest: int | None,
 ) -> SearchResult | None:
     """What a search for a best plan (shortest, cheapest) answers before it
@@ -155,5 +146,5 @@ def settled_before(
     if impossible:
         return SearchResult(NONE, horizon=0, proof=impossible)
     if longest is not None and start > longest:
-        return SearchResult(NONE, horizon=start, proof=too_long(longest, start_proof))
+        return SearchResult(NONE, horizon=longest, proof=too_long(longest))
     return None

@@ -16,7 +16,7 @@ from ethasp.interfaces.cli.options import (
     satisficing_option,
     search_options,
 )
-from ethasp.interfaces.cli.output import emit, svg_option, write_picture
+from ethasp.interfaces.cli.output import checkpoint, emit, svg_option, write_picture
 
 
 def add_parser(commands) -> None:
@@ -80,6 +80,9 @@ def run(args: argparse.Namespace) -> int:
     default_reasons_limit(args)
     model = load_model(args)
     plan = given_plan(args) if (args.plan or args.plan_file) else model.own_plan()
+    limits = budget(args)
+    if plan is not None:
+        _checkpoint(args, model, plan, limits)
     answer = ask(
         model,
         args.question,
@@ -88,9 +91,34 @@ def run(args: argparse.Namespace) -> int:
         args.under,
         max_horizon(args),
         reasons_limit=args.reasons_limit,
-        budget=budget(args),
+        budget=limits,
         satisficing=args.satisficing,
     )
     write_picture(args, model, lambda pictures: pictures.answer(answer))
     emit(args, answer.to_json(), answer_text(answer, model.naming))
     return 0
+
+
+def _checkpoint(args: argparse.Namespace, model, plan, limits) -> None:
+    """The plan asked about and its verdict, printed if the contrast does not
+    come within the limits (the verdict is kept for the answer)."""
+    from ethasp.questions.contrast import one_principle
+    from ethasp.reasons.reasons import judge
+
+    principle = one_principle(args.principle)
+    verdict = judge(model, plan, [principle], max_horizon(args), reasons_limit=0, budget=limits)
+    judgement = verdict.judgements[0]
+    shown = model.naming.actions(plan) or "(empty plan)"
+    data = {
+        "questions": list(args.question),
+        "original": {
+            "plan": plan.to_list(),
+            "principle": principle,
+            "permissible": judgement.permissible,
+            "status": judgement.status,
+        },
+        "contrast": None,
+    }
+    verdict_words = "permissible" if judgement.permissible else "impermissible"
+    text = f"  plan asked about: {shown} ({principle}: {verdict_words}, {judgement.status})"
+    checkpoint(data, text, "the contrast plan was found and explained")

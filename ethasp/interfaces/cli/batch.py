@@ -7,7 +7,14 @@ import sys
 from pathlib import Path
 
 from ethasp.interfaces.cli.models import model_paths
-from ethasp.interfaces.cli.options import horizon, reasons_number, seconds, whole_number
+from ethasp.interfaces.cli.options import (
+    DEFAULT_MEMORY_LIMIT,
+    gigabytes,
+    horizon,
+    reasons_number,
+    seconds,
+    whole_number,
+)
 from ethasp.interfaces.cli.output import writable
 from ethasp.planning.budget import DEFAULT_TIME_LIMIT
 from ethasp.planning.search import DEFAULT_MAX_HORIZON, DEFAULT_SATISFICING_HORIZON
@@ -102,8 +109,17 @@ def add_parser(commands) -> None:
         metavar="SECONDS",
         help="per case: searches stop after SECONDS and answer 'bounded' "
         f"(default {DEFAULT_TIME_LIMIT:g}; 0 for no limit); a case still "
-        "running at twice the limit plus 10 s is stuck in grounding: its "
-        "worker is ended and the case gets an error line",
+        "grounding then is ended with its worker and gets an error line",
+    )
+    many.add_argument(
+        "--memory-limit",
+        type=gigabytes,
+        default=DEFAULT_MEMORY_LIMIT,
+        metavar="GB",
+        help="per case: the memory of its worker's processes; searches stop near "
+        "it and answer 'bounded', and a case that reaches it is ended with its "
+        f"worker and gets an error line (default {DEFAULT_MEMORY_LIMIT:g}; 0 for "
+        "no limit)",
     )
     many.add_argument(
         "--max-horizon",
@@ -167,6 +183,7 @@ def run(args: argparse.Namespace) -> int:
         workers=args.workers,
         scheduler=args.scheduler,
         time_limit=args.time_limit,
+        memory_limit=args.memory_limit,
         max_horizon=args.max_horizon,
         reasons_limit=args.reasons_limit,
         satisficing=args.satisficing,

@@ -6,12 +6,13 @@ and runs the command's ``run`` function.  A command that gives one answer
 (:mod:`ethasp.execution.worker`) under ``--time-limit`` and
 ``--memory-limit``: its searches stop a little before the time limit and
 answer ``bounded``; where clingo cannot be stopped (a grounding), the worker
-is ended at the limit plus half a second and the command answers ``bounded``
-with what it had found (the partial answers the command reported, see
-:func:`checkpoint`).  The memory of this process and the worker's together
-stays below the memory limit.  The answer is written by this process, whole
-or not at all; lines on standard error (warnings, one-line errors) come
-through as the worker writes them.
+is ended at the limit plus a fraction of a second and the command answers
+``bounded`` with what it had found (the partial answers the command
+reported, see :func:`ethasp.interfaces.cli.output.checkpoint`).  The memory
+of this process and the worker's together stays below the memory limit.
+The answer is written by this process, whole or not at all; lines on
+standard error (warnings, one-line errors) come through as the worker writes
+them.
 
 The dialogue, the page and the batch keep this process and run each of their
 searches in workers of their own.  Errors become one line on standard error
@@ -118,19 +119,22 @@ def run_in_worker(args: argparse.Namespace) -> tuple[int, str]:
     return code, out.getvalue()
 
 
-def checkpoint(args: argparse.Namespace, data: dict, text: str) -> None:
-    """The answer so far (text, or JSON with --json), for the front end to print
-    if the command is ended at a limit before it answers; ``data`` and
-    ``text`` say ``bounded`` and why."""
-    execution_context.partial(json.dumps(data, indent=2) if args.json else text)
-
-
 # -- in this process -------------------------------------------------------------------
 
 
-def _bounded(args: argparse.Namespace, why: str) -> str:
-    """The answer of a command ended at a limit before it reported anything."""
+def _bounded(args: argparse.Namespace, why: str, partial, progress) -> str:
+    """The answer of a command ended at a limit: what it reported so far
+    (:func:`~ethasp.interfaces.cli.output.checkpoint`) and which limit was
+    reached before what; or, where it reported nothing, that no answer was
+    found (and how far its search got, from its last progress record)."""
+    if isinstance(partial, dict):
+        bounded = f"{why} before {partial['missing']}"
+        if getattr(args, "json", False):
+            return json.dumps({**partial["data"], "bounded": bounded}, indent=2)
+        return f"{partial['text']}\nbounded: {bounded}"
     proof = f"{why} before an answer was found"
+    if progress:
+        proof += f" ({progress[-1].line()})"
     if getattr(args, "json", False):
         return json.dumps({"status": "bounded", "proof": proof}, indent=2)
     return f"bounded: {proof}; nothing was proven"
@@ -148,15 +152,20 @@ def supervised(args: argparse.Namespace, limits: Limits) -> int:
     docstring); the exit code."""
     progress = ProgressLine(enabled=False if getattr(args, "quiet", False) else None)
     worker = Worker()
+    last: list = []  # the last progress record
 
     def relay(text: str) -> None:
         progress.clear()
         sys.stderr.write(text)
         sys.stderr.flush()
 
+    def record(update) -> None:
+        last[:] = [update]
+        progress(update)
+
     try:
         outcome = worker.call(
-            run_in_worker, args, limits=limits, on_progress=progress, on_stderr=relay
+            run_in_worker, args, limits=limits, on_progress=record, on_stderr=relay
         )
     except KeyboardInterrupt:
         worker.kill()
@@ -183,7 +192,7 @@ def supervised(args: argparse.Namespace, limits: Limits) -> int:
         return 2
     if outcome.limited:
         stream = sys.stderr if getattr(args, "svg", None) == "-" else sys.stdout
-        _write(outcome.partial or _bounded(args, outcome.message), stream)
+        _write(_bounded(args, outcome.message, outcome.partial, last), stream)
         return 0
     if outcome.status == CANCELLED:
         print("ethasp: interrupted", file=sys.stderr, flush=True)

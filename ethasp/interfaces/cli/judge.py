@@ -18,7 +18,7 @@ from ethasp.interfaces.cli.options import (
     plan_options,
     reasons_option,
 )
-from ethasp.interfaces.cli.output import emit, svg_option, write_picture
+from ethasp.interfaces.cli.output import checkpoint, emit, svg_option, write_picture
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
 
 
@@ -74,13 +74,28 @@ def run(args: argparse.Namespace) -> int:
     default_reasons_limit(args)
     if args.reasons_limit < 0:
         raise InputError("--reasons-limit must be at least 0")
+    plan = given_plan(args, model)
+    limits = budget(args)
+    if args.reasons_limit:
+        # The verdicts first (kept for the judgement with reasons below): what
+        # is printed if the reasons do not come within the limits.
+        verdicts = judge(
+            model,
+            plan,
+            args.principle,
+            max_horizon(args),
+            reasons_limit=0,
+            budget=limits,
+            best=args.best,
+        )
+        checkpoint(verdicts.to_json(), judgement_text(verdicts, model), "the reasons were found")
     report = judge(
         model,
-        given_plan(args, model),
+        plan,
         args.principle,
         max_horizon(args),
         reasons_limit=args.reasons_limit,
-        budget=budget(args),
+        budget=limits,
         best=args.best,
     )
     lines = [*explanation_text(report), judgement_text(report, model)]

@@ -96,18 +96,18 @@ def port(text: str) -> int:
     return value
 
 
-# The memory a command may use (gigabytes): beyond it its searches stop and
-# answer bounded; beyond MEMORY_HARD times it, where clingo cannot be stopped
-# (a grounding), the command ends with one line.
+# The memory a command may use (gigabytes), its processes together (see
+# ethasp.execution): near it its searches stop and answer bounded; where
+# clingo cannot be stopped (a grounding), its worker is ended below it.
 DEFAULT_MEMORY_LIMIT = 4.0
-MEMORY_HARD = 1.5
 MEMORY_LIMIT_HELP = (
-    f"stop searching when the process uses more than GB gigabytes of memory "
-    f"and answer 'bounded'; end with one line at {MEMORY_HARD:g} times "
-    f"that (default {DEFAULT_MEMORY_LIMIT:g}; 0 for no limit)"
+    "the memory (GB gigabytes) of the command's processes together stays below "
+    "this: its searches stop near it and answer 'bounded' with what they found "
+    f"(default {DEFAULT_MEMORY_LIMIT:g}; 0 for no limit)"
 )
 TIME_LIMIT_HELP = (
-    f"stop searching after SECONDS and answer 'bounded' (default "
+    f"stop searching after SECONDS and answer 'bounded' with what was found; the "
+    f"command ends by then, plus a fraction of a second (default "
     f"{DEFAULT_TIME_LIMIT:g}; 0 for no limit)"
 )
 QUIET_HELP = "no progress line on standard error (shown on a terminal after 2 s)"

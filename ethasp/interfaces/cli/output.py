@@ -12,6 +12,7 @@ import sys
 from pathlib import Path
 
 from ethasp.errors import InputError
+from ethasp.execution import context as execution_context
 from ethasp.interfaces.cli.models import STDIN
 from ethasp.planning.model import Model
 
@@ -24,6 +25,14 @@ def emit(args: argparse.Namespace, data: dict, text: str) -> None:
         progress.clear()
     out = sys.stderr if getattr(args, "svg", None) == STDIN else sys.stdout
     print(json.dumps(data, indent=2) if args.json else text, file=out, flush=True)
+
+
+def checkpoint(data: dict, text: str, missing: str) -> None:
+    """The answer so far, for the front end to print if the command (in a
+    worker process) is ended at a limit before it answers: ``data`` (its
+    JSON) and ``text`` (its words), to which the front end adds which limit
+    was reached before ``missing`` (what the command was still computing)."""
+    execution_context.partial({"data": data, "text": text, "missing": missing})
 
 
 def svg_option(what: str) -> argparse.ArgumentParser:

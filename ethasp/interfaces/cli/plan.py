@@ -17,7 +17,13 @@ from ethasp.interfaces.cli.options import (
     satisficing_option,
     search_options,
 )
-from ethasp.interfaces.cli.output import emit, no_picture, svg_option, write_picture
+from ethasp.interfaces.cli.output import (
+    checkpoint,
+    emit,
+    no_picture,
+    svg_option,
+    write_picture,
+)
 from ethasp.planning.model import Model
 from ethasp.planning.plan import steps
 from ethasp.planning.search import DEFAULT_MAX_HORIZON, FOUND, find_plan
@@ -172,6 +178,7 @@ def run_permissible(args: argparse.Namespace, model: Model) -> int:
             if args.all
             else [f"{head}: {shown[0]}"]
         )
+        checkpoint(data, "\n".join(lines), "the plan was judged")
         # The judgement of the (first) HPlan, as ethasp judge prints it, minus its plan line.
         default_reasons_limit(args)
         report = judge(

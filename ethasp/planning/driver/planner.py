@@ -48,7 +48,6 @@ from __future__ import annotations
 
 import functools
 import threading
-import time
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
@@ -56,6 +55,7 @@ from typing import TYPE_CHECKING
 import clingo
 
 from ethasp.errors import InputError
+from ethasp.memo import results
 from ethasp.planning.budget import Budget
 from ethasp.planning.driver import incremental, namespace
 from ethasp.planning.driver.incremental import CHECK, STEP, TIME_MARKER
@@ -117,7 +117,9 @@ COST_SWITCH = clingo.Function("require", [clingo.Function("cost")])
 GOAL_ENCODING = "planning/goal.lp"
 # The h^2 mutexes are redundant constraints: they speed up hard horizons, but
 # their fixpoint grows with the square of the facts.  So they are grounded only
-# once a solve has taken MUTEX_AFTER seconds (easy searches end before), and
+# once a solve has met MUTEX_AFTER conflicts (easy searches end before; work,
+# not seconds, decides, so that the same search grounds the same program on
+# every run, at any load), and
 # only for models of at most MUTEX_MAX_FLUENTS state variables that change and
 # at most MUTEX_MAX_PAIRS pairs of a usable action and such a variable (what
 # the grounding of the fixpoint takes grows with them: 30 to 65 microseconds a
@@ -128,7 +130,7 @@ MUTEX = "mutex"
 MUTEX_STEP = "mutex_step"
 MUTEX_MAX_FLUENTS = 400
 MUTEX_MAX_PAIRS = 150_000
-MUTEX_AFTER = 0.05
+MUTEX_AFTER = 1000
 # The canonical order of independent actions (partial-order reduction): its
 # pairs of independent actions grow with the square of the actions, so it is
 # grounded (with the mutexes) only for models of at most this many usable ones.
@@ -136,10 +138,16 @@ CANONICAL_ENCODING = "planning/canonical.lp"
 CANONICAL = "canonical"
 CANONICAL_STEP = "canonical_step"
 CANONICAL_MAX_ACTIONS = 1000
-# ... and once a solve that may use it has taken this many seconds (its
+# ... and once a solve that may use it has met this many conflicts (its
 # grounding, per step, costs more than it saves on easier horizons).
-CANONICAL_AFTER = 0.5
+CANONICAL_AFTER = 10_000
 CANONICAL_SWITCH = clingo.Function("require", [clingo.Function("canonical")])
+# The least plan of a length (the reported plan of a search, whichever engine
+# found its length): a decision heuristic, grounded when first needed.
+LEAST_ENCODING = "planning/lexicographic.lp"
+LEAST = "lexicographic"
+LEAST_STEP = "lexicographic_step"
+LEAST_SWITCH = clingo.Function("require", [clingo.Function("lexicographic")])
 LOOPFREE_ENCODING = "planning/loopfree.lp"
 # The state at the horizon (at_horizon/3), for the searches that read it (an
 # optimisation, a utility threshold): an atom per variable and horizon, which
@@ -265,7 +273,10 @@ class Setting:
     which plans exist); ``canonical``: independent consecutive actions in the
     order of their terms (``planning/canonical.lp``, once grounded): for
     searches that want one plan of a length, whatever its order (it removes
-    plans, but never all plans of a length).
+    plans, but never all plans of a length); ``least``: with ``optimize``,
+    the least plan of the horizon in the order of the actions' terms is the
+    optimum (``planning/lexicographic.lp``, grounded by
+    :meth:`Planner.use_least`).
     """
 
     goal: bool = True
@@ -275,6 +286,7 @@ class Setting:
     optimize: bool = False
     satisficing: bool = False
     canonical: bool = False
+    least: bool = False
     cheapest: bool = False
     max_cost: int | None = None
 
@@ -327,9 +339,11 @@ class Planner:
         self._searching = False
         self._mutexes: bool | None = False  # grounded (True), not yet, or never (None)
         self._canonical: bool | None = False  # the same for the canonical order
+        self._least = False  # the heuristic of least plans grounded
         self._state = False  # the state at the horizon grounded (use_state)
         self._mutex_size: tuple[int, int] | None = None  # (fluents, pairs)
         self._threads = 1  # solver threads (see threads())
+        self._solve_limit = "umax"  # conflicts a solve may meet
         self.grounded = -1  # step and check parts grounded up to this time
         self._loopfree = 0  # loopfree parts grounded up to this time
         self._inputs: dict[str, list[clingo.Symbol]] = {name: [] for name in incremental.INPUTS}
@@ -339,7 +353,6 @@ class Planner:
         self._avoided: dict[frozenset, int] = {}
         self._reachability: Reachability | None = None
         self._ground_model: GroundModel | None = None
-        self._traces: dict = {}
         self._externals: dict[clingo.Symbol, bool] = {}  # values assigned so far
         self._model_text: str | None = None
         self._action_atoms: dict[clingo.Symbol, list[clingo.Symbol]] | None = None
@@ -545,13 +558,21 @@ class Planner:
         self._settle(budget)
         if self._searching:
             return
-        switches = [GOAL_SWITCH, SATISFICING_SWITCH, CANONICAL_SWITCH, UTILITY_SWITCH, COST_SWITCH]
+        switches = [
+            GOAL_SWITCH,
+            SATISFICING_SWITCH,
+            CANONICAL_SWITCH,
+            LEAST_SWITCH,
+            UTILITY_SWITCH,
+            COST_SWITCH,
+        ]
         try:
             with clingo.ast.ProgramBuilder(self.ctl) as builder:
                 files = [(name, STEP, None, SEARCH) for name in SEARCH_ENCODINGS]
                 # Grounded when a search is found hard (see use_mutexes).
                 files.append((MUTEX_ENCODING, MUTEX_STEP, None, MUTEX))
                 files.append((CANONICAL_ENCODING, CANONICAL_STEP, None, CANONICAL))
+                files.append((LEAST_ENCODING, LEAST_STEP, LEAST_SWITCH, LEAST))
                 self._parts.update(
                     incremental.add_encoding(
                         builder,
@@ -654,6 +675,8 @@ class Planner:
                 parts.append((MUTEX_STEP, [clingo.Number(t)]))
             if self._canonical:
                 parts.append((CANONICAL_STEP, [clingo.Number(t)]))
+            if self._least:
+                parts.append((LEAST_STEP, [clingo.Number(t)]))
             if self._state:
                 parts.append((STATE_CHECK, [clingo.Number(t)]))
             for name, values in self._inputs.items():
@@ -721,6 +744,24 @@ class Planner:
         self._canonical = True
         self._ground_from_now(CANONICAL, CANONICAL_STEP, budget)
         return True
+
+    @_locked
+    def use_least(self, budget: Budget | None = None) -> None:
+        """Ground the heuristic of least plans (``planning/lexicographic.lp``)
+        for every step so far and from now on, the usable actions ranked by
+        their terms."""
+        self._start_search(budget)
+        if self._least:
+            return
+        actions = sorted(atom.arguments[0] for atom in self.search_atoms("usable", 1))
+        facts = [
+            clingo.Function("lex_rank", [action, clingo.Number(rank)])
+            for rank, action in enumerate(actions)
+        ]
+        facts.append(clingo.Function("lex_width", [clingo.Number(max(1, len(actions)))]))
+        add_facts(self.ctl, facts)
+        self._least = True
+        self._ground_from_now(LEAST, LEAST_STEP, budget)
 
     @_locked
     def use_state(self, budget: Budget | None = None) -> None:
@@ -837,10 +878,14 @@ class Planner:
                 assign(_time_atom(PAST, t), t > end)
         assign(GOAL_SWITCH, setting.goal and horizon is not None)
         assign(SATISFICING_SWITCH, setting.satisficing)
-        assign(UTILITY_SWITCH, setting.optimize or setting.at_least is not None)
+        assign(
+            UTILITY_SWITCH,
+            (setting.optimize and not setting.least) or setting.at_least is not None,
+        )
         assign(COST_SWITCH, setting.cheapest)
         # Paths compare the states between the actions, which a swap changes.
         assign(CANONICAL_SWITCH, setting.canonical and simple_path is None)
+        assign(LEAST_SWITCH, setting.least and self._least)
         wanted = {
             "question": {c.question for c in setting.constraints},
             "at_least": (
@@ -876,7 +921,7 @@ class Planner:
                 )
         if setting.at_least is not None:
             self._threshold("at_least", setting.at_least, budget)
-        if setting.optimize or setting.at_least is not None:
+        if (setting.optimize and not setting.least) or setting.at_least is not None:
             self.use_state(budget)  # their answers are read as states
 
     @_locked
@@ -888,15 +933,17 @@ class Planner:
         models: int = 1,
         mutex_after: float = MUTEX_AFTER,
         moot: Callable[[], bool] | None = None,
+        conflicts: int | None = None,
     ) -> Outcome:
-        """Solve at one horizon under a setting (grounding what it needs first);
-        a solve that takes more than ``mutex_after`` seconds has the h^2
-        mutexes grounded for the next ones (:meth:`use_mutexes`), and one
-        under a canonical setting that takes more than CANONICAL_AFTER (and
-        ``mutex_after``) seconds the canonical order (:meth:`use_canonical`);
-        neither when ``moot`` says, after a solve the budget stopped, that the
-        search needs no more solves (another engine proved what it sought: the
-        groundings would only delay its end)."""
+        """Solve at one horizon under a setting (grounding what it needs first),
+        for at most ``conflicts`` conflicts if given (then ``satisfiable`` is
+        None when they run out); a solve that meets more than ``mutex_after``
+        conflicts has the h^2 mutexes grounded for the next ones
+        (:meth:`use_mutexes`), and one under a canonical setting that meets
+        more than CANONICAL_AFTER (and ``mutex_after``) the canonical order
+        (:meth:`use_canonical`); neither when ``moot`` says, after a solve the
+        budget stopped, that the search needs no more solves (another engine
+        proved what it sought: the groundings would only delay its end)."""
         try:
             self._prepare(setting, budget)
             # A plan shorter than the last event ends after it: the goal and the
@@ -906,18 +953,17 @@ class Planner:
         except GroundingStopped:
             return Outcome(None)  # the budget ran out while grounding
         assumptions = self._set(setting, check, horizon)
-        began = time.monotonic()
         # (Asked for every model, a search for cheapest plans lists those within max_cost.)
         optimize = setting.optimize or (setting.cheapest and models == 1)
-        outcome = self._solve(assumptions, budget, optimize, models, setting.max_cost)
-        seconds = time.monotonic() - began
+        outcome = self._solve(assumptions, budget, optimize, models, conflicts, setting.max_cost)
+        work = self._conflicts()
         if outcome.satisfiable is None and moot is not None and moot():
             return outcome
         try:
-            if seconds > mutex_after and self._mutexes is False:
+            if work > mutex_after and self._mutexes is False:
                 self.use_mutexes(budget)  # a hard search: the next solves get them
             if (
-                seconds > max(mutex_after, CANONICAL_AFTER)
+                work > max(mutex_after, CANONICAL_AFTER)
                 and setting.canonical
                 and self._canonical is False
             ):
@@ -926,8 +972,21 @@ class Planner:
             pass  # the next solve waits for it, or stops
         return outcome
 
+    def _conflicts(self) -> float:
+        """The conflicts the last solve met (0 where clingo does not say)."""
+        try:
+            return float(self.ctl.statistics["solving"]["solvers"]["conflicts"])
+        except (KeyError, RuntimeError, TypeError):
+            return 0.0
+
     def _solve(
-        self, assumptions, budget: Budget, optimize: bool, models: int, bound: int | None = None
+        self,
+        assumptions,
+        budget: Budget,
+        optimize: bool,
+        models: int,
+        conflicts: int | None = None,
+        bound: int | None = None,
     ) -> Outcome:
         """Solve under assumptions: the first ``models`` models (0: all), or with
         ``optimize`` an optimal one; ``bound``: only models whose first
@@ -944,6 +1003,10 @@ class Planner:
         else:
             config.opt_mode = "ignore" if bound is None else f"enum,{bound}"
         config.models = "0" if optimize else str(models)
+        limit = "umax" if conflicts is None else str(max(1, conflicts))
+        if limit != self._solve_limit:
+            config.solve_limit = limit
+            self._solve_limit = limit
         found: list[list[clingo.Symbol]] = []
         costs: list[list[int]] = []
 
@@ -960,7 +1023,7 @@ class Planner:
             if not budget.wait(handle):
                 return Outcome(None, found[-1] if found else [], costs[0] if costs else [])
             result = handle.get()
-        if result.interrupted:
+        if result.interrupted or result.unknown:
             return Outcome(None, found[-1] if found else [], costs[0] if costs else [])
         return Outcome(
             result.satisfiable, found[-1] if found else [], costs[0] if costs else [], found
@@ -1005,7 +1068,7 @@ class Planner:
             return None
         assumptions = self._set(setting, None, length, self._configurations[key])
         bound = setting.max_cost if setting.cheapest else None
-        return self._solve(assumptions, budget, False, 1, bound).satisfiable
+        return self._solve(assumptions, budget, False, 1, bound=bound).satisfiable
 
     # -- programs over the ground model (given plans, formulas, reasons) --------------
 
@@ -1075,10 +1138,13 @@ class Planner:
         utility), plus what further ``encodings`` over it show.
 
         Each plan is evaluated once: a request whose encodings an earlier
-        evaluation of the plan covers reuses that one.
+        evaluation of the plan covers reuses that one.  (The evaluations are
+        kept in :mod:`ethasp.memo` by the planner, not in it: the encodings
+        may be those of the layers above.)
         """
         wanted = set(encodings)
-        for done, answer in self._traces.get(plan, []):
+        traces = results(self).setdefault("traces", {})
+        for done, answer in traces.get(plan, []):
             if wanted <= done:
                 return answer
         if encodings:  # further programs may read any action of the model
@@ -1089,7 +1155,7 @@ class Planner:
             answer = self.solve_program(
                 TRACE_ENCODINGS, self.plan_model_text(plan), model=False, symbols=occurrences(plan)
             )
-        self._traces.setdefault(plan, []).append((wanted, answer))
+        traces.setdefault(plan, []).append((wanted, answer))
         return answer
 
     def solve_program(

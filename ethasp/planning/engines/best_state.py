@@ -157,10 +157,11 @@ def upper_bound(planner: Planner) -> int:
 
 
 # Models with more variables than this are first probed by short searches for a
-# better state (horizons, seconds each) before exact reachability.
+# better state (horizons, conflicts each: work, not seconds, so that the same
+# state is found on every run) before exact reachability.
 PROBE_VARIABLES = 300
 PROBE_HORIZONS = (1, 2, 4, 8)
-PROBE_SECONDS = 1.0
+PROBE_CONFLICTS = 20_000
 
 
 UB_PROOF = (
@@ -431,7 +432,10 @@ def _better_state(planner: Planner, utility: int, budget: Budget, max_horizon: i
         # a better state near the initial one decides before any diagram is built.
         for horizon in PROBE_HORIZONS:
             outcome = planner.solve(
-                horizon, Setting(goal=False, at_least=utility + 1), budget.share(PROBE_SECONDS)
+                horizon,
+                Setting(goal=False, at_least=utility + 1),
+                budget,
+                conflicts=PROBE_CONFLICTS,
             )
             if outcome.satisfiable:
                 return _found_better(planner, outcome, horizon)
@@ -538,7 +542,12 @@ def _best_by_optimisation(
             and outcome.cost
             and (best_cost is None or _lower(outcome.cost, best_cost))
         ):
-            best = ReachableState(_read_state(outcome.symbols, horizon), -outcome.cost[-1], horizon)
+            state = _read_state(outcome.symbols, horizon)
+            # (The utility of the state the optimum reached, not read off the cost
+            # vector, whose levels depend on what else is grounded: a plan's
+            # cost, planning/cost.lp; least plans, planning/lexicographic.lp.)
+            utility = planner.ground_model().utility(v for v, value in state if value)
+            best = ReachableState(state, utility, horizon)
             best_cost = outcome.cost
         if outcome.satisfiable is None:
             return BestReachable(

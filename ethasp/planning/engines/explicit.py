@@ -128,23 +128,28 @@ class Configurations:
         """The final state (derived variables computed) of a plan ending there."""
         return self.task.full(self.events.finish(configuration))
 
+    def successors(self, configuration: Configuration):
+        """The applicable actions of a configuration, each with the configuration
+        it leads to (the events of its step included)."""
+        task, events = self.task, self.events
+        state, time = configuration
+        full = task.full(state)
+        step = time + 1
+        for action in task.applicable(full):
+            after = action.apply(full) & task.base
+            if step <= events.last:
+                after = events.happen(after, step)
+            yield action, (after, min(step, events.last))
+
     def _next_layer(self, budget: Budget | None) -> list[Configuration] | None:
-        task, events, parents = self.task, self.events, self.parents
+        task, parents = self.task, self.parents
         position = {id(step): number for number, step in enumerate(task.steps)}
-        last = events.last
         found: list[Configuration] = []
         for count, configuration in enumerate(self.layers[-1], start=1):
             if count % CHECK_EVERY == 0 and budget is not None and budget.expired():
                 self.stopped = budget.why_stopped()
                 return None
-            state, time = configuration
-            full = task.full(state)
-            step = time + 1
-            for action in task.applicable(full):
-                after = action.apply(full) & task.base
-                if step <= last:
-                    after = events.happen(after, step)
-                successor = (after, min(step, last))
+            for action, successor in self.successors(configuration):
                 if successor not in parents:
                     parents[successor] = (configuration, position[id(action)])
                     found.append(successor)
@@ -190,6 +195,35 @@ class Configurations:
             actions.append(self.task.steps[number].name)
         return actions[::-1]
 
+    def least_path(self, layer: int) -> list[clingo.Symbol]:
+        """The least path (actions compared step by step by their terms) of
+        ``layer`` actions to a configuration of that layer whose final state
+        is a goal state, where ``layer`` is the first such layer: the
+        configurations from which the rest of such a path leads there are
+        found backwards within the layers, then the least action into the
+        next set is taken, step after step."""
+        targets: list[set[Configuration]] = [set() for _ in range(layer + 1)]
+        targets[layer] = {c for c in self.layers[layer] if self.task.is_goal(self.final(c))}
+        for k in range(layer - 1, -1, -1):
+            targets[k] = {
+                c
+                for c in self.layers[k]
+                if any(after in targets[k + 1] for _, after in self.successors(c))
+            }
+        current = self.layers[0][0]
+        actions = []
+        for k in range(1, layer + 1):
+            name, current = min(
+                (
+                    (action.name, after)
+                    for action, after in self.successors(current)
+                    if after in targets[k]
+                ),
+                key=lambda pair: pair[0],
+            )
+            actions.append(name)
+        return actions
+
     def first_goal(self, layer: int) -> Configuration | None:
         """A configuration of a layer whose final state is a goal state."""
         for configuration in self.layers[layer]:
@@ -221,7 +255,7 @@ def search(task, events: Events, budget: Budget, publish, stop, read_plan: bool 
         if goal is not None:
             publish(goal_layer=k, bound=k)
             if read_plan:
-                publish(plan=tuple(layers.path(goal)))
+                publish(plan=tuple(layers.least_path(k)))
             return
         publish(bound=k + 1)
         if not layers.expand(budget):

@@ -433,7 +433,7 @@ class Layers:
             if engine.layers[layer] & goal != engine.bdd.false:
                 publish(goal_layer=layer, bound=layer)
                 if self.read_plan:
-                    publish(plan=tuple(self._path(engine, goal, layer)))
+                    publish(plan=tuple(engine.least_path(goal, layer)))
                 return
             publish(bound=layer + 1)
             if not engine.expand(self._budget):
@@ -464,12 +464,12 @@ class Layers:
                 length = forward + backward
                 publish(goal_layer=length, bound=length)
                 if self.read_plan:
-                    state = self._pick(engine, meeting)
-                    publish(
-                        plan=tuple(
-                            engine.path_to(state, forward) + engine.path_from(state, backward)
-                        )
-                    )
+                    # The least plan of that length, read off the forward layers.
+                    while len(engine.layers) <= length:
+                        if not engine.expand(self._budget):
+                            publish(stopped=engine.stopped)
+                            return
+                    publish(plan=tuple(engine.least_path(goal, length)))
                 return
             publish(bound=forward + backward + 1)
             ahead = len(engine.layers[forward]) <= len(engine.back_layers[backward])
@@ -483,19 +483,6 @@ class Layers:
                 forward += 1
             else:
                 backward += 1
-
-    def _pick(self, engine, states) -> frozenset:
-        """The true variables of one state of a (non-empty) set."""
-        names = [f"x{engine.index[v]}" for v in self.model.variables]
-        values = engine.bdd.pick(states, care_vars=names)
-        return frozenset(v for v in self.model.variables if values[f"x{engine.index[v]}"])
-
-    def _path(self, engine, goal, layer: int) -> list[clingo.Symbol]:
-        """A shortest path to a goal state of the goal layer."""
-        names = [f"x{engine.index[v]}" for v in self.model.variables]
-        values = engine.bdd.pick(engine.layers[layer] & goal, care_vars=names)
-        state = frozenset(v for v in self.model.variables if values[f"x{engine.index[v]}"])
-        return engine.path_to(state, layer)
 
 
 def _compute(

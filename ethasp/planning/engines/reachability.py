@@ -596,45 +596,51 @@ class Reachability:
         self.back_layers.append(new)
         return True
 
-    def path_from(self, state: frozenset[clingo.Symbol], layer: int) -> list[clingo.Symbol]:
-        """The actions of a shortest path from a state of backward ``layer``
-        (given by its true variables) into the backward layers' first set:
-        forwards, layer by layer, an action and a successor in the layer below."""
+    def least_path(self, states, length: int) -> list[clingo.Symbol]:
+        """The least path of ``length`` actions from the initial state into
+        ``states`` (paths compared step by step, step 1 first, by their
+        actions' terms), where ``length`` is the distance of ``states`` (the
+        first layer that meets them): the sets of states from which the rest
+        of such a path leads into ``states`` are computed backwards within the
+        layers, then the least action into the next set is taken, step after
+        step.  The same path whatever engine found the length first."""
+        targets = [self.bdd.false] * (length + 1)
+        targets[length] = self.layers[length] & states
+        for k in range(length - 1, -1, -1):
+            before = self.bdd.false
+            for parts in self._images:
+                before |= self._preimage(targets[k + 1], parts)
+            targets[k] = self.layers[k] & before
+        current = frozenset(self.model.init)
         actions: list[clingo.Symbol] = []
-        current = state
-        for k in range(layer, 0, -1):
-            step = self._successor(current, self.back_layers[k - 1])
+        for k in range(1, length + 1):
+            step = self._least_successor(current, targets[k])
             if step is None:
-                raise RuntimeError(
-                    f"no successor of a state of backward layer {k} in backward layer {k - 1}"
-                )
+                raise RuntimeError(f"no successor of a state of layer {k - 1} in layer {k}")
             action, current = step
             actions.append(action)
         return actions
 
-    def _successor(self, state: frozenset[clingo.Symbol], layer):
-        """An action and the state of ``layer`` it leads to from ``state``."""
+    def _least_successor(self, state: frozenset[clingo.Symbol], states):
+        """The least action (by its term) that leads from ``state`` into
+        ``states``, and the state it leads to; None if none does."""
         full = self.state(state)
+        candidates: list[GroundAction] = []
         for group, parts in zip(self._groups, self._images, strict=True):
-            if self._image(full, parts) & layer == self.bdd.false:
-                continue
-            for action in group:
-                relation, written = self._relation(action)
-                qvars = [f"x{self.index[v]}" for v in written]
-                moved = self.bdd.exist(qvars, full & relation)
-                after = (
-                    self.bdd.let(
-                        {f"y{self.index[v]}": x for v, x in zip(written, qvars, strict=True)}, moved
-                    )
-                    & layer
+            if self._image(full, parts) & states != self.bdd.false:
+                candidates += group
+        care = [f"x{i}" for i in range(len(self.model.variables))]
+        for action in sorted(candidates, key=lambda candidate: candidate.name):
+            relation, written = self._relation(action)
+            qvars = [f"x{self.index[v]}" for v in written]
+            moved = self.bdd.exist(qvars, full & relation)
+            renaming = {f"y{self.index[v]}": x for v, x in zip(written, qvars, strict=True)}
+            after = self.bdd.let(renaming, moved) & states
+            if after != self.bdd.false:
+                values = self.bdd.pick(after, care_vars=care)
+                return action.name, frozenset(
+                    v for v in self.model.variables if values[f"x{self.index[v]}"]
                 )
-                if after != self.bdd.false:
-                    values = self.bdd.pick(
-                        after, care_vars=[f"x{i}" for i in range(len(self.model.variables))]
-                    )
-                    return action.name, frozenset(
-                        v for v in self.model.variables if values[f"x{self.index[v]}"]
-                    )
         return None
 
     def run(self, budget: Budget | None = None) -> bool:
