@@ -216,6 +216,36 @@ class RandomModel:
         """The least cost of a plan (Dijkstra over configurations), or None."""
         return self.cheapest_permissible_cost(())
 
+    def least_cheapest_plan(self) -> list[str] | None:
+        """The least of the cheapest plans of the fewest steps (compared step by
+        step, step 1 first, by their actions in clingo's order of terms); None
+        if there is no plan."""
+        import clingo
+
+        length, _, cost = self._permissible_search(set())
+        if length is None or cost is None:
+            return None
+        order = sorted(self.actions, key=clingo.parse_term)
+        dead: set = set()
+
+        def search(config, depth: int, spent: int) -> list[str] | None:
+            if depth == length:
+                good = spent == cost and self.is_goal(self.finish(config))
+                return [] if good else None
+            if (config, depth, spent) in dead:
+                return None
+            for action in order:
+                if self.applicable(config[0], action) and spent + self.cost(action) <= cost:
+                    rest = search(
+                        self.successor(config, action), depth + 1, spent + self.cost(action)
+                    )
+                    if rest is not None:
+                        return [action, *rest]
+            dead.add((config, depth, spent))
+            return None
+
+        return search((self.init, 0), 0, 0)
+
     def least_shortest_plan(self) -> list[str] | None:
         """The least shortest plan: plans of the shortest length compared step
         by step, step 1 first, by their actions in clingo's order of terms;
