@@ -242,6 +242,10 @@ def test_the_command_line_shows_costs():
         "plan of 3 steps, cost 5, permissible under deontology:"
     )
     assert run.stdout.splitlines()[-1].startswith("what deontology costs: 3")
+    run = ethasp_process(
+        "judge", "errand", "--plan", "drive hand_over", "--principle", "deontology"
+    )
+    assert "plan: drive hand_over (cost 9)" in run.stdout.splitlines()
     run = ethasp_process("validate", "errand", "--plan", "drive hand_over")
     assert run.stdout.startswith("valid plan of 2 steps, cost 9;")
     run = ethasp_process("explain", "errand", "--plan", "drive hand_over", "--json")
