@@ -22,16 +22,22 @@ Two searches race, and the first proof ends the search:
     h + 1 steps of a longer one would be such a path; so every cheaper plan
     has at most h steps (``planning/loopfree.lp`` with the cost bound).
   Without any plan yet, ``none`` is proven as for shortest plans.
-* **Uniform-cost search** (:mod:`ethasp.planning.engines.cheapest`) over
-  explicit configurations, in a child process: its plan is a cheapest one,
-  checked by its trace; meanwhile it proves that every plan costs at least
-  what it has expanded, which proves the solver's plan least once that
-  reaches its cost; with nothing left to expand, no plan exists.
+* **Uniform-cost search** (:mod:`ethasp.planning.engines.cheapest`:
+  symbolic layers by cost and an explicit search over configurations, in
+  turns, in a child process): its plan is a cheapest one, checked by its
+  trace; meanwhile it proves that every plan costs at least what it has
+  expanded, which proves the solver's plan least once that reaches its
+  cost; with nothing left to expand, no plan exists.
 
-A search cut short by the maximal horizon or a limit says ``bounded``, with
-the cheapest plan found so far, if any, and what was proven about cheaper
-ones.  The statuses and the result are those of
-:class:`ethasp.planning.search.SearchResult`, with the plan's ``cost``.
+The answer is the same on every run, whichever search proves what first:
+the plan reported is the least of the cheapest plans of the fewest steps
+(:func:`_least_cheapest`), the proof one text ("no plan costs less than
+C"), and at the maximal horizon without a proof the search waits for
+uniform-cost search to decide.  A search cut short by the maximal horizon or
+a limit says ``bounded``, with the cheapest plan found so far, if any, and
+what was proven about cheaper ones.  The statuses and the result are those
+of :class:`ethasp.planning.search_base.SearchResult`, with the plan's
+``cost``.
 """
 
 from __future__ import annotations
