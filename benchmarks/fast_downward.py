@@ -4,6 +4,12 @@
 from __future__ import annotations
 
 import importlib.util
+import re
+import subprocess
+import sys
+import tempfile
+import time
+from dataclasses import dataclass
 from pathlib import Path
 
 
@@ -17,3 +23,44 @@ def fast_downward_driver() -> Path | None:
         if driver.is_file():
             return driver
     return None
+
+
+@dataclass
+class FastDownwardPlan:
+    """What one run of Fast Downward gave: the plan's steps and cost (None
+    without a plan), the seconds it took, and why there is no plan."""
+
+    steps: list[str] | None
+    cost: int | None
+    seconds: float
+    note: str = ""
+
+
+def run_fast_downward(
+    driver: Path, domain: Path, problem: Path, time_limit: float, search: str = "astar(lmcut())"
+) -> FastDownwardPlan:
+    """Fast Downward on a task, as a whole process timed from outside."""
+    with tempfile.TemporaryDirectory() as work:
+        plan_file = Path(work) / "plan"
+        command = [
+            sys.executable,
+            str(driver),
+            "--plan-file",
+            str(plan_file),
+            str(domain),
+            str(problem),
+            "--search",
+            search,
+        ]
+        start = time.perf_counter()
+        try:
+            subprocess.run(command, capture_output=True, text=True, cwd=work, timeout=time_limit)
+        except subprocess.TimeoutExpired:
+            return FastDownwardPlan(None, None, time.perf_counter() - start, "time limit")
+        seconds = time.perf_counter() - start
+        if not plan_file.is_file():
+            return FastDownwardPlan(None, None, seconds, "no plan")
+        text = plan_file.read_text()
+        cost = re.search(r"; cost = (\d+)", text)
+        steps = [line for line in text.splitlines() if line.strip() and not line.startswith(";")]
+        return FastDownwardPlan(steps, int(cost.group(1)) if cost else None, seconds)

@@ -29,7 +29,7 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from fast_downward import fast_downward_driver
+from fast_downward import fast_downward_driver, run_fast_downward
 
 ROOT = Path(__file__).resolve().parent.parent
 PDDL = ROOT / "asp" / "pddl"
@@ -140,33 +140,9 @@ def run_ethasp(instance: Instance, time_limit: float) -> Run:
     return Run(len(data["plan"]), seconds)
 
 
-def run_fast_downward(driver: Path, instance: Instance, time_limit: float) -> Run:
-    with tempfile.TemporaryDirectory() as work:
-        plan_file = Path(work) / "plan"
-        command = [
-            sys.executable,
-            str(driver),
-            "--plan-file",
-            str(plan_file),
-            str(instance.domain),
-            str(instance.problem),
-            "--search",
-            "astar(lmcut())",
-        ]
-        start = time.perf_counter()
-        try:
-            subprocess.run(command, capture_output=True, text=True, cwd=work, timeout=time_limit)
-        except subprocess.TimeoutExpired:
-            return Run(None, time.perf_counter() - start, "time limit")
-        seconds = time.perf_counter() - start
-        if not plan_file.is_file():
-            return Run(None, seconds, "no plan")
-        steps = [
-            line
-            for line in plan_file.read_text().splitlines()
-            if line.strip() and not line.startswith(";")
-        ]
-        return Run(len(steps), seconds)
+def fast_downward(driver: Path, instance: Instance, time_limit: float) -> Run:
+    run = run_fast_downward(driver, instance.domain, instance.problem, time_limit)
+    return Run(len(run.steps) if run.steps is not None else None, run.seconds, run.note)
 
 
 # -- the table ----------------------------------------------------------------------
@@ -202,7 +178,7 @@ def main() -> int:
     with tempfile.TemporaryDirectory() as folder:
         for instance in instances(Path(folder), args.quick):
             ours = run_ethasp(instance, args.time_limit)
-            theirs = run_fast_downward(driver, instance, args.time_limit) if driver else None
+            theirs = fast_downward(driver, instance, args.time_limit) if driver else None
             ratio = "-"
             if theirs is not None and ours.length is not None and theirs.length is not None:
                 ratios.append(ours.seconds / theirs.seconds)

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import os
+import subprocess
+import sys
 from pathlib import Path
 
 import clingo
@@ -33,6 +35,19 @@ settings.register_profile(
 settings.register_profile("dev", deadline=None)
 PROFILE = os.environ.get("HYPOTHESIS_PROFILE") or ("ci" if os.environ.get("CI") else "dev")
 settings.load_profile(PROFILE)
+
+
+def ethasp_process(*args: str, cwd: Path = ROOT) -> subprocess.CompletedProcess:
+    """``python -m ethasp.interfaces.cli ARGS`` as a process, run from ``cwd``
+    with the checkout's ethasp, its output captured as text."""
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    return subprocess.run(
+        [sys.executable, "-m", "ethasp.interfaces.cli", *args],
+        capture_output=True,
+        text=True,
+        cwd=cwd,
+        env=env,
+    )
 
 
 def answer_sets(files, program: str = "", arguments=("0",)) -> list[set[str]]:

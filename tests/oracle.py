@@ -26,6 +26,7 @@ events included) and at every later step.
 
 from __future__ import annotations
 
+import heapq
 import random
 from collections import deque
 from dataclasses import dataclass, field
@@ -60,6 +61,9 @@ class RandomModel:
     derived: dict[str, list[dict[str, bool]]] = field(default_factory=dict)
     # exogenous events
     events: list[Event] = field(default_factory=list)
+    # action costs (cost/2): empty, no costs (every action costs 1); else an
+    # action without one costs 0
+    action_cost: dict[str, int] = field(default_factory=dict)
 
     # -- semantics ------------------------------------------------------------
 
@@ -201,6 +205,47 @@ class RandomModel:
         goals = [d for s, d in self.distances().items() if self.is_goal(s)]
         return min(goals) if goals else None
 
+    def cost(self, action: str) -> int:
+        """The cost of an action: 1 in a model without costs, else its cost or 0."""
+        return self.action_cost.get(action, 0) if self.action_cost else 1
+
+    def plan_cost(self, plan: list[str]) -> int:
+        return sum(self.cost(action) for action in plan)
+
+    def cheapest_plan_cost(self) -> int | None:
+        """The least cost of a plan (Dijkstra over configurations), or None."""
+        return self.cheapest_permissible_cost(())
+
+    def least_cheapest_plan(self) -> list[str] | None:
+        """The least of the cheapest plans of the fewest steps (compared step by
+        step, step 1 first, by their actions in clingo's order of terms); None
+        if there is no plan."""
+        import clingo
+
+        length, _, cost = self._permissible_search(set())
+        if length is None or cost is None:
+            return None
+        order = sorted(self.actions, key=clingo.parse_term)
+        dead: set = set()
+
+        def search(config, depth: int, spent: int) -> list[str] | None:
+            if depth == length:
+                good = spent == cost and self.is_goal(self.finish(config))
+                return [] if good else None
+            if (config, depth, spent) in dead:
+                return None
+            for action in order:
+                if self.applicable(config[0], action) and spent + self.cost(action) <= cost:
+                    rest = search(
+                        self.successor(config, action), depth + 1, spent + self.cost(action)
+                    )
+                    if rest is not None:
+                        return [action, *rest]
+            dead.add((config, depth, spent))
+            return None
+
+        return search((self.init, 0), 0, 0)
+
     def least_shortest_plan(self) -> list[str] | None:
         """The least shortest plan: plans of the shortest length compared step
         by step, step 1 first, by their actions in clingo's order of terms;
@@ -306,7 +351,7 @@ class RandomModel:
             depth = max(self.configurations().values())
             if depth > horizon:
                 return "open"
-        length, depth = self._permissible_search(principles)
+        length, depth, _ = self._permissible_search(principles)
         if length is not None:
             return "found" if length <= horizon else "open"
         return "none" if depth <= horizon else "open"
@@ -314,13 +359,19 @@ class RandomModel:
     def shortest_permissible_length(self, principles) -> int | None:
         return self._permissible_search(set(principles))[0]
 
-    def _permissible_search(self, principles) -> tuple[int | None, int]:
-        """The length of a shortest plan permissible under all the principles, or
-        None; and the depth of the deepest node searched.
+    def cheapest_permissible_cost(self, principles) -> int | None:
+        """The least cost of a plan permissible under all the principles, or None."""
+        return self._permissible_search(set(principles))[2]
 
-        Breadth-first search over (configuration, produced): the bad facts that
-        an action of the plan set and that have held since; the nodes are
-        finitely many, so None means no permissible plan of any length.
+    def _permissible_search(self, principles) -> tuple[int | None, int, int | None]:
+        """The length of a shortest plan permissible under all the principles (of
+        a cheapest one, with costs), or None; the depth of the deepest node
+        searched; and the cost of that plan.
+
+        Uniform-cost search over (configuration, produced): the bad facts that
+        an action of the plan set and that have held since, by cost, then
+        length (breadth-first without costs); the nodes are finitely many, so
+        None means no permissible plan of any length.
         """
         best = self.best_reachable_utility() if "utilitarianism" in principles else None
 
@@ -328,7 +379,7 @@ class RandomModel:
             return frozenset(fact for fact in produced if (fact[0] in state) == fact[1])
 
         if "goal-deontology" in principles and self.bad_goal():
-            return None, 0
+            return None, 0, None
         harmless = bool({"avoid-any-harm", "avoid-avoidable-harm"} & principles)
 
         def accepted(node) -> bool:
@@ -351,13 +402,18 @@ class RandomModel:
             return True
 
         start = ((self.init, 0), frozenset())
-        dist = {start: 0}
-        queue = deque([start])
+        key = {start: (0, 0)}
+        queue = [(0, 0, 0, start)]
+        done: set = set()
+        counter = 0
         while queue:
-            node = queue.popleft()
+            cost, length, _, node = heapq.heappop(queue)
+            if node in done:
+                continue
+            done.add(node)
             config, produced = node
             if accepted(node):
-                return dist[node], dist[node]
+                return length, length, cost
             for action in self.actions:
                 if not self.applicable(config[0], action):
                     continue
@@ -371,10 +427,12 @@ class RandomModel:
                     if self.bad_fact(var, value) and (var in after) == value
                 }
                 succ = (succ_config, carry(succ_config[0], produced | fired))
-                if succ not in dist:
-                    dist[succ] = dist[node] + 1
-                    queue.append(succ)
-        return None, max(dist.values())
+                succ_key = (cost + self.cost(action), length + 1)
+                if succ not in done and succ_key < key.get(succ, (succ_key[0] + 1, 0)):
+                    key[succ] = succ_key
+                    counter += 1
+                    heapq.heappush(queue, (*succ_key, counter, succ))
+        return None, max(length for _, length in key.values()), None
 
     # -- ASP ------------------------------------------------------------------
 
@@ -408,6 +466,7 @@ class RandomModel:
         lines += [f"goal({v},{str(b).lower()})." for v, b in self.goal.items()]
         lines += [f"utility({a},{u})." for a, u in self.action_utility.items()]
         lines += [f"utility({v},{str(b).lower()},{u})." for (v, b), u in self.fact_utility.items()]
+        lines += [f"cost({a},{c})." for a, c in self.action_cost.items()]
         return "\n".join(lines) + "\n"
 
 
@@ -419,6 +478,7 @@ def random_model(
     derived: bool = False,
     far_goal: bool = False,
     events: bool = False,
+    costs: bool = False,
 ) -> RandomModel:
     """A small random model; with ``conditional``, actions also get conditional
     effects, with ``derived``, derived variables that preconditions,
@@ -426,7 +486,9 @@ def random_model(
     exogenous events at steps 1 to 3, with preconditions and conditional
     effects (the model without them is the same).
     With ``far_goal`` the goal is made of literals of a reachable state
-    farthest from the initial state (so that plans are longer)."""
+    farthest from the initial state (so that plans are longer).  With
+    ``costs``, actions get costs from 0 to 4 (most of them; the others cost
+    0), drawn after everything else (the model without them is the same)."""
     rng = random.Random(seed)
     variables = [f"v{i}" for i in range(rng.randint(1, max_variables))]
     actions = [f"a{i}" for i in range(rng.randint(1, max_actions))]
@@ -458,6 +520,12 @@ def random_model(
         differ = [v for v in spec.variables if (v in state) != (v in spec.init)]
         chosen = rng.sample(differ, min(len(differ), rng.randint(1, 3))) or spec.variables[:1]
         spec.goal = {v: v in state for v in chosen}
+    if costs:
+        spec.action_cost = {
+            a: rng.choice((0, 1, 1, 2, 3, 4)) for a in actions if rng.random() < 0.8
+        }
+        if not spec.action_cost:
+            spec.action_cost = {actions[0]: rng.randint(0, 4)}
     return spec
 
 

@@ -79,14 +79,20 @@ def test_explain_words():
         "Step 4, unlock the door, lets step 5 move to the exit (the fact door_open)."
     )
     assert lines[5] == "Step 5, move to the exit, brings about the goal (the fact at(r4))."
-    assert lines[-1] == "removable steps: none"
+    assert lines[6] == "removable steps: none"
+    # Then the E-links and D-links, a sentence per step.
+    assert lines[7] == "E-links and D-links (what enables and what requires each step):"
+    assert lines[-1] == (
+        "  Step 5, move to the exit: the fact not at(r4) holds initially and requires it; it "
+        "results in the fact at(r4), which fulfils the goal."
+    )
     run = ethasp("explain", TROLLEY, "--plan", "refrain pull")
     assert (
         "Step 1, refrain from action, is not needed: the plan without it is still a plan."
         in run.stdout
     )
     assert "it causes the death of the one person (utility -1)" in run.stdout
-    assert run.stdout.splitlines()[-1] == "removable steps: 1, 2"
+    assert "removable steps: 1, 2" in run.stdout.splitlines()
 
 
 def test_explain_json_and_svg(tmp_path):
@@ -108,7 +114,10 @@ def test_explain_json_and_svg(tmp_path):
     assert data["steps"][4]["links"][0]["to"] == "goal"
     assert first["chain"] == [1, 4, 5, "goal"] and first["bad"] is False
     svg = picture.read_text()
-    assert svg.count('marker-end="url(#arrowhead)"') == 6 and "at(r4) (goal)" in svg
+    # An arrow per E-link, and per D-link in their own colour.
+    assert svg.count('marker-end="url(#arrowhead)"') == len(data["e_links"]) > 0
+    assert svg.count('marker-end="url(#demandhead)"') == len(data["d_links"]) > 0
+    assert "at(r4) (goal)" in svg and "requires (D-link)" in svg
     # The model's own plan (a HERA situation's), with events.
     data = json.loads(ethasp("explain", FRANK, "--json").stdout)
     assert data["plan"] == ["lie_to_frank"] and data["steps"][0]["bad"] is True

@@ -152,6 +152,18 @@ COMMANDS = [
         "--json",
     ],
     ["explain", "rescue", "--json"],
+    # Action costs: cheapest plans, what a principle costs, a cheaper contrast.
+    ["plan", "errand", "--json"],
+    ["plan", "errand", "--principle", "do-no-harm", "--json"],
+    [
+        "ask",
+        "errand",
+        "--principle",
+        "deontology",
+        "--question",
+        "why not a cheaper plan",
+        "--json",
+    ],
     [
         "plan",
         str(MODELS / "pddl" / "gripper-domain.pddl"),

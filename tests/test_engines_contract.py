@@ -96,7 +96,8 @@ UNHANDLED = [
 
 def test_every_engine_declares_its_features_and_the_contract_lists_it():
     assert set(ENGINES) == {
-        *("reachability", "explicit", "layers", "greedy", "best_state", "downward")
+        *("reachability", "explicit", "layers", "greedy", "best_state", "downward"),
+        *("cheapest", "cost_layers"),
     }
     assert set(ENTRIES) == set(ENGINES)
     for name in ENGINES:

@@ -271,10 +271,12 @@ CONSTANTS_PROBLEM = """
 """
 
 
-def test_problem_objects_used_as_domain_constants(tmp_path):
+def test_problem_objects_used_as_domain_constants(tmp_path, capsys):
     assert length(load(tmp_path, CONSTANTS, CONSTANTS_PROBLEM.format(door="door"))) == 2
-    with pytest.raises(InputError, match=r"domain.pddl:\d+: unknown constant door"):
-        load(tmp_path, CONSTANTS, CONSTANTS_PROBLEM.format(door=""))
+    assert "constant" not in capsys.readouterr().err
+    # Declared nowhere: an object, with a warning (as plan-explainer's reader has it).
+    assert length(load(tmp_path, CONSTANTS, CONSTANTS_PROBLEM.format(door=""))) == 2
+    assert "constant door used but not declared (read as objects)" in capsys.readouterr().err
 
 
 EITHER = """
@@ -316,15 +318,28 @@ COSTS_PROBLEM = """
 """
 
 
-def test_action_costs_are_ignored_with_a_warning(tmp_path):
+def test_action_costs_are_read_with_the_metric_and_ignored_without_it(tmp_path):
     (tmp_path / "d.pddl").write_text(COSTS)
     (tmp_path / "p.pddl").write_text(COSTS_PROBLEM)
     run = ethasp("plan", "d.pddl", "p.pddl", cwd=tmp_path)
+    assert run.returncode == 0 and "plan of 2 steps, cost 11: (cheap) (dear)" in run.stdout
+    assert run.stderr == ""
+    (tmp_path / "p.pddl").write_text(COSTS_PROBLEM.replace("(:metric minimize (total-cost))", ""))
+    run = ethasp("plan", "d.pddl", "p.pddl", cwd=tmp_path)
     assert run.returncode == 0 and "plan of 2 steps: (cheap) (dear)" in run.stdout, run.stderr
     assert run.stderr.strip().splitlines() == [
-        "d.pddl: warning: action costs are ignored (plans are shortest in number of actions)",
-        "p.pddl: warning: the metric is ignored (plans are shortest in number of actions)",
+        "d.pddl: warning: action costs are ignored: the problem has no (:metric minimize "
+        "(total-cost)) (plans are shortest in number of actions)",
     ]
+    (tmp_path / "p.pddl").write_text(
+        COSTS_PROBLEM.replace("(:metric minimize (total-cost))", "(:metric maximize (total-cost))")
+    )
+    run = ethasp("plan", "d.pddl", "p.pddl", cwd=tmp_path)
+    assert run.returncode == 0 and "plan of 2 steps: (cheap) (dear)" in run.stdout, run.stderr
+    assert run.stderr.strip().splitlines()[1] == (
+        "p.pddl: warning: the metric is ignored: only (:metric minimize (total-cost)) is read "
+        "(plans are shortest in number of actions)"
+    )
 
 
 @pytest.mark.parametrize(

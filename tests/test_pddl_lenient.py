@@ -235,7 +235,7 @@ def test_validate_shows_the_atoms_that_hold_in_the_final_state(tmp_path):
     )
     assert run.returncode == 0, run.stderr
     assert run.stdout.strip() == (
-        "valid plan of 2 steps; final state: (at s3) (link s1 s1) (link s1 s2) (link s2 s3)"
+        "valid plan of 2 steps, cost 2; final state: (at s3) (link s1 s1) (link s1 s2) (link s2 s3)"
     )
 
 

@@ -123,8 +123,9 @@ def test_api_words_and_json():
         "serves_goal": True,
         "chain": [2, "goal"],
     }
-    assert explanation.step_text(1).endswith(
-        "It serves no goal fact, directly or through later steps."
+    assert "It serves no goal fact, directly or through later steps. " in explanation.step_text(1)
+    assert explanation.step_text(2).endswith(
+        "; it results in the decision, which fulfils the goal."
     )
     with pytest.raises(InputError, match="not a plan"):
         explain_steps(model, Plan.parse(""))
@@ -140,9 +141,17 @@ def test_events_in_words():
         "The event e of step 1 lets step 2 b (the fact p).",
         "Step 2, b, brings about the goal (the fact g).",
     ]
-    assert explanation.step_text(1).endswith(
-        "It serves the goal through the event e of step 1 and step 2."
+    assert "It serves the goal through the event e of step 1 and step 2. " in explanation.step_text(
+        1
     )
+    # Step 1 and the event after it both produce p for step 2: two E-links.
+    assert explanation.link_lines() == [
+        "Step 1, a: the fact not g and the fact not p hold initially and require it; it "
+        "results in the fact p, which enables step 2 (b).",
+        "Step 2, b: the fact not g holds initially and requires it; it results in the fact g, "
+        "which fulfils the goal.",
+        "The event e of step 1 results in the fact p, which enables step 2 (b).",
+    ]
     assert explanation.to_json()["events"] == [
         {
             "step": 1,

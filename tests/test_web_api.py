@@ -592,6 +592,10 @@ def test_why_step_and_the_plan_step_by_step(client):
     assert data["lines"][0].startswith("Step 1, refrain from action, is not needed")
     assert client.get(f"/api/sessions/{key}/explain?step=3").status_code == 400
     assert client.get(f"/api/sessions/{key}/explain?step=x").status_code == 400
+    # The step's E-links and D-links, in words, and all of them.
+    assert data["step_text"].endswith("it results in the decision, which fulfils the goal.")
+    assert data["link_lines"][1].startswith("Step 2, pull the lever:")
+    assert {"from": 2, "variable": "done", "value": True, "to": "goal"} in data["e_links"]
     picture = client.get(f"/api/sessions/{key}/explain.svg")
     assert picture.mimetype == "image/svg+xml" and b"arrowhead" in picture.data
     # "why step T" typed into the question box is no contrastive question.
@@ -621,3 +625,17 @@ def test_a_situation_starts_from_its_own_plan():
     client = create_app(Workspace(Model.load(files), files, "deontology")).test_client()
     key = start(client)
     assert state(client, key)["current"]["plan"] == ["lie_to_frank"]
+
+
+def test_a_model_with_action_costs_on_the_page():
+    files = [str(MODELS / "errand.lp")]
+    client = create_app(Workspace(Model.load(files), files, "deontology")).test_client()
+    key = start(client, "deontology")
+    current = state(client, key)["current"]
+    assert current["plan"] == ["bus(depot,market)", "bus(market,house)", "hand_over"]
+    assert current["cost"] == 5
+    job = ask(client, key, "why not a cheaper plan")
+    assert job["state"] == "done", job
+    step = state(client, key)["steps"][0]
+    assert step["own_constraints"] == ["cheaper_than(5)"]
+    assert step["answer"]["contrast"]["cost"] == 2

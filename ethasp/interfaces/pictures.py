@@ -119,19 +119,23 @@ class Pictures:
         )
 
     def explained(self, explanation: StepsExplanation, title: str = "", words: bool = True) -> str:
-        """A plan with its causal links as arrows from step to step (to the
-        final state for the goal), under its explanation in words."""
+        """A plan with its E-links (arrows from the producer, the start column
+        for the initial state, to the step enabled, or to the final state for
+        the goal) and its D-links (drawn in another colour, dashed: from the
+        producer to the step required), under its explanation in words."""
         naming = self.model.naming
         arrows = []
-        for link in explanation.links:
+        for link in explanation.e_links + explanation.d_links:
             target = link.consumer.step if link.consumer.kind != "goal" else None
             label = naming.fact(link.literal())
             if link.consumer.kind == "goal":
                 label += " (goal)"
-            elif link.consumer.kind == "event":
-                label += f" (event {link.consumer.event})"
-            arrows.append(Arrow(link.provider.step, target, label, link.provider.kind == "event"))
-        notes = explanation.lines() if words else []
+            elif link.demand:
+                label += " (requires)"
+            arrows.append(
+                Arrow(link.producer.step, target, label, link.producer.kind == "event", link.demand)
+            )
+        notes = explanation.lines() + explanation.link_lines() if words else []
         return plan_svg(
             self.timeline(explanation.plan),
             naming,

@@ -22,6 +22,7 @@ Commands:
   why A | why not A | why A rather than B | why A before B | why A after B
   why A at T | why not A at T | why A within T1..T2 | why not A within T1..T2
   why F | why not F | why F at T | why not F at T | why not in N steps
+  why not a cheaper plan (a model with action costs)
                      ask about the current plan (A, B actions, F a state
                      variable, T, N step numbers; 'why action X' or 'why
                      fact X' for a name that is both); the question's
@@ -50,13 +51,13 @@ def answer_text(answer: Answer, naming) -> str:
     original = answer.original
     lines.append(
         f"  plan asked about: {naming.actions(original.plan) or '(empty)'} "
-        f"({original.principle}: {_verdict(original)})"
+        f"({original.principle}: {_verdict(original)}{_cost(original.cost)})"
     )
     if answer.contrast is not None:
         contrast = answer.contrast
         lines.append(
             f"  contrast plan: {naming.actions(contrast.plan) or '(empty)'} "
-            f"({contrast.principle}: {_verdict(contrast)})"
+            f"({contrast.principle}: {_verdict(contrast)}{_cost(contrast.cost)})"
         )
     elif answer.status == "bounded":
         lines.append(f"  no contrast plan found (bounded): {answer.proof}")
@@ -85,6 +86,11 @@ def answer_text(answer: Answer, naming) -> str:
             f"only for the contrast: {_literals(difference['contrast_only'])}"
         )
     return "\n".join(lines)
+
+
+def _cost(cost: int | None) -> str:
+    """``; cost 5`` for a plan of a model with action costs."""
+    return f"; cost {cost}" if cost is not None else ""
 
 
 def _literals(literals: list[str]) -> str:

@@ -278,13 +278,15 @@ def _draw_lane(
         faded = column.step < faded_until
         if faded:
             canvas.add('<g opacity="0.45">')
-        canvas.add(_text(x, top + 2, f"step {column.step}", 11, MUTED, "bold"))
+        cost = valuation.action_cost(column.action)
+        costs = f" \u00b7 cost {cost}" if cost is not None else ""
+        canvas.add(_text(x, top + 2, f"step {column.step}{costs}", 11, MUTED, "bold"))
         utility = valuation.action_utility(column.action)
         shown = naming.action(column.action)
         label = valuation.action_label(column.action)
         tip = (
             f"step {column.step}: {shown}: {label or 'no label'}; utility {utility} "
-            f"({moral(utility)})"
+            f"({moral(utility)})" + (f"; cost {cost}" if cost is not None else "")
         )
         attributes = (
             f' class="action" data-lane={quoteattr(lane.name)} '
@@ -313,7 +315,10 @@ def _draw_lane(
         lowest = max(lowest, y)
     # Final state: what changed, what is morally valued, what the goal asks.
     x = _column_x(end_index)
-    canvas.add(_text(x, top + 2, f"end \u00b7 utility {timeline.utility}", 11, MUTED, "bold"))
+    costs = f" \u00b7 cost {timeline.cost}" if timeline.cost is not None else ""
+    canvas.add(
+        _text(x, top + 2, f"end \u00b7 utility {timeline.utility}{costs}", 11, MUTED, "bold")
+    )
     moved = set(timeline.changed_variables())
     wanted = {fact.variable for fact in valuation.goal}
     y = boxes_top
@@ -385,18 +390,21 @@ def _width(columns: int) -> float:
 
 @dataclass(frozen=True)
 class Arrow:
-    """A causal link drawn as an arrow above a timeline: from the column of
-    step ``source`` to that of step ``target`` (None: the final state),
-    labelled with the fact it carries; ``event`` when an event of the source
-    step set the fact."""
+    """A link drawn as an arrow above a timeline: from the column of step
+    ``source`` (0: the start column, the initial state) to that of step
+    ``target`` (None: the final state), labelled with the fact it carries;
+    ``event`` when an event of the source step set the fact; ``demand`` for
+    a D-link (the fact requires the target step), drawn in another colour."""
 
     source: int
     target: int | None
     label: str
     event: bool = False
+    demand: bool = False
 
 
 ARROW = "#2563eb"
+DEMAND = "#c2410c"
 ARROW_LEVEL = 18  # height between stacked arrows
 
 
@@ -421,26 +429,40 @@ def _arrow_levels(arrows: list[Arrow], end_index: int) -> list[tuple[Arrow, int,
 
 def _draw_arrows(canvas: _Canvas, arrows: list[Arrow], end_index: int, bottom: float) -> None:
     """Arrows as arcs whose feet stand on ``bottom`` (above the step numbers)."""
+    markers = [("arrowhead", ARROW)] + (
+        [("demandhead", DEMAND)] if any(arrow.demand for arrow in arrows) else []
+    )
     canvas.add(
-        f'<defs><marker id="arrowhead" markerWidth="8" markerHeight="8" refX="7" '
-        f'refY="4" orient="auto"><path d="M0,0 L8,4 L0,8 z" fill="{ARROW}"/></marker>'
-        "</defs>"
+        "<defs>"
+        + "".join(
+            f'<marker id="{name}" markerWidth="8" markerHeight="8" refX="7" '
+            f'refY="4" orient="auto"><path d="M0,0 L8,4 L0,8 z" fill="{colour}"/></marker>'
+            for name, colour in markers
+        )
+        + "</defs>"
     )
     for arrow, start, end, level in _arrow_levels(arrows, end_index):
         x1 = _column_x(start) + COLUMN / 2 + 12
         x2 = _column_x(end) + COLUMN / 2 - 12
         apex = bottom - 16 - level * ARROW_LEVEL
-        dash = ' stroke-dasharray="5 3"' if arrow.event else ""
+        colour, head = (DEMAND, "demandhead") if arrow.demand else (ARROW, "arrowhead")
+        dash = (
+            ' stroke-dasharray="2 3"'
+            if arrow.demand
+            else (' stroke-dasharray="5 3"' if arrow.event else "")
+        )
         canvas.add(
             f"<g><title>{escape(arrow.label)}</title>"
             f'<path d="M{x1:.0f},{bottom:.0f} C{x1:.0f},{apex:.0f} {x2:.0f},{apex:.0f} '
-            f'{x2:.0f},{bottom:.0f}" fill="none" stroke="{ARROW}" stroke-width="1.6"'
-            f'{dash} marker-end="url(#arrowhead)"/>'
+            f'{x2:.0f},{bottom:.0f}" fill="none" stroke="{colour}" stroke-width="1.6"'
+            f'{dash} marker-end="url(#{head})"/>'
         )
         middle = (x1 + x2) / 2
         room = max(x2 - x1 - 8, 60)
         top = bottom - 0.75 * (bottom - apex)  # the highest point of the curve
-        canvas.add(_text(middle, top - 3, _fit(arrow.label, 10, room), 10, ARROW, "bold", "middle"))
+        canvas.add(
+            _text(middle, top - 3, _fit(arrow.label, 10, room), 10, colour, "bold", "middle")
+        )
         canvas.add("</g>")
 
 
@@ -467,9 +489,29 @@ def plan_svg(
         y = bottom - 12
     lowest = _draw_lane(canvas, _Lane(timeline, "plan", y + 22), naming, end_index)
     _step_bands(canvas, len(timeline.columns), y + 16, lowest)
-    _legend(canvas, lowest + 4)
+    lowest = _legend(canvas, lowest + 4)
+    if arrows and any(arrow.demand for arrow in arrows):
+        _arrow_legend(canvas, lowest + 4)
     canvas.grow(width, 0)
     return canvas.svg(title)
+
+
+def _arrow_legend(canvas: _Canvas, y: float) -> float:
+    """What the two kinds of arrows mean (E-links and D-links)."""
+    x = MARGIN
+    y += 10
+    for colour, dash, text in (
+        (ARROW, "", "enables (E-link)"),
+        (DEMAND, ' stroke-dasharray="2 3"', "requires (D-link)"),
+    ):
+        canvas.add(
+            f'<line x1="{x}" y1="{y + 6:.0f}" x2="{x + 28}" y2="{y + 6:.0f}" stroke="{colour}" '
+            f'stroke-width="1.6"{dash}/>'
+        )
+        canvas.add(_text(x + 34, y + 11, text, 11, MUTED))
+        x += 170
+    canvas.grow(x, y + 16)
+    return y + 16
 
 
 def parting_step(first: Timeline, second: Timeline) -> int:

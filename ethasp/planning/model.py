@@ -48,6 +48,10 @@ def _describe(problem: clingo.Symbol) -> str:
         return f"utility must be an integer in {args[0]}"
     if name == "ambiguous_utility":
         return f"two different utilities for one element, one of them {args[0]}"
+    if name == "bad_cost":
+        return f"a cost must be an integer from 0 to 1000000 in {args[0]}"
+    if name == "ambiguous_cost":
+        return f"two different costs for one action, one of them {args[0]}"
     if name == "contradicting_effects":
         return f"action {args[0]} sets variable {args[1]} both to true and to false"
     if name == "condition_without_effect":

@@ -22,7 +22,13 @@ def steps(count: int) -> str:
 
 
 def split_terms(text: str) -> list[str]:
-    """Split "a1 push(man, bridge) a3" at spaces outside parentheses and strings."""
+    """Split "a1 push(man, bridge) a3" at spaces outside parentheses and strings.
+
+    A semicolon outside parentheses separates too, as plan-explainer writes
+    plans (``(serve coke);(refill coke)``), and a line that starts with one is
+    a comment (Fast Downward's plan files end with ``; cost = 2 (unit cost)``).
+    """
+    text = "\n".join(line for line in text.splitlines() if not line.lstrip().startswith(";"))
     terms: list[str] = []
     current: list[str] = []
     depth, quoted, escaped = 0, False, False
@@ -36,7 +42,7 @@ def split_terms(text: str) -> list[str]:
             depth += 1
         elif char in ")]":
             depth -= 1
-        elif char.isspace() and depth == 0:
+        elif (char.isspace() or char == ";") and depth == 0:
             if current:
                 terms.append("".join(current))
                 current = []

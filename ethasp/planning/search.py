@@ -34,7 +34,7 @@ from __future__ import annotations
 
 import os
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 
 from ethasp.errors import InputError
 from ethasp.planning.budget import Budget
@@ -42,8 +42,22 @@ from ethasp.planning.driver.planner import MUTEX_AFTER, GroundingStopped, Planne
 from ethasp.planning.engines import layers as layers_module
 from ethasp.planning.engines.layers import Atoms, Layers, Status
 from ethasp.planning.plan import Plan, steps
-
-FOUND, NONE, BOUNDED = "found", "none", "bounded"
+from ethasp.planning.search_base import (
+    BOUNDED,
+    FOUND,
+    GREEDY_PROOF,
+    NONE,
+    SEARCHED,
+    SearchResult,
+    plans_of,
+    settled_before,
+)
+from ethasp.planning.search_base import before_search as _before
+from ethasp.planning.search_base import checked as _checked
+from ethasp.planning.search_base import checkpoints as _checkpoints
+from ethasp.planning.search_base import impossible_constraint as _impossible
+from ethasp.planning.search_base import one_plan_wanted as _one_plan_wanted
+from ethasp.planning.search_base import too_long as _too_long
 
 DEFAULT_MAX_HORIZON = 64
 # Any-plan search looks further by default: it does not pay for every horizon.
@@ -82,52 +96,6 @@ SOLVER_THREADS = 2
 # run), and the factor by which horizons (and slices) grow then.
 SLICE = 2000
 GROWTH = 1.5
-
-
-@dataclass
-class SearchResult:
-    """The outcome of a plan search.
-
-    ``plan`` is a plan (or None): a shortest one when ``optimal``, else (an
-    any-plan search, ``satisficing``) just a plan; ``plans`` all shortest
-    plans when they were asked for, ``horizon`` the last horizon searched,
-    and ``proof`` says why there is no plan (status ``none``), why the plan
-    is a shortest one or how it was found (status ``found``) or what cut the
-    search short (status ``bounded``).
-    """
-
-    status: str
-    plan: Plan | None = None
-    horizon: int = 0
-    proof: str = ""
-    plans: list[Plan] = field(default_factory=list)
-    optimal: bool = True
-
-    def to_json(self) -> dict:
-        return {
-            "status": self.status,
-            "plan": self.plan.to_list() if self.plan is not None else None,
-            "optimal": self.optimal if self.plan is not None else None,
-            "horizon": self.horizon,
-            "proof": self.proof,
-            **({"plans": [plan.to_list() for plan in self.plans]} if self.plans else {}),
-        }
-
-
-def _checkpoints(limit: int) -> set[int]:
-    """The horizons after which the loop-free check runs: powers of four and the
-    limit (each check costs a solve; they only prove that no plan exists)."""
-    result, power = {limit}, 1
-    while power <= limit:
-        result.add(power)
-        power *= 4
-    return result
-
-
-def plans_of(models: list) -> list[Plan]:
-    """The plans of answer sets (their ``occurs/2`` atoms), without repeats."""
-    plans = [Plan.from_symbols(symbols) for symbols in models]
-    return list(dict.fromkeys(plans))
 
 
 class _Exact:
@@ -370,30 +338,6 @@ def _cores() -> int:
         return os.cpu_count() or 1
 
 
-def _one_plan_wanted(setting: Setting) -> bool:
-    """Does a search under this setting want just some plan of each length (so
-    that independent actions may be taken in one order, ``planning/
-    canonical.lp``)?  Not with utility thresholds, states to avoid or
-    optimisation (they read the states a plan passes)."""
-    return (
-        setting.goal
-        and setting.at_least is None
-        and setting.other_state is None
-        and not setting.optimize
-    )
-
-
-def _before(budget: Budget, planner: Planner) -> str:
-    """Why a search stopped before its first solve."""
-    grounding = " (while grounding its first parts)" if planner.grounding else ""
-    return f"{budget.why_stopped()} before the search began{grounding}"
-
-
-# One proof text for each kind of claim, whichever engine proved it first.
-SEARCHED = "every reachable state was searched, and none is a goal state"
-GREEDY_PROOF = "a plan found by greedy forward search (not proven shortest)"
-
-
 def _shortest_proof(length: int) -> str:
     """Why a plan of ``length`` steps is a shortest one."""
     if length == 0:
@@ -498,15 +442,6 @@ def _external(
     return SearchResult(FOUND, plan=plan, horizon=length, optimal=optimal, proof=proof)
 
 
-def _checked(planner: Planner, actions, engine: str) -> Plan:
-    """A plan that an engine proposed, checked by its trace (the encodings)."""
-    plan = Plan(tuple(actions))
-    answer = planner.trace(plan)
-    if not answer.get("plan", 0):
-        raise RuntimeError(f"{engine} proposed {plan}, which the encodings refute")
-    return plan
-
-
 def shortest(
     planner: Planner,
     setting: Setting,
@@ -518,6 +453,7 @@ def shortest(
     task: str = "plan search",
     longest: int | None = None,
     threads: bool = True,
+    below: int | None = None,
 ) -> SearchResult:
     """A shortest plan under a setting, searching horizons ``start`` to ``max_horizon``.
 
@@ -533,20 +469,22 @@ def shortest(
     with :data:`SOLVER_THREADS` threads (one again when it ends), unless
     ``threads`` is False: searches that promise the same plan on every run
     (in an HModel: restrictions, questions) keep one.
+
+    A model with action costs gets a cheapest plan instead
+    (:func:`ethasp.planning.cost_search.cheapest`), of cost less than
+    ``below`` if given.
     """
-    if max_horizon < 0:
-        raise InputError("the maximal horizon must be at least 0")
-    if budget.expired() or not planner.prepare(budget):
-        return SearchResult(BOUNDED, horizon=start, proof=_before(budget, planner))
-    if setting.goal and planner.is_fact("unreachable_goal"):
-        return SearchResult(
-            NONE, horizon=0, proof="the goal is unreachable even ignoring delete effects"
+    if planner.has_costs:
+        from ethasp.planning.cost_search import cheapest
+
+        return cheapest(
+            planner, setting, budget, max_horizon, start, all_plans, task, longest, below
         )
-    impossible = _impossible(planner, setting)
-    if impossible:
-        return SearchResult(NONE, horizon=0, proof=impossible)
-    if longest is not None and start > longest:
-        return SearchResult(NONE, horizon=longest, proof=_too_long(longest))
+    if below is not None:
+        raise InputError("a bound on the cost of plans needs a model with action costs")
+    settled = settled_before(planner, setting, budget, max_horizon, start, longest)
+    if settled is not None:
+        return settled
     external = _external(planner, setting, budget, max_horizon, longest, True, all_plans)
     if external is not None:
         return external
@@ -578,29 +516,6 @@ def shortest(
     finally:
         exact.stop()
         planner.threads(1)  # later searches on this grounding: one answer each time
-
-
-def _impossible(planner: Planner, setting: Setting) -> str:
-    """Why no plan meets the setting's question constraints, if the grounding
-    knows it before any search (a constraint against the goal, or one that
-    needs what relaxed reachability excludes); else the empty text."""
-    if not setting.goal or not setting.constraints:
-        return ""
-    found = planner.impossible(sorted(setting.constraints, key=str))
-    if not found:
-        return ""
-    constraint, why = found[0]
-    if why == "goal":
-        return f"the question's constraint {constraint} contradicts the goal"
-    return (
-        f"the question's constraint {constraint} needs an action or a fact that is "
-        "unreachable even ignoring delete effects"
-    )
-
-
-def _too_long(longest: int) -> str:
-    """Why no plan exists when every plan has more steps than the question allows."""
-    return f"no plan has at most {steps(longest)}, and the question allows no more"
 
 
 def _shortest(
@@ -770,11 +685,16 @@ def any_plan(
     exact.max_horizon = max_horizon
     setting = replace(setting, satisficing=True, canonical=plain and _one_plan_wanted(setting))
     try:
-        return _any_plan(
+        result = _any_plan(
             planner, setting, budget, max_horizon, start, start_proof, task, exact, longest
         )
     finally:
         exact.stop()
+    if result.plan is not None and planner.has_costs:
+        from ethasp.planning.cost_search import cost_of
+
+        result.cost = cost_of(planner, result.plan)
+    return result
 
 
 def _any_plan(
@@ -790,8 +710,7 @@ def _any_plan(
 ) -> SearchResult:
     if longest is not None:
         max_horizon = min(max_horizon, longest)
-    horizon, checked = start, 0
-    slice_: float = SLICE
+    horizon, slice_, checked = start, float(SLICE), 0
     witness: Plan | None = None  # the solver's plan, if the greedy search gives up
     exact.head_start()
     while True:

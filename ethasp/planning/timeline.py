@@ -35,6 +35,7 @@ from ethasp.vocabulary import (
     Happened,
     Init,
     Initially,
+    PlanCost,
     SetAt,
     UtilityOfFinal,
     Variable,
@@ -93,6 +94,7 @@ class Valuation:
     agent: tuple[str, str] | None = None
     action_labels: dict[clingo.Symbol, tuple[str, str]] = field(default_factory=dict)
     fact_labels: dict[Fact, str] = field(default_factory=dict)
+    costs: dict[clingo.Symbol, int] = field(default_factory=dict)  # with action costs only
 
     @classmethod
     def of_model(cls, model: Model) -> Valuation:
@@ -116,6 +118,7 @@ class Valuation:
             fact_labels={
                 Fact.of(f.variable.symbol, f.value): f.phrase for f in facts.query(FactLabel).all()
             },
+            costs=model.planner.action_costs() if model.planner.has_costs else {},
         )
 
     def action_utility(self, action: clingo.Symbol) -> int:
@@ -127,6 +130,10 @@ class Valuation:
 
     def action_label(self, action: clingo.Symbol) -> str:
         return self.action_labels.get(action, ("", ""))[0]
+
+    def action_cost(self, action: clingo.Symbol) -> int | None:
+        """The cost of an action, in a model with action costs (else None)."""
+        return self.costs.get(action, 0) if self.costs else None
 
     def fact_label(self, fact: Fact) -> str:
         return self.fact_labels.get(fact, "")
@@ -195,7 +202,8 @@ class Column:
 class Timeline:
     """A plan step by step: the initial values of the variables it changes,
     one column per step, its final state, the facts it causes (``Caused`` of
-    L) and the utility of the final state."""
+    L), the utility of the final state and, in a model with action costs, the
+    plan's cost."""
 
     plan: Plan
     initial: list[Fact]
@@ -204,6 +212,7 @@ class Timeline:
     caused: set[Fact]
     utility: int
     valuation: Valuation
+    cost: int | None = None
 
     def changed_variables(self) -> list[clingo.Symbol]:
         return sorted(
@@ -231,7 +240,18 @@ def timeline(model: Model, plan: Plan, valuation: Valuation | None = None) -> Ti
     valuation = valuation or Valuation.of_model(model)
     symbols = plan_atoms(model, plan, STEPS)
     atoms = unify(
-        [Initially, SetAt, Changed, Causing, Caused, Final, UtilityOfFinal, EventChanged, Happened],
+        [
+            Initially,
+            SetAt,
+            Changed,
+            Causing,
+            Caused,
+            Final,
+            UtilityOfFinal,
+            EventChanged,
+            Happened,
+            PlanCost,
+        ],
         symbols,
     )
     sets = list(atoms.query(SetAt).all())
@@ -270,6 +290,14 @@ def timeline(model: Model, plan: Plan, valuation: Valuation | None = None) -> Ti
     initial = [fact for fact in _facts(atoms.query(Initially).all()) if fact.variable in moved]
     final = _facts(atoms.query(Final).all())
     utility = next(iter(atoms.query(UtilityOfFinal).all())).utility
+    costs = [atom.cost for atom in atoms.query(PlanCost).all()]
     return Timeline(
-        plan, initial, columns, final, set(_facts(atoms.query(Caused).all())), utility, valuation
+        plan,
+        initial,
+        columns,
+        final,
+        set(_facts(atoms.query(Caused).all())),
+        utility,
+        valuation,
+        costs[0] if costs and valuation.costs else None,
     )

@@ -8,6 +8,7 @@ schema is told which static precondition fails, by a small program of its own
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 import clingo
@@ -70,6 +71,7 @@ class Validation:
     static: bool = False
     unmet_goals: list[str] = field(default_factory=list)
     final_state: list[str] = field(default_factory=list)
+    cost: int | None = None  # the plan's cost, in a model with action costs
 
     def message(self, naming: Naming = ASP_NAMING) -> str:
         """One line saying why the sequence is not a plan ('' if it is one).
@@ -109,6 +111,7 @@ class Validation:
             },
             "unmet_goals": self.unmet_goals,
             "final_state": self.final_state,
+            **({"cost": self.cost} if self.cost is not None else {}),
         }
 
 
@@ -122,14 +125,20 @@ def _problem(problem: clingo.Symbol, naming: Naming = ASP_NAMING) -> str:
 def validate(model: Model, plan: Plan) -> Validation:
     """Validate a plan (its trace, computed once per plan by the model's
     planner); raise InputError if it names unknown actions."""
-    return read_validation(plan, model.planner.trace(plan).select(TRACE_ATOMS), model)
+    answer = model.planner.trace(plan)
+    validation = read_validation(plan, answer.select(TRACE_ATOMS), model)
+    if model.planner.has_costs:
+        validation.cost = answer.get("plan_cost", 1)[0].arguments[0].number
+    return validation
 
 
-def plan_atoms(model: Model, plan: Plan, encodings) -> list[clingo.Symbol]:
+def plan_atoms(
+    model: Model, plan: Plan, encodings, facts: Iterable[clingo.Symbol] = ()
+) -> list[clingo.Symbol]:
     """The shown atoms of programs about a plan (``encodings``, which include
-    its trace, ``planning/trace.lp``), in one clingo call; InputError if the
-    plan is not a plan of the model."""
-    ctl = model.planner.program(encodings, symbols=occurrences(plan))
+    its trace, ``planning/trace.lp``), given further ``facts``, in one clingo
+    call; InputError if the plan is not a plan of the model."""
+    ctl = model.planner.program(encodings, symbols=[*occurrences(plan), *facts])
     symbols: list[clingo.Symbol] = []
     with ctl.solve(yield_=True) as handle:
         for answer in handle:

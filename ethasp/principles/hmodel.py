@@ -39,7 +39,8 @@ RESTRICTIONS = "restrictions"
 MODEL = "planning/model.lp"
 
 # Constraint terms of questions that questions/restriction.lp compiles
-# (at_most(N) is the search's maximal horizon: the HModel leaves it out).
+# (at_most(N) is the search's maximal horizon and cheaper_than(C) its cost
+# bound: the HModel leaves them out).
 COMPILED_CONSTRAINTS = (
     "unused",
     "used",
@@ -51,6 +52,7 @@ COMPILED_CONSTRAINTS = (
     "not_within",
     "fact_at",
     "at_most",
+    "cheaper_than",
 )
 
 

@@ -144,17 +144,20 @@ class Judgement:
 class JudgementReport:
     """A plan, its final state (literals ``v`` / ``-v``) and utility, and its
     judgements; ``goal_reached`` is False for a HERA situation's plan that
-    misses its goal (judged all the same, as HERA does)."""
+    misses its goal (judged all the same, as HERA does); ``cost``: the plan's
+    cost, in a model with action costs."""
 
     plan: Plan
     final_state: list[str]
     utility: int
     judgements: list[Judgement] = field(default_factory=list)
     goal_reached: bool = True
+    cost: int | None = None
 
     def to_json(self) -> dict:
         data = {
             "plan": self.plan.to_list(),
+            **({"cost": self.cost} if self.cost is not None else {}),
             "final_state": self.final_state,
             "utility": self.utility,
             "judgements": [judgement.to_json() for judgement in self.judgements],
@@ -459,7 +462,12 @@ def judge(
             )
         )
     return JudgementReport(
-        plan, validation.final_state, utility, judgements, goal_reached=not validation.unmet_goals
+        plan,
+        validation.final_state,
+        utility,
+        judgements,
+        goal_reached=not validation.unmet_goals,
+        cost=validate(model, plan).cost if model.planner.has_costs else None,
     )
 
 

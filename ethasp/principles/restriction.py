@@ -48,6 +48,9 @@ from ethasp.principles.principle import GROUPS, Principle, available_principles,
 from ethasp.resources import ENCODINGS
 
 RESTRICTIONS = "restrictions"
+# Question constraints that bound the search instead of restricting the model:
+# at most N steps (the maximal horizon), a cost below C (the cost bound).
+SEARCH_BOUNDS = ("at_most", "cheaper_than")
 
 
 def _principles(names: Sequence[str]) -> list[Principle]:
@@ -124,7 +127,9 @@ class HPlanResult:
     (permissible as far as searched).  With utilitarianism, ``best`` is the
     best reachable state found (the plans had to reach its utility), proven
     best or only bounded, and ``utility`` the utility of the plan's final
-    state.
+    state.  With action costs the plan is a cheapest permissible one, of
+    ``cost``; a ``bounded`` result may then hold the cheapest permissible
+    plan found, not proven cheapest (``optimal`` False).
     """
 
     status: str
@@ -136,12 +141,14 @@ class HPlanResult:
     best: BestReachable | None = None
     optimal: bool = True
     utility: int | None = None
+    cost: int | None = None
 
     def to_json(self) -> dict:
         data: dict[str, Any] = {
             "status": self.status,
             "plan": self.plan.to_list() if self.plan is not None else None,
             "optimal": self.optimal if self.plan is not None else None,
+            **({"cost": self.cost} if self.cost is not None else {}),
             "principles": list(self.principles),
             "horizon": self.horizon,
             "proof": self.proof,
@@ -174,12 +181,15 @@ def plan_with_principles(
     budget: Budget | None = None,
     satisficing: bool = False,
     max_length: int | None = None,
+    below: int | None = None,
 ) -> HPlanResult:
     """A shortest HPlan: a plan of the model permissible under all the principles.
 
     ``constraints`` (of contrastive questions) restrict the HModel further;
     ``max_length``: they allow no plan of more steps (``at_most(N)``), so a
-    search that refutes every horizon up to it proves that there is none.
+    search that refutes every horizon up to it proves that there is none;
+    ``below`` (a model with action costs): they allow no plan that costs
+    this much or more (``cheaper_than(C)``).
     ``budget`` (or else ``time_limit``) bounds the searches.  With
     ``satisficing``, an HPlan found fast and not proven shortest (an any-plan
     search, :func:`ethasp.planning.search.any_plan`): the restrictions apply
@@ -199,6 +209,8 @@ def plan_with_principles(
     permissible = f" permissible under {under}" if names else ""
     if not names:  # the question alone: "no plan meets the question"
         plans_are = "plan meets the question" if constraints else "plan exists"
+        if below is not None and not constraints:
+            plans_are = f"plan costs less than {below}"
     else:
         plans_are = f"{plans} is{permissible}"
     if any(principle.reads_alternatives for principle in chosen):
@@ -219,7 +231,7 @@ def plan_with_principles(
     derived = frozenset(atom.arguments[0] for atom in model.planner.get("derived", 1))
     restriction = Restriction.of(
         [p.asp_name for p in chosen],
-        [t for t in terms if compiled(t, derived) and t.name != "at_most"],
+        [t for t in terms if compiled(t, derived) and t.name not in SEARCH_BOUNDS],
         best.utility if best is not None else None,
     )
     restricted = model if restriction.empty else hmodel(model, restriction)
@@ -242,6 +254,8 @@ def plan_with_principles(
     # Constraints that no HModel writes are imposed on its search (in ASP).
     setting = Setting(constraints=frozenset(planner.question(rest)) if rest else frozenset())
     task = f"plan search under {under}" if names else "plan search"
+    if satisficing and below is not None:
+        raise InputError("a cheaper plan is searched for with its cost proven, not --satisficing")
     result = (
         any_plan(planner, setting, budget, max_horizon, task=task, longest=max_length)
         if satisficing
@@ -254,6 +268,7 @@ def plan_with_principles(
             task=task,
             longest=max_length,
             threads=restricted is model,
+            below=below,
         )
     )
     found = result.plan if result.status == FOUND else None
@@ -268,11 +283,13 @@ def plan_with_principles(
             best=best,
             optimal=result.optimal,
             utility=_final_utility(model, found),
+            cost=result.cost,
             proof=f"a plan of {steps(len(found))} reaches utility {best.utility}, but a "
             f"better reachable state is not excluded ({best.proof})",
         )
     if found is not None:
-        kind = f"a shortest {plans}" if result.optimal else f"a {plans}"
+        least = "shortest" if result.cost is None else "cheapest"
+        kind = f"a {least} {plans}" if result.optimal else f"a {plans}"
         return HPlanResult(
             FOUND,
             names,
@@ -283,12 +300,33 @@ def plan_with_principles(
             best,
             optimal=result.optimal,
             utility=_final_utility(model, found),
+            cost=result.cost,
+        )
+    if result.status == BOUNDED and result.plan is not None:
+        # A model with action costs: the cheapest HPlan found, not proven cheapest.
+        return HPlanResult(
+            BOUNDED,
+            names,
+            result.plan,
+            result.horizon,
+            f"a {plans}{permissible}, not proven cheapest: {result.proof}",
+            best=best,
+            optimal=False,
+            utility=_final_utility(model, result.plan),
+            cost=result.cost,
         )
     if result.status == NONE:
         # With utilitarianism the search asked for utility >= best.utility, a lower
         # bound of the best reachable utility: no such goal state, no permissible plan.
         return HPlanResult(
-            NONE, names, None, result.horizon, f"no {plans_are}: {result.proof}", best=best
+            NONE,
+            names,
+            None,
+            result.horizon,
+            result.proof
+            if result.proof.startswith(f"no {plans_are}")
+            else f"no {plans_are}: {result.proof}",
+            best=best,
         )
     return HPlanResult(
         BOUNDED,
@@ -297,4 +335,95 @@ def plan_with_principles(
         result.horizon,
         f"no {plans}{permissible} found: {result.proof}",
         best=best,
+    )
+
+
+# -- what principles cost --------------------------------------------------------
+
+
+@dataclass
+class PrincipleCost:
+    """What obeying principles costs, in a model with action costs: the cost of
+    a cheapest permissible plan (``permissible``) minus that of a cheapest
+    plan (``cheapest``).  ``status``: ``proven`` (both are proven cheapest),
+    ``none`` (no plan is permissible: the principles forbid every plan, or no
+    plan exists at all) or ``bounded`` (one of them is not proven, or not
+    found); ``proof`` says which."""
+
+    principles: list[str]
+    status: str
+    permissible: int | None
+    cheapest: int | None
+    proof: str
+
+    @property
+    def value(self) -> int | None:
+        if self.status != PROVEN or self.permissible is None or self.cheapest is None:
+            return None
+        return self.permissible - self.cheapest
+
+    def to_json(self) -> dict:
+        return {
+            "status": self.status,
+            "cost": self.value,
+            "permissible_plan_cost": self.permissible,
+            "cheapest_plan_cost": self.cheapest,
+            "proof": self.proof,
+        }
+
+    def text(self) -> str:
+        """One line: "what deontology costs: 4 (...)"."""
+        under = " and ".join(self.principles)
+        if self.value is not None:
+            return (
+                f"what {under} costs: {self.value} (a cheapest permissible plan costs "
+                f"{self.permissible}, a cheapest plan {self.cheapest}; both proven)"
+            )
+        return f"what {under} costs: {self.status}: {self.proof}"
+
+
+def principle_cost(
+    model: Model,
+    hplan: HPlanResult,
+    max_horizon: int | None = None,
+    budget: Budget | None = None,
+) -> PrincipleCost:
+    """What the principles of ``hplan`` (a result of :func:`plan_with_principles`)
+    cost in a model with action costs: the cost of the cheapest permissible
+    plan minus that of the cheapest plan, both proven by plan search
+    (:func:`ethasp.planning.search.find_plan` for the latter)."""
+    from ethasp.planning.search import find_plan
+
+    if not model.planner.has_costs:
+        raise InputError("the model has no action costs (cost/2): its principles cost nothing")
+    cheapest = find_plan(model, max_horizon, budget=budget)
+    if cheapest.status == NONE:
+        return PrincipleCost(
+            hplan.principles, NONE, None, None, f"no plan exists at all: {cheapest.proof}"
+        )
+    best = cheapest.cost if cheapest.status == FOUND else None
+    if hplan.status == NONE:
+        return PrincipleCost(
+            hplan.principles,
+            NONE,
+            None,
+            best,
+            f"no plan is permissible, though plans exist: {hplan.proof}",
+        )
+    permissible = hplan.cost if hplan.status == FOUND else None
+    if best is not None and permissible is not None:
+        return PrincipleCost(
+            hplan.principles, PROVEN, permissible, best, f"{hplan.proof}; {cheapest.proof}"
+        )
+    unproven = []
+    if permissible is None:
+        unproven.append(f"the cheapest permissible plan is not proven ({hplan.proof})")
+    if best is None:
+        unproven.append(f"the cheapest plan is not proven ({cheapest.proof})")
+    return PrincipleCost(
+        hplan.principles,
+        BOUNDED,
+        hplan.cost,
+        cheapest.cost,
+        "; ".join(unproven),
     )

@@ -89,6 +89,11 @@ def _unknown_action(model: Model, question: Question, term: clingo.Symbol, also:
 def resolve(model: Model, question: Question) -> Resolved:
     """Resolve the names of a question: an action or a state variable (one line
     for a name that is both, unless the question says which, or neither)."""
+    if question.kind == "cheaper":
+        raise InputError(
+            f"question '{question}': its contrast is the cost of the plan asked about "
+            "(see check_question)"
+        )
     subject = parse_action(question.action) if question.action is not None else None
     other = parse_action(question.other) if question.other is not None else None
     fact = False
@@ -214,6 +219,10 @@ def check_question(model: Model, question: Question, plan: Plan) -> list[Constra
     before any A), or a question about two actions names an A (for ``before``
     and ``after`` also a B) that the plan does not use.
     """
+    if question.kind == "cheaper":
+        return [
+            Constraint(clingo.Function("q", [clingo.Number(1)]), _cheaper(model, question, plan))
+        ]
     resolved = resolve(model, question)
     met = _met(model, plan, resolved.terms + resolved.presupposed)
     for term in resolved.presupposed:
@@ -232,6 +241,31 @@ def check_question(model: Model, question: Question, plan: Plan) -> list[Constra
     return [Constraint(clingo.Function("q", [clingo.Number(1)]), term) for term in resolved.terms]
 
 
+def _cheaper(model: Model, question: Question, plan: Plan) -> clingo.Symbol:
+    """The constraint of ``why not a cheaper plan``: ``cheaper_than(C)``, C the
+    plan's cost (one line where the model has no costs or the plan costs 0)."""
+    if not model.planner.has_costs:
+        raise InputError(
+            f"question '{question}': the model has no action costs (cost/2), so plans "
+            "cost their number of steps: ask 'why not in N steps'"
+        )
+    cost = validate(model, plan).cost or 0
+    if cost == 0:
+        raise InputError(f"question '{question}': the plan costs 0, and no plan costs less")
+    return clingo.Function("cheaper_than", [clingo.Number(cost)])
+
+
+def cost_bound(constraints: Sequence[Constraint]) -> int | None:
+    """The cost every plan meeting the constraints must stay below (their
+    ``cheaper_than(C)``), or None."""
+    bounds = [
+        c.term.arguments[0].number
+        for c in constraints
+        if c.term.name == "cheaper_than" and len(c.term.arguments) == 1
+    ]
+    return min(bounds) if bounds else None
+
+
 def beyond_horizon(question: Question, terms: Sequence[clingo.Symbol], max_horizon: int) -> str:
     """Why a question cannot be searched within ``max_horizon`` steps: the
     empty text if it can.  A question that needs a step beyond the horizon
@@ -247,7 +281,8 @@ def beyond_horizon(question: Question, terms: Sequence[clingo.Symbol], max_horiz
             for argument in term.arguments
             if argument.type == clingo.SymbolType.Number
         ]
-        if term.name == "at_most" or not steps_named or max(steps_named) <= max_horizon:
+        bounds = term.name in ("at_most", "cheaper_than")
+        if bounds or not steps_named or max(steps_named) <= max_horizon:
             continue
         first = steps_named[0]
         if term.name in ("at", "within") and first > max_horizon:
@@ -314,7 +349,13 @@ def minimal_conflict(
         trial = [c for c in core if c != constraint]
         if (
             plan_with_principles(
-                model, [], max_horizon, constraints=trial, budget=budget, max_length=longest(trial)
+                model,
+                [],
+                max_horizon,
+                constraints=trial,
+                budget=budget,
+                max_length=longest(trial),
+                below=cost_bound(trial),
             ).status
             == NONE
         ):
@@ -341,6 +382,7 @@ def contrast_plan(
     """
     budget = budget or Budget(time_limit)
     length = longest(constraints)
+    below = cost_bound(constraints)
     result = plan_with_principles(
         model,
         [under],
@@ -349,6 +391,7 @@ def contrast_plan(
         budget=budget,
         satisficing=satisficing,
         max_length=length,
+        below=below,
     )
     if result.status == FOUND:
         return ContrastSearch(result, False)
@@ -364,6 +407,7 @@ def contrast_plan(
         budget=budget,
         satisficing=satisficing,
         max_length=length,
+        below=below,
     )
     if dropped.status == NONE:
         # No plan meets the question at all: the principle is not what stands in
@@ -406,11 +450,13 @@ class Side:
     plan: Plan
     principle: str
     judgement: Judgement
+    cost: int | None = None  # the plan's cost, in a model with action costs
 
     def to_json(self, model: Model | None = None) -> dict:
         explanation = self.judgement.explanation
         return {
             "plan": self.plan.to_list(),
+            **({"cost": self.cost} if self.cost is not None else {}),
             "principle": self.principle,
             "permissible": self.judgement.permissible,
             "status": self.judgement.status,
@@ -552,7 +598,8 @@ def _judge_side(
     report = judge(
         model, plan, [principle], max_horizon, reasons_limit=reasons_limit, budget=budget
     )
-    return Side(plan, principle, report.judgements[0])
+    cost = validate(model, plan).cost if model.planner.has_costs else None
+    return Side(plan, principle, report.judgements[0], cost)
 
 
 def original_plan(

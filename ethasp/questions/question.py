@@ -24,6 +24,8 @@ than T steps it is the plan's final state::
     why F at T               contrast: F is false after step T      fact_at(F,false,T)
     why not F at T           contrast: F is true after step T       fact_at(F,true,T)
     why not in N steps       contrast: at most N steps              at_most(N)
+    why not a cheaper plan   contrast: costs less than the plan,    cheaper_than(C)
+                             C (a model with action costs)
 
 ``why X`` (with or without ``not``, ``at`` or ``within``) names an action or a
 state variable; a name that is both is refused unless the question says which:
@@ -47,7 +49,7 @@ import clingo
 from ethasp.errors import InputError
 from ethasp.planning.plan import split_terms
 
-KINDS = ("why", "why-not", "rather-than", "before", "after", "length")
+KINDS = ("why", "why-not", "rather-than", "before", "after", "length", "cheaper")
 # The kinds whose subject may be an action or a state variable.
 EITHER = ("why", "why-not")
 # The kinds about two actions.
@@ -61,8 +63,9 @@ MAX_STEP = 1_000_000
 FORMS = (
     "why A | why not A | why A rather than B | why A before B | why A after B | "
     "why [not] A at T | why [not] A within T1..T2 | why [not] F | why [not] F at T | "
-    "why not in N steps"
+    "why not in N steps | why not a cheaper plan"
 )
+_CHEAPER = re.compile(r"why\s+not\s+(a\s+)?cheaper(\s+plan)?", re.IGNORECASE)
 
 _WINDOW = re.compile(r"(\d+)\s*\.\.\s*(\d+)")
 _STEP_QUESTION = re.compile(r"\s*why\s+step\s+(\S+?)\s*\??\s*", re.IGNORECASE)
@@ -98,7 +101,9 @@ class Question:
     when the question does: ``action`` or ``fact``), ``other`` the second
     action of ``rather-than``, ``before`` and ``after``; ``at`` a step,
     ``within`` a window of steps (first, last); ``steps`` the length N of
-    ``why not in N steps`` (kind ``length``).
+    ``why not in N steps`` (kind ``length``).  ``why not a cheaper plan``
+    (kind ``cheaper``) names nothing: its contrast costs less than the plan
+    asked about.
     """
 
     kind: str
@@ -114,6 +119,13 @@ class Question:
             raise InputError(f"question: unknown kind {self.kind!r} (one of {', '.join(KINDS)})")
         if self.what is not None and self.what not in WHAT:
             raise InputError(f"question: 'what' must be action or fact, not {self.what!r}")
+        if self.kind == "cheaper":
+            if any(
+                value is not None
+                for value in (self.action, self.other, self.at, self.within, self.steps)
+            ):
+                raise InputError("question: kind cheaper names nothing (why not a cheaper plan)")
+            return
         if self.kind == "length":
             if (
                 self.steps is None
@@ -180,6 +192,8 @@ class Question:
         words = body.split(None, 1)
         if not words or words[0].lower() != "why" or len(words) < 2:
             raise InputError(f"question: expected 'why ...', got {shown!r} (forms: {FORMS})")
+        if _CHEAPER.fullmatch(body):
+            return cls("cheaper")
         if step_question(shown) is not None:
             raise InputError(
                 f"question {shown!r} asks for the causal explanation of a step "
@@ -270,6 +284,8 @@ class Question:
         return what, tokens[0]
 
     def __str__(self) -> str:
+        if self.kind == "cheaper":
+            return "why not a cheaper plan"
         if self.kind == "length":
             return f"why not in {self.steps} {'step' if self.steps == 1 else 'steps'}"
         subject = f"{self.what} {self.action}" if self.what else self.action
@@ -302,7 +318,7 @@ class Question:
     def from_json(cls, data: dict) -> Question:
         if not isinstance(data, dict) or "kind" not in data:
             raise InputError("question: a JSON question needs 'kind'")
-        if data["kind"] != "length" and "action" not in data:
+        if data["kind"] not in ("length", "cheaper") and "action" not in data:
             raise InputError("question: a JSON question needs 'kind' and 'action'")
 
         def text(key):
@@ -338,6 +354,8 @@ class Question:
         """The constraint terms C of ``contrast(Q,C)`` for resolved terms
         (``fact``: the subject is a state variable)."""
         fn, num = clingo.Function, clingo.Number
+        if self.kind == "cheaper":
+            raise ValueError("the contrast of 'why not a cheaper plan' is the plan's cost")
         if self.kind == "length":
             return [fn("at_most", [num(self.steps)])]
         if self.kind == "rather-than":

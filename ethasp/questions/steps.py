@@ -1,6 +1,8 @@
 """Step-by-step causal explanations of a plan: which later steps, events and
 goal facts each step serves (causal links), which steps are not needed
-(removable), and each step's moral side.
+(removable), each step's moral side, and the E-links and D-links of Lindner
+and Olz ("Step-by-Step Task Plan Explanations Beyond Causal Links", RO-MAN
+2022): what enables each step, and what requires it.
 
 The semantics are the encodings': ``encodings/questions/links.lp`` (causal
 links, chains to the goal, utilities and the valued facts each step causes)
@@ -11,8 +13,20 @@ when step i sets V to B, step j's precondition (or the goal) needs V = B, and
 no step or event between them sets V.  A conditional effect counts where it
 fires; a value an event sets is linked from that event; a need on a derived
 variable is a need on the state variables that give it its value (the link
-says through which derived variable).  This module reads the atoms back
-and puts them into words (:mod:`ethasp.reasons.words` building blocks).
+says through which derived variable).
+
+E-links and D-links (``encodings/questions/producers.lp``, with the
+demanded literals of ``encodings/questions/demands.lp``, one solve for its
+brave consequences): a *producer* of literal l for step t (or the goal) is
+every earlier step (or event) that sets l with nothing setting the opposite
+in between, and ``init`` if l holds initially and nothing before t sets the
+opposite; l is *demanded* at step t when it holds before t and, had it not
+held, some subsequence of the later steps would reach the goal.  A D-link
+(p, l, t): l is demanded at t and p produces it; an E-link (p, l, t): step t
+(or the goal) needs l, p produces it, and it is no D-link.
+
+This module reads the atoms back and puts them into words
+(:mod:`ethasp.reasons.words` building blocks).
 """
 
 from __future__ import annotations
@@ -23,13 +37,24 @@ import clingo
 from clorm import unify
 
 from ethasp.errors import InputError
+from ethasp.planning.driver.planner import occurrences, solve_configuration
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
 from ethasp.planning.validation import plan_atoms
 from ethasp.reasons import words
 from ethasp.reasons.explanation import Labels
 from ethasp.reasons.reasons import model_labels
-from ethasp.vocabulary import Chain, Link, Removable, ServesGoal, StepCauses, StepUtility
+from ethasp.vocabulary import (
+    Chain,
+    DLink,
+    ELink,
+    Link,
+    PlanCost,
+    Removable,
+    ServesGoal,
+    StepCauses,
+    StepUtility,
+)
 
 ENCODINGS = (
     "planning/model.lp",
@@ -38,6 +63,15 @@ ENCODINGS = (
     "planning/steps.lp",
     "questions/links.lp",
     "questions/removable.lp",
+    "questions/producers.lp",
+)
+# The demanded literals, a program of their own (solved for its brave consequences).
+DEMAND_ENCODINGS = (
+    "planning/model.lp",
+    "planning/trace.lp",
+    "planning/trace_events.lp",
+    "planning/steps.lp",
+    "questions/demands.lp",
 )
 
 # Removable steps are found by tracing the plan once without each step: the
@@ -48,7 +82,8 @@ MAX_STEPS = 400
 @dataclass(frozen=True)
 class Node:
     """Where a link starts or ends: the action of a step (``step``), an event
-    of a step (``event``), or the goal (``goal``, step 0)."""
+    of a step (``event``), the goal (``goal``, step 0), or the initial state
+    (``init``, step 0: where an E-link or D-link may start)."""
 
     kind: str
     step: int = 0
@@ -60,14 +95,16 @@ class Node:
             return cls("step", term.arguments[0].number)
         if term.name == "event":
             return cls("event", term.arguments[0].number, term.arguments[1])
+        if term.name == "init":
+            return cls("init")
         return cls("goal")
 
     def to_json(self):
-        """A step number, ``"goal"``, or ``{"event": E, "step": T}``."""
+        """A step number, ``"goal"``, ``"init"``, or ``{"event": E, "step": T}``."""
         if self.kind == "step":
             return self.step
-        if self.kind == "goal":
-            return "goal"
+        if self.kind in ("goal", "init"):
+            return self.kind
         return {"event": str(self.event), "step": self.step}
 
 
@@ -106,6 +143,33 @@ class CausalLink:
         if self.via is not None:
             data["via"] = str(self.via)
         return data
+
+
+@dataclass(frozen=True)
+class ProducerLink:
+    """An E-link (``demand`` False) or a D-link (``demand`` True): ``producer``
+    (``init``, a step or an event) produces ``variable`` = ``value``, which
+    enables (E-link) or requires (D-link) ``consumer`` (a step, or the goal
+    for E-links)."""
+
+    producer: Node
+    consumer: Node
+    variable: clingo.Symbol
+    value: bool
+    demand: bool
+
+    def literal(self) -> str:
+        return str(self.variable) if self.value else f"-{self.variable}"
+
+    def to_json(self) -> dict:
+        """``{"from": step number, "init" or {"event", "step"}, "variable",
+        "value", "to": step number or "goal"}``."""
+        return {
+            "from": self.producer.to_json(),
+            "variable": str(self.variable),
+            "value": self.value,
+            "to": self.consumer.to_json(),
+        }
 
 
 @dataclass
@@ -182,12 +246,18 @@ class StepsExplanation:
     events: list[EventExplanation]
     labels: Labels = field(default_factory=Labels)
     text: str = ""
+    e_links: list[ProducerLink] = field(default_factory=list)
+    d_links: list[ProducerLink] = field(default_factory=list)
+    cost: int | None = None  # the plan's cost, in a model with action costs
 
     def to_json(self, naming=None) -> dict:
         return {
             "plan": self.plan.to_list(),
+            **({"cost": self.cost} if self.cost is not None else {}),
             "steps": [step.to_json(naming) for step in self.steps],
             "events": [event.to_json(naming) for event in self.events if event.links],
+            "e_links": [link.to_json() for link in self.e_links],
+            "d_links": [link.to_json() for link in self.d_links],
             "explanation": self.text,
         }
 
@@ -195,6 +265,11 @@ class StepsExplanation:
         """The explanation in words, one sentence per step (and per event
         with links, in its place)."""
         return plan_lines(self.labels, self.plan, self.steps, self.events)
+
+    def link_lines(self) -> list[str]:
+        """The E-links and D-links in words, a sentence per step (see
+        :func:`producer_lines`)."""
+        return producer_lines(self.labels, self.plan, self.e_links, self.d_links)
 
     @property
     def links(self) -> list[CausalLink]:
@@ -224,7 +299,8 @@ class StepsExplanation:
                 text += " It serves the goal directly."
         else:
             text += " It serves no goal fact, directly or through later steps."
-        return text
+        links = producer_sentence(self.labels, self.plan, step, self.e_links, self.d_links)
+        return f"{text} {links.split(': ', 1)[1][0].upper()}{links.split(': ', 1)[1][1:]}"
 
 
 def _node_order(node: Node) -> int:
@@ -235,6 +311,17 @@ def _node_order(node: Node) -> int:
 
 def _link_order(link: CausalLink):
     return (_node_order(link.provider), _node_order(link.consumer), str(link.variable))
+
+
+def _producer_order(link: ProducerLink):
+    """As plan-explainer lists them: by consumer, then producer (init first)."""
+    return (
+        _node_order(link.consumer),
+        _node_order(link.producer) if link.producer.kind != "init" else -1,
+        str(link.producer.event),
+        str(link.variable),
+        link.value,
+    )
 
 
 # -- words ---------------------------------------------------------------------------
@@ -312,6 +399,100 @@ def step_sentence(labels: Labels, plan: Plan, explained: StepExplanation) -> str
     return f"{text} {moral}" if moral else text
 
 
+def _step_ref(labels: Labels, plan: Plan, step: int) -> str:
+    return f"step {step} ({words.action_phrase(labels, plan.actions[step - 1])})"
+
+
+def _producer_words(labels: Labels, plan: Plan, node: Node) -> str:
+    if node.kind == "step":
+        return _step_ref(labels, plan, node.step)
+    return _node_words(labels, plan, node)
+
+
+def _facts_words(labels: Labels, links: list[ProducerLink]) -> str:
+    return words.join([words.fact_phrase(labels, link.variable, link.value) for link in links])
+
+
+def _initially(labels: Labels, links: list[ProducerLink], verb: str) -> str:
+    """ "X holds initially and <verb>s ...", or "X and Y hold initially and <verb> ..."."""
+    if len(links) > 1:
+        return f"{_facts_words(labels, links)} hold initially and {verb}"
+    return f"{_facts_words(labels, links)} holds initially and {verb}s"
+
+
+def _grouped(links: list[ProducerLink], key) -> list[list[ProducerLink]]:
+    """Links grouped by a key, in the order of their first link."""
+    groups: dict = {}
+    for link in links:
+        groups.setdefault(key(link), []).append(link)
+    return list(groups.values())
+
+
+def _results(labels: Labels, plan: Plan, subject: str, links: list[ProducerLink]) -> list[str]:
+    """ "<subject> results in X, which enables step 3 (...) and fulfils the
+    goal": the E-links from one producer, the consumers of equal facts joined."""
+    by_facts: dict[tuple, list[Node]] = {}
+    for group in _grouped(links, lambda e: e.consumer):
+        key = tuple((e.variable, e.value) for e in group)
+        by_facts.setdefault(key, []).append(group[0].consumer)
+    clauses = []
+    for key, consumers in by_facts.items():
+        facts = words.join([words.fact_phrase(labels, v, b) for v, b in key])
+        steps = [_step_ref(labels, plan, c.step) for c in consumers if c.kind == "step"]
+        which = [f"enables {words.join(steps)}"] if steps else []
+        if any(c.kind == "goal" for c in consumers):
+            which.append("fulfils the goal")
+        clauses.append(f"{subject} results in {facts}, which {' and '.join(which)}")
+    return clauses
+
+
+def producer_sentence(
+    labels: Labels, plan: Plan, step: int, e_links: list[ProducerLink], d_links: list[ProducerLink]
+) -> str:
+    """What requires step ``step`` (its D-links), what enables it and what it
+    enables (its E-links), in plan-explainer's words: "X holds initially and
+    requires it", "step 1 (...) results in X, which requires it", "X holds
+    initially and enables it", "it results in X, which enables step 3 (...)"
+    or "..., which fulfils the goal"."""
+    clauses = []
+    for group in _grouped([d for d in d_links if d.consumer.step == step], lambda d: d.producer):
+        producer = group[0].producer
+        if producer.kind == "init":
+            clauses.append(f"{_initially(labels, group, 'require')} it")
+        else:
+            clauses.append(
+                f"{_producer_words(labels, plan, producer)} results in "
+                f"{_facts_words(labels, group)}, which requires it"
+            )
+    into = [e for e in e_links if e.consumer == Node("step", step) and e.producer.kind == "init"]
+    if into:
+        clauses.append(f"{_initially(labels, into, 'enable')} it")
+    clauses += _results(
+        labels, plan, "it", [e for e in e_links if e.producer == Node("step", step)]
+    )
+    head = f"Step {step}, {words.action_phrase(labels, plan.actions[step - 1])}:"
+    if not clauses:
+        return f"{head} no E-link or D-link leads to it or from it."
+    return f"{head} {'; '.join(clauses)}."
+
+
+def producer_lines(
+    labels: Labels, plan: Plan, e_links: list[ProducerLink], d_links: list[ProducerLink]
+) -> list[str]:
+    """The E-links and D-links of a plan in words: a sentence per step
+    (:func:`producer_sentence`), then the events' E-links and the goal
+    literals that hold initially."""
+    lines = [producer_sentence(labels, plan, t, e_links, d_links) for t in range(1, len(plan) + 1)]
+    from_events = [e for e in e_links if e.producer.kind == "event"]
+    for group in _grouped(from_events, lambda e: e.producer):
+        subject = _node_words(labels, plan, group[0].producer)
+        lines.append(words.capitalize("; ".join(_results(labels, plan, subject, group))) + ".")
+    initial = [e for e in e_links if e.producer.kind == "init" and e.consumer.kind == "goal"]
+    if initial:
+        lines.append(words.capitalize(f"{_initially(labels, initial, 'fulfil')} the goal."))
+    return lines
+
+
 def event_sentence(labels: Labels, plan: Plan, event: EventExplanation) -> str:
     consumers: dict[Node, list[CausalLink]] = {}
     for link in event.links:
@@ -361,8 +542,10 @@ def explain_steps(model: Model, plan: Plan) -> StepsExplanation:
             f"the plan has {len(plan)} steps; step-by-step explanations are made "
             f"for plans of at most {MAX_STEPS} steps"
         )
-    symbols = plan_atoms(model, plan, ENCODINGS)
-    atoms = unify([Link, ServesGoal, Chain, StepUtility, StepCauses, Removable], symbols)
+    symbols = plan_atoms(model, plan, ENCODINGS, demanded(model, plan))
+    atoms = unify(
+        [Link, ServesGoal, Chain, StepUtility, StepCauses, Removable, ELink, DLink], symbols
+    )
     by_provider: dict[Node, list[CausalLink]] = {}
     for atom in atoms.query(Link).all():
         kind = atom.kind.symbol
@@ -405,5 +588,59 @@ def explain_steps(model: Model, plan: Plan) -> StepsExplanation:
         for node, links in sorted(by_provider.items(), key=lambda i: _node_order(i[0]))
         if node.kind == "event" and node.event is not None
     ]
+    e_links = sorted(
+        (
+            ProducerLink(
+                Node.of(atom.producer.symbol),
+                Node.of(atom.consumer.symbol),
+                atom.variable.symbol,
+                atom.value == "true",
+                False,
+            )
+            for atom in atoms.query(ELink).all()
+        ),
+        key=_producer_order,
+    )
+    d_links = sorted(
+        (
+            ProducerLink(
+                Node.of(atom.producer.symbol),
+                Node("step", atom.step),
+                atom.variable.symbol,
+                atom.value == "true",
+                True,
+            )
+            for atom in atoms.query(DLink).all()
+        ),
+        key=_producer_order,
+    )
     labels = model_labels(model)
-    return StepsExplanation(plan, steps, events, labels, plan_text(labels, plan, steps, events))
+    costs = [atom.cost for atom in unify([PlanCost], symbols).query(PlanCost).all()]
+    return StepsExplanation(
+        plan,
+        steps,
+        events,
+        labels,
+        plan_text(labels, plan, steps, events),
+        e_links,
+        d_links,
+        costs[0] if costs and model.planner.has_costs else None,
+    )
+
+
+def demanded(model: Model, plan: Plan) -> list[clingo.Symbol]:
+    """The ``demanded(T,V,B)`` atoms of a plan: the brave consequences of
+    ``encodings/questions/demands.lp`` (one solve, which tries every step and
+    variable and finds a subsequence of the later steps for each that has
+    one)."""
+    ctl = model.planner.program(DEMAND_ENCODINGS, symbols=occurrences(plan))
+    config = solve_configuration(ctl)
+    config.enum_mode = "brave"
+    config.models = "0"
+    found: list[clingo.Symbol] = []
+
+    def on_model(answer: clingo.Model) -> None:
+        found[:] = [s for s in answer.symbols(shown=True) if s.name == "demanded"]
+
+    ctl.solve(on_model=on_model)
+    return sorted(found)

@@ -454,4 +454,6 @@ def constraint_phrase(labels: Labels, term: clingo.Symbol) -> str:
         return f"have {fact()} after step {arguments[2]}"
     if name == "at_most":
         return f"take at most {_steps_words(arguments[0].number)}"
+    if name == "cheaper_than":
+        return f"cost less than {arguments[0]}"
     return f"meet {term}"

@@ -29,6 +29,7 @@ _HOMES = {
     "Final": "trace",
     "UnmetGoal": "trace",
     "IsPlan": "trace",
+    "PlanCost": "trace",
     "NoSchemaInstance": "trace",
     "StaticFailure": "trace",
     "Verdict": "judgement",
@@ -67,6 +68,9 @@ _HOMES = {
     "StepUtility": "links",
     "StepCauses": "links",
     "Removable": "links",
+    "Demanded": "links",
+    "ELink": "links",
+    "DLink": "links",
 }
 
 if TYPE_CHECKING:  # the same names for type checkers, which do not run __getattr__
@@ -80,7 +84,17 @@ if TYPE_CHECKING:  # the same names for type checkers, which do not run __getatt
         UtilityOfFinal,
         Verdict,
     )
-    from ethasp.vocabulary.links import Chain, Link, Removable, ServesGoal, StepCauses, StepUtility
+    from ethasp.vocabulary.links import (
+        Chain,
+        Demanded,
+        DLink,
+        ELink,
+        Link,
+        Removable,
+        ServesGoal,
+        StepCauses,
+        StepUtility,
+    )
     from ethasp.vocabulary.model import Action, Error, Goal, Init, Variable
     from ethasp.vocabulary.pictures import (
         Caused,
@@ -111,6 +125,7 @@ if TYPE_CHECKING:  # the same names for type checkers, which do not run __getatt
         IsPlan,
         NoSchemaInstance,
         Occurs,
+        PlanCost,
         StaticFailure,
         Unmet,
         UnmetGoal,
@@ -146,6 +161,9 @@ __all__ = [
     "Conj",
     "Conjunct",
     "Contrast",
+    "DLink",
+    "Demanded",
+    "ELink",
     "Error",
     "EventChanged",
     "FactLabel",
@@ -164,6 +182,7 @@ __all__ = [
     "NoSchemaInstance",
     "Occurs",
     "PatientLabel",
+    "PlanCost",
     "ReasonAtom",
     "Removable",
     "ServesGoal",

@@ -1,4 +1,5 @@
-"""Causal links of a plan (``encodings/questions/links.lp``, ``removable.lp``)."""
+"""Causal links of a plan (``encodings/questions/links.lp``, ``removable.lp``), and
+its E-links and D-links (``producers.lp``, ``demands.lp``)."""
 
 from clorm import ConstantStr, Predicate, Raw
 
@@ -38,3 +39,26 @@ class StepCauses(Predicate, name="step_causes"):
 
 class Removable(Predicate, name="removable"):
     step: int
+
+
+# -- E-links and D-links (questions/demands.lp, producers.lp) ---------------------------
+
+
+class Demanded(Predicate, name="demanded"):
+    step: int
+    variable: Raw
+    value: ConstantStr
+
+
+class ELink(Predicate, name="e_link"):
+    producer: Raw
+    consumer: Raw
+    variable: Raw
+    value: ConstantStr
+
+
+class DLink(Predicate, name="d_link"):
+    producer: Raw
+    step: int
+    variable: Raw
+    value: ConstantStr

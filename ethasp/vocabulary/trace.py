@@ -40,6 +40,10 @@ class IsPlan(Predicate, name="plan"):
     pass
 
 
+class PlanCost(Predicate, name="plan_cost"):
+    cost: int
+
+
 # -- terms of a plan that are no action of a PDDL task (static.lp) --------------------
 
 

@@ -35,7 +35,8 @@ def add_parser(commands) -> None:
         "'why A before B', 'why A after B', 'why A at T', 'why not A at T', "
         "'why A within T1..T2', 'why not A within T1..T2', 'why F', 'why not F' "
         "(the final state), 'why F at T', 'why not F at T' (the state after step "
-        "T), 'why not in N steps'; 'why action X' / 'why fact X' for a name that "
+        "T), 'why not in N steps', 'why not a cheaper plan' (a model with action "
+        "costs); 'why action X' / 'why fact X' for a name that "
         "is both. See docs/questions.md.",
     )
     inherit(contrast, model_options())

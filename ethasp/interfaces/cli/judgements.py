@@ -26,8 +26,9 @@ def state_text(model: Model, literals: list[str]) -> str:
 
 def judgement_text(report: JudgementReport, model: Model) -> str:
     naming = model.naming
+    cost = f" (cost {report.cost})" if report.cost is not None else ""
     lines = [
-        f"plan: {naming.actions(report.plan)}" if len(report.plan) else "plan: (empty)",
+        f"plan: {naming.actions(report.plan)}{cost}" if len(report.plan) else "plan: (empty)",
         f"final state: {state_text(model, report.final_state)} (utility {report.utility})",
     ]
     for judgement in report.judgements:

@@ -1,4 +1,5 @@
-"""``ethasp plan``: a shortest plan, or (``--principle``) a shortest plan a principle permits."""
+"""``ethasp plan``: a shortest plan, or (``--principle``) a shortest plan a principle permits;
+with action costs, cheapest plans, and what the principle costs."""
 
 from __future__ import annotations
 
@@ -33,12 +34,18 @@ def add_parser(commands) -> None:
         "plan",
         help="find a shortest plan (or any plan, fast: --satisficing)",
         description="Find a shortest plan (with --satisficing: some plan, found fast and not "
-        "proven shortest). Status: found, none (proven: no plan exists) "
+        "proven shortest); in a model with action costs (cost/2, or PDDL's :action-costs "
+        "with (:metric minimize (total-cost))), a cheapest plan, and with --principle also "
+        "what the principles cost. Status: found, none (proven: no plan exists) "
         "or bounded (none up to the horizon or time limit; one may still exist).",
     )
     inherit(plan, model_options())
     inherit(plan, search_options(satisficing=True))
-    plan.add_argument("--all", action="store_true", help="list all shortest plans")
+    plan.add_argument(
+        "--all",
+        action="store_true",
+        help="list all shortest plans (with action costs: all cheapest plans of fewest steps)",
+    )
     inherit(plan, satisficing_option())
     plan.add_argument(
         "--principle",
@@ -61,9 +68,19 @@ def add_parser(commands) -> None:
     plan.set_defaults(run=run)
 
 
-def _unproven(optimal: bool) -> str:
+def _unproven(optimal: bool, cost: int | None = None) -> str:
     """What a plan's text says when an any-plan search found it."""
-    return "" if optimal else " (not proven shortest)"
+    return "" if optimal else f" (not proven {'shortest' if cost is None else 'cheapest'})"
+
+
+def plan_head(length: int, cost: int | None, optimal: bool = True) -> str:
+    """``plan of 3 steps``, with its cost in a model with action costs."""
+    costs = f", cost {cost}" if cost is not None else ""
+    return f"plan of {steps(length)}{costs}{_unproven(optimal, cost)}"
+
+
+def _kind(cost: int | None) -> str:
+    return "shortest" if cost is None else "cheapest"
 
 
 def run(args: argparse.Namespace) -> int:
@@ -81,7 +98,9 @@ def run(args: argparse.Namespace) -> int:
     )
     if result.status == FOUND:
         if args.all:
-            lines = [f"{len(result.plans)} shortest plans of {steps(result.horizon)}:"]
+            length = len(result.plan) if result.cost is not None else result.horizon
+            costs = f", cost {result.cost}" if result.cost is not None else ""
+            lines = [f"{len(result.plans)} {_kind(result.cost)} plans of {steps(length)}{costs}:"]
             lines += [
                 f"  {model.naming.actions(plan)}" if len(plan) else "  (empty plan)"
                 for plan in result.plans
@@ -89,22 +108,28 @@ def run(args: argparse.Namespace) -> int:
             text = "\n".join(lines)
         else:
             text = (
-                f"plan of {steps(len(result.plan))}{_unproven(result.optimal)}: "
+                f"{plan_head(len(result.plan), result.cost, result.optimal)}: "
                 f"{model.naming.actions(result.plan)}"
                 if len(result.plan)
                 else "plan of 0 steps: the goal holds initially"
             )
     elif result.status == "none":
         text = f"no plan exists: {result.proof}"
+    elif result.plan is not None:
+        # The cheapest plan found, not proven cheapest (a model with action costs).
+        text = (
+            f"bounded: {plan_head(len(result.plan), result.cost)} (not proven cheapest): "
+            f"{model.naming.actions(result.plan) or '(empty plan)'}\n  {result.proof}"
+        )
     else:
         text = f"bounded: {result.proof}; a plan may still exist"
-    if result.status == FOUND:
+    if result.plan is not None:
         write_picture(
             args,
             model,
             lambda pictures: pictures.plan(
                 result.plan,
-                f"plan of {steps(len(result.plan))}{_unproven(result.optimal)}: "
+                f"{plan_head(len(result.plan), result.cost, result.optimal)}: "
                 f"{model.naming.actions(result.plan) or '(empty plan)'}",
             ),
         )
@@ -116,7 +141,7 @@ def run(args: argparse.Namespace) -> int:
 
 def run_permissible(args: argparse.Namespace, model: Model) -> int:
     """ethasp plan --principle: a shortest HPlan, then its judgement."""
-    from ethasp.principles.restriction import plan_with_principles
+    from ethasp.principles.restriction import plan_with_principles, principle_cost
     from ethasp.reasons.reasons import judge
 
     limits = budget(args)
@@ -137,12 +162,18 @@ def run_permissible(args: argparse.Namespace, model: Model) -> int:
             model.naming.actions(plan) if len(plan) else "(empty plan)"
             for plan in (result.plans if args.all else [result.plan])
         ]
+        comma = "," if result.cost is not None else ""
         head = (
-            f"plan of {steps(len(result.plan))}{_unproven(result.optimal)} permissible "
+            f"{plan_head(len(result.plan), result.cost, result.optimal)}{comma} permissible "
             f"under {under}"
         )
+        length = len(result.plan) if result.cost is not None else result.horizon
+        costs = f", cost {result.cost}" if result.cost is not None else ""
         lines = (
-            [f"{len(shown)} shortest plans of {steps(result.horizon)} permissible under {under}:"]
+            [
+                f"{len(shown)} {_kind(result.cost)} plans of {steps(length)}{costs} permissible "
+                f"under {under}:"
+            ]
             + [f"  {plan}" for plan in shown]
             if args.all
             else [f"{head}: {shown[0]}"]
@@ -163,6 +194,15 @@ def run_permissible(args: argparse.Namespace, model: Model) -> int:
         write_picture(args, model, lambda pictures: pictures.report(report, f"{head}: {shown[0]}"))
     elif result.status == "none":
         lines = [f"no permissible plan exists: {result.proof}"]
+    elif result.plan is not None and result.best is None:
+        # A model with action costs: the cheapest permissible plan found, not
+        # proven cheapest.
+        shown = model.naming.actions(result.plan) if len(result.plan) else "(empty plan)"
+        lines = [
+            f"bounded: {plan_head(len(result.plan), result.cost)}, permissible under {under} "
+            f"(not proven cheapest): {shown}",
+            f"  {result.proof}",
+        ]
     elif result.plan is not None:
         # Permissible as far as searched: the search could not exclude what
         # would make it impermissible (a better reachable state).
@@ -179,6 +219,10 @@ def run_permissible(args: argparse.Namespace, model: Model) -> int:
             f"best reachable utility: {result.best.utility} ({result.best.status}: "
             f"{result.best.proof})"
         )
+    if model.planner.has_costs and not args.satisficing:
+        price = principle_cost(model, result, max_horizon(args), limits)
+        data["principle_cost"] = price.to_json()
+        lines.append(price.text())
     if result.status != FOUND:
         no_picture(args)
     emit(args, data, "\n".join(lines))

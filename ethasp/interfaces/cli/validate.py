@@ -36,8 +36,9 @@ def run(args: argparse.Namespace) -> int:
     model = load_model(args)
     validation = validate(model, given_plan(args, model))
     if validation.valid:
+        cost = f", cost {validation.cost}" if validation.cost is not None else ""
         text = (
-            f"valid plan of {steps(len(validation.plan))}; "
+            f"valid plan of {steps(len(validation.plan))}{cost}; "
             f"final state: {state_text(model, validation.final_state)}"
         )
     else:

@@ -112,6 +112,10 @@ def state_json(workspace: Workspace, session: Session) -> dict:
     # it was made without the principle (dropped on a proof).
     source = dialogue.current_step
     current["from_question"] = source
+    if workspace.model.planner.has_costs:
+        from ethasp.planning.validation import validate
+
+        current["cost"] = validate(workspace.model, plan).cost
     current["made_without_principle"] = (
         source > 0 and dialogue.steps[source - 1].answer.principle_dropped
     )
@@ -139,6 +143,7 @@ def explain_json(workspace: Workspace, session: Session, step: int | None = None
     naming = workspace.model.naming
     data = explanation.to_json(naming)
     data["lines"] = explanation.lines()
+    data["link_lines"] = explanation.link_lines()
     data["shown"] = _actions(workspace, dialogue.current_plan)
     if step is not None:
         data["step"] = step

@@ -64,6 +64,7 @@ MODEL_VOCABULARY: dict[tuple[str, int], str] = {
     ("goal", 2): "goal(V,B): the goal requires V to have value B",
     ("utility", 2): "utility(A,U): moral value of action A",
     ("utility", 3): "utility(V,B,U): moral value of the fact V=B",
+    ("cost", 2): "cost(A,N): the cost of action A (a model with costs plans cheapest plans)",
     ("event", 1): "event(E): an exogenous event",
     ("event_at", 2): "event_at(E,T): event E is due at step T (after the action of step T)",
     ("event_pre", 3): "event_pre(E,V,B): event E happens only if V has value B",
@@ -99,6 +100,7 @@ PDDL_VOCABULARY: dict[tuple[str, int], str] = {
     ("pddl_static", 1): "pddl_static(V): V is an atom of a static predicate (no action of "
     "the domain changes it)",
     ("pddl_candidate", 1): "pddl_candidate(A): a term of a plan that is no action (validation)",
+    ("pddl_value", 2): "pddl_value(F,N): function F has value N in the initial state",
     ("pddl_schema_instance", 1): "pddl_schema_instance(A): candidate A is an instance of an "
     "action schema",
     ("pddl_static_failure", 3): "pddl_static_failure(A,V,B): static precondition V=B of the "

@@ -79,6 +79,7 @@ ACTION_VOCABULARY = (
     ("cpre", 4),
     ("ceff", 4),
     ("utility", 2),
+    ("cost", 2),
     ("override", 4),
     ("action_label", 3),
 )
@@ -100,10 +101,19 @@ SEARCH_ENCODINGS = (
     "planning/relaxed.lp",
     "planning/transition.lp",
     "planning/events.lp",
-    "judgement/best.lp",
     "reasons/other_state.lp",
     "questions/questions.lp",
 )
+# The utility of the state at the horizon (an objective, a threshold),
+# switched on for the searches that read it: a search for a cheapest plan
+# optimises the cost alone.
+UTILITY_ENCODING = "judgement/best.lp"
+UTILITY_SWITCH = clingo.Function("require", [clingo.Function("utility")])
+# The cost of a plan, then its number of steps (objectives of a lower and a
+# higher priority than the utility's), switched on for the searches for
+# cheapest plans; grounded for models with action costs only.
+COST_ENCODING = "planning/cost.lp"
+COST_SWITCH = clingo.Function("require", [clingo.Function("cost")])
 GOAL_ENCODING = "planning/goal.lp"
 # The h^2 mutexes are redundant constraints: they speed up hard horizons, but
 # their fixpoint grows with the square of the facts.  So they are grounded only
@@ -254,7 +264,11 @@ class Setting:
     ``other_state``: a state (:meth:`Planner.avoid`) the state at the horizon
     must differ from; ``optimize``: find an optimal model of the
     objective (the utility of the state at the horizon, then goal states);
-    ``satisficing``: the solver's decision heuristic for any-plan searches
+    ``cheapest``: find a plan of least cost, then of fewest steps (the
+    objectives of ``planning/cost.lp``, for models with action costs; a
+    solve for all models lists every one within ``max_cost`` instead);
+    ``max_cost``: the plan must cost at most this much (a bound of the
+    cost objective); ``satisficing``: the solver's decision heuristic for any-plan searches
     (``planning/satisficing.lp``; it changes which plan is found first, not
     which plans exist); ``canonical``: independent consecutive actions in the
     order of their terms (``planning/canonical.lp``, once grounded): for
@@ -273,6 +287,8 @@ class Setting:
     satisficing: bool = False
     canonical: bool = False
     least: bool = False
+    cheapest: bool = False
+    max_cost: int | None = None
 
 
 @dataclass
@@ -477,6 +493,16 @@ class Planner:
         return self._reachability is None
 
     @property
+    def has_costs(self) -> bool:
+        """Does the model have action costs (``cost/2``; plans are then cheapest
+        ones, not shortest ones)?"""
+        return bool(self.get("costs_given", 0))
+
+    def action_costs(self) -> dict[clingo.Symbol, int]:
+        """The cost of every action (``action_cost/2`` of planning/model.lp)."""
+        return {atom.arguments[0]: atom.arguments[1].number for atom in self.get("action_cost", 2)}
+
+    @property
     def has_events(self) -> bool:
         """Does the model have exogenous events (``event_at/2``)?"""
         return bool(self.get("event_at", 2))
@@ -538,7 +564,14 @@ class Planner:
         self._settle(budget)
         if self._searching:
             return
-        switches = [GOAL_SWITCH, SATISFICING_SWITCH, CANONICAL_SWITCH, LEAST_SWITCH]
+        switches = [
+            GOAL_SWITCH,
+            SATISFICING_SWITCH,
+            CANONICAL_SWITCH,
+            LEAST_SWITCH,
+            UTILITY_SWITCH,
+            COST_SWITCH,
+        ]
         try:
             with clingo.ast.ProgramBuilder(self.ctl) as builder:
                 files = [(name, STEP, None, SEARCH) for name in SEARCH_ENCODINGS]
@@ -556,6 +589,9 @@ class Planner:
                     )
                 )
                 files.append((GOAL_ENCODING, STEP, GOAL_SWITCH, SEARCH))
+                files.append((UTILITY_ENCODING, STEP, UTILITY_SWITCH, SEARCH))
+                if self.has_costs:
+                    files.append((COST_ENCODING, STEP, COST_SWITCH, SEARCH))
                 files.append((SATISFICING_ENCODING, STEP, SATISFICING_SWITCH, SEARCH))
                 files.append((LOOPFREE_ENCODING, LOOPFREE, None, SEARCH))
                 for name, step_part, switch, base_part in files:
@@ -848,6 +884,11 @@ class Planner:
                 assign(_time_atom(PAST, t), t > end)
         assign(GOAL_SWITCH, setting.goal and horizon is not None)
         assign(SATISFICING_SWITCH, setting.satisficing)
+        assign(
+            UTILITY_SWITCH,
+            (setting.optimize and not setting.least) or setting.at_least is not None,
+        )
+        assign(COST_SWITCH, setting.cheapest)
         # Paths compare the states between the actions, which a swap changes.
         assign(CANONICAL_SWITCH, setting.canonical and simple_path is None)
         assign(LEAST_SWITCH, setting.least and self._least)
@@ -918,7 +959,9 @@ class Planner:
         except GroundingStopped:
             return Outcome(None)  # the budget ran out while grounding
         assumptions = self._set(setting, check, horizon)
-        outcome = self._solve(assumptions, budget, setting.optimize, models, conflicts)
+        # (Asked for every model, a search for cheapest plans lists those within max_cost.)
+        optimize = setting.optimize or (setting.cheapest and models == 1)
+        outcome = self._solve(assumptions, budget, optimize, models, conflicts, setting.max_cost)
         work = self._conflicts()
         if outcome.satisfiable is None and moot is not None and moot():
             return outcome
@@ -949,7 +992,11 @@ class Planner:
         optimize: bool,
         models: int,
         conflicts: int | None = None,
+        bound: int | None = None,
     ) -> Outcome:
+        """Solve under assumptions: the first ``models`` models (0: all), or with
+        ``optimize`` an optimal one; ``bound``: only models whose first
+        objective (a plan's cost) is at most this."""
         if budget.expired():
             return Outcome(None)  # cancelled or out of time: no solve starts
         try:
@@ -957,7 +1004,10 @@ class Planner:
         except GroundingStopped:
             return Outcome(None)
         config = solve_configuration(self.ctl)
-        config.opt_mode = "opt" if optimize else "ignore"
+        if optimize:
+            config.opt_mode = "opt" if bound is None else f"opt,{bound}"
+        else:
+            config.opt_mode = "ignore" if bound is None else f"enum,{bound}"
         config.models = "0" if optimize else str(models)
         limit = "umax" if conflicts is None else str(max(1, conflicts))
         if limit != self._solve_limit:
@@ -1001,7 +1051,8 @@ class Planner:
         """Is there a path of ``length`` actions without a repeated state, under
         the setting's question constraints (their step constraints; what holds
         only at a horizon does not apply to a path), the state extended by what
-        its questions track?  None if the budget stopped the check.
+        its questions track, and (with ``cheapest`` and ``max_cost``) costing
+        at most ``max_cost``?  None if the budget stopped the check.
         """
         try:
             self._prepare(setting, budget)
@@ -1022,7 +1073,8 @@ class Planner:
         except GroundingStopped:
             return None
         assumptions = self._set(setting, None, length, self._configurations[key])
-        return self._solve(assumptions, budget, False, 1).satisfiable
+        bound = setting.max_cost if setting.cheapest else None
+        return self._solve(assumptions, budget, False, 1, bound=bound).satisfiable
 
     # -- programs over the ground model (given plans, formulas, reasons) --------------
 
@@ -1044,6 +1096,8 @@ class Planner:
             self._state_text = self.vocabulary_text(
                 [s for s in MODEL_VOCABULARY if s not in ACTION_VOCABULARY]
             )
+            if self.has_costs:  # (costs of other actions than the plan's are left out)
+                self._state_text += "costs_given.\n"
             self._action_atoms = by_action
 
     def plan_model_text(self, plan) -> str:

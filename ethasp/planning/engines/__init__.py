@@ -63,6 +63,13 @@ The engines and the features they handle:
   ``reachability``, else ``explicit``, else ``downward`` (where the diagrams
   give up and the model's planning system is Fast Downward), else by clingo
   optimisation.  Every feature.
+* ``cheapest``: for models with action costs, uniform-cost search over
+  explicit configurations: a cheapest plan, a lower bound on the cost of
+  every plan, or "none" once every reachable configuration is expanded.
+  Every feature.
+* ``cost_layers``: the same claims from layers of states by cost, with
+  diagrams (run in turns with ``cheapest``).  Conditional effects and
+  derived variables; no exogenous events.
 
 * ``downward``: Fast Downward, a planner of the planning community, run as
   a child process on the task that ``sas`` writes from the ground model (the
@@ -73,7 +80,7 @@ The engines and the features they handle:
   Conditional effects; no exogenous events, no derived variables.
 
 ``sas`` writes what ``downward`` searches (and refuses events and derived
-variables); ``task`` holds what ``explicit`` and ``greedy`` search over: the explicit
+variables); ``task`` holds what ``explicit``, ``greedy`` and ``cheapest`` search over: the explicit
 states of the search model (bit masks), its actions and derived variables,
 and the FF heuristic.
 """

@@ -623,7 +623,7 @@ def _reached(planner: Planner, actions) -> ReachableState:
     final = {atom.arguments[0]: atom.arguments[1].name == "true" for atom in answer.get("final", 2)}
     model = planner.ground_model()
     facts = [(v, final.get(v, False)) for v in model.variables]
-    return ReachableState(facts, model.utility(v for v, b in facts if b), len(plan))
+    return ReachableState(facts, model.utility(v for v, b in facts if b), len(plan), plan)
 
 
 def _planner_model(planner: Planner):
@@ -752,7 +752,10 @@ def _best_by_optimisation(
             and outcome.cost
             and (best_cost is None or _lower(outcome.cost, best_cost))
         ):
-            best = _answer_state(planner, outcome, horizon, -outcome.cost[0])
+            # (The utility of the state the optimum reached, computed, not read
+            # off the cost vector, whose levels depend on what else is grounded:
+            # a plan's cost, planning/cost.lp; least plans, planning/lexicographic.lp.)
+            best = _answer_state(planner, outcome, horizon)
             best_cost = outcome.cost
         if outcome.satisfiable is None:
             return BestReachable(

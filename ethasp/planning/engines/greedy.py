@@ -39,7 +39,7 @@ import clingo
 from ethasp.planning.budget import Budget
 from ethasp.planning.engines import CONDITIONAL_EFFECTS, DERIVED_VARIABLES, require
 from ethasp.planning.engines.layers import Layers, search_model
-from ethasp.planning.engines.task import Task
+from ethasp.planning.engines.task import Task, path
 
 # The model features this engine handles (ethasp.planning.engines): not
 # exogenous events (the next state depends on the step, which the search does
@@ -90,7 +90,7 @@ def greedy_plan(
         closed.add(state)
         full = task.full(state)
         if task.is_goal(full):
-            return _path(task, parents, state), ""
+            return path(task, parents, state), ""
         expansions += 1
         if expansions % CHECK_EVERY == 0 and budget is not None and budget.expired():
             return None, budget.why_stopped()
@@ -112,14 +112,6 @@ def greedy_plan(
         if len(parents) > state_limit:
             return None, f"more than {state_limit} states"
     return None, EXHAUSTED
-
-
-def _path(task: Task, parents: dict, state: int) -> list[clingo.Symbol]:
-    actions = []
-    while parents[state] is not None:
-        state, number = parents[state]
-        actions.append(task.steps[number].name)
-    return actions[::-1]
 
 
 class Greedy(Layers):

@@ -301,13 +301,18 @@ class Status:
     reachable (every reachable state is known and none is a goal state; or,
     bidirectionally, every state from which a goal state is reachable is
     known and the initial state is not one); ``stopped``: why the layers gave up
-    (empty while they work or after they finished)."""
+    (empty while they work or after they finished).  An engine for cheapest
+    plans (:mod:`ethasp.planning.engines.cheapest`) also tells ``cost_bound``:
+    every plan costs at least this much; and with its ``plan``, a cheapest
+    one, its ``cost``."""
 
     bound: int = 0
     goal_layer: int | None = None
     plan: tuple[clingo.Symbol, ...] | None = None
     complete: bool = False
     stopped: str = ""
+    cost_bound: int = 0
+    cost: int | None = None
 
     @property
     def working(self) -> bool:
@@ -536,7 +541,7 @@ def _report(pipe, changes: dict) -> None:
 
 def _parse_report(line: str) -> dict:
     key, _, value = line.rstrip("\n").partition(" ")
-    if key in ("bound", "goal_layer"):
+    if key in ("bound", "goal_layer", "cost_bound", "cost"):
         return {key: int(value)}
     if key == "complete":
         return {"complete": value == "True"}

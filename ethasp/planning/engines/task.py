@@ -43,6 +43,17 @@ def bit_masks(literals, index: dict[clingo.Symbol, int]) -> tuple[int, int]:
     return pos, neg
 
 
+def path(task: Task, parents: dict, key) -> list[clingo.Symbol]:
+    """The actions of a path found by a search over a task: ``parents`` maps
+    a state (or configuration) to its parent and the number of the step that
+    led there, None for the start."""
+    actions = []
+    while parents[key] is not None:
+        key, number = parents[key]
+        actions.append(task.steps[number].name)
+    return actions[::-1]
+
+
 @dataclass(frozen=True)
 class Step:
     """An action over state bits: preconditions (bits that must be 1, bits that

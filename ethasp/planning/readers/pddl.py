@@ -69,15 +69,24 @@ pushed down to atoms, ``forall`` and ``exists`` swapped under ``not``).
 
 Leniency, as planners have it: requirements used but not declared are
 accepted with one warning line per file on standard error; domain constants
-that only the problem declares (as objects) are accepted; an atom that the
-domain or problem uses is a state variable even if its arguments do not
-match the predicate's declared types; a type that the domain uses but that
-is declared nowhere and that no object has has no objects (with a warning).
-Action costs (``increase`` of ``total-cost``, numeric facts in the initial
-state and a ``:metric``) are ignored with a warning: plans are shortest in
-number of actions; so are numeric facts of undeclared functions.  Other
-numeric features, durative actions, processes and events are refused with
-one line naming them.
+that only the problem declares (as objects) are accepted; names that the
+domain uses as constants and that nobody declares are objects (with a
+warning); a domain without ``:predicates`` has the predicates it and the
+problem use, with the arity of their first use and arguments of any type
+(with a warning; a predicate used with two arities is an error at the
+second use), its atoms the ones the task uses; an atom that the domain or
+problem uses is a state variable even if its arguments do not match the
+predicate's declared types; a type that the domain uses but that is
+declared nowhere and that no object has has no objects (with a warning).
+Action costs (``:action-costs``): with ``(:metric minimize (total-cost))``
+in the problem, each action instance's ``increase`` of ``total-cost`` (a
+number, or a function whose value the initial state gives, such as
+``(road-length ?from ?to)``) becomes its ``cost/2``, an action without one
+costing 0, and plans are cheapest ones; without that metric, action costs
+and another metric are ignored with a warning (plans are shortest in number
+of actions); numeric facts of undeclared functions are ignored with a
+warning.  Other numeric features, durative actions, processes and events
+are refused with one line naming them.
 """
 
 from __future__ import annotations
@@ -232,11 +241,18 @@ class _Translator:
         self.auxiliaries = 0
         self.fresh = 0
         self.eithers: set[tuple[str, ...]] = set()
-        self.costs: int | None = None  # offset of the first ignored action cost
+        self.costs: int | None = None  # offset of the first action cost
+        self.cost_functions: set[str] = set()  # functions that action costs read
+        self.action_scope: tuple = ()  # the parameters of the action translated
         self.undeclared_types: dict[str, None] = {}  # used, declared nowhere, no objects
         self.undeclared_functions: dict[str, None] = {}  # in numeric facts, not declared
         self.derived = {d.predicate for d in domain.derived}
         self.objects = {pddl_name_to_asp(p.name) for p in domain.constants + problem.objects}
+        # Predicates read from their uses (a domain without :predicates), and
+        # names the domain uses as constants that nobody declares: objects.
+        self.inferred = {} if domain.declares_predicates else self.infer_predicates()
+        self.implicit = self.implicit_constants()
+        self.objects |= set(self.implicit)
         self.names = {*domain.predicates, *self.derived}
         # Static predicates: base predicates that no effect (conditional or
         # not) adds or deletes.  Their atoms hold in every state exactly when
@@ -253,6 +269,62 @@ class _Translator:
 
     def emit(self, line: str) -> None:
         self.lines.append(line)
+
+    def uses(self):
+        """Every atom of the domain's actions and derived predicates and of the
+        problem's initial state and goal, with its file, in the order written."""
+        for action in self.domain.actions:
+            for atom in formula_atoms(action.precondition):
+                yield self.domain.file, atom
+            for atom in effect_atoms(action.effect):
+                yield self.domain.file, atom
+        for definition in self.domain.derived:
+            for atom in formula_atoms(definition.body):
+                yield self.domain.file, atom
+        for atom in self.problem.init:
+            yield self.problem.file, atom
+        for atom in formula_atoms(self.problem.goal):
+            yield self.problem.file, atom
+
+    def infer_predicates(self) -> dict[str, None]:
+        """The predicates of a domain without ``:predicates``: those its uses
+        name (derived ones aside), with the arity of the first use and
+        arguments of any type; a use with another arity is an error."""
+        inferred: dict[str, tuple[PddlFile, int]] = {}
+        for file, atom in self.uses():
+            if not isinstance(atom, Atom) or atom.predicate in self.derived:
+                continue
+            first = inferred.get(atom.predicate)
+            if first is None:
+                inferred[atom.predicate] = (file, atom.pos)
+                self.domain.predicates[atom.predicate] = tuple(
+                    Param(f"x{index}", ()) for index in range(len(atom.terms))
+                )
+                self.domain.predicate_pos[atom.predicate] = atom.pos
+                continue
+            arity = len(self.domain.predicates[atom.predicate])
+            if arity != len(atom.terms):
+                raise file.error(
+                    atom.pos,
+                    f"predicate {atom.predicate} is used with {len(atom.terms)} "
+                    f"argument{'s' if len(atom.terms) != 1 else ''} here and with {arity} at "
+                    f"{first[0].at(first[1])} (the domain has no :predicates)",
+                )
+        return dict.fromkeys(inferred)
+
+    def implicit_constants(self) -> dict[str, None]:
+        """Names the domain's actions and derived predicates use as constants
+        that neither the domain nor the problem declares (objects, as
+        plan-explainer's reader has them)."""
+        found: dict[str, None] = {}
+        for file, atom in self.uses():
+            if file is not self.domain.file:
+                continue
+            terms = atom.terms if isinstance(atom, Atom) else (atom.left, atom.right)
+            for term in terms:
+                if not term.startswith("?") and pddl_name_to_asp(term) not in self.objects:
+                    found.setdefault(pddl_name_to_asp(term))
+        return found
 
     # -- names and types --------------------------------------------------------
 
@@ -414,6 +486,8 @@ class _Translator:
                 self.emit(
                     f"pddl_object({pddl_name_to_asp(param.name)},{pddl_name_to_asp(type_name)})."
                 )
+        for name in sorted(self.implicit):
+            self.emit(f"pddl_object({name},object).")
 
     def predicates(self) -> None:
         for predicate, params in sorted(self.domain.predicates.items()):
@@ -421,7 +495,10 @@ class _Translator:
             kind = "derived" if predicate in self.derived else "variable"
             atom = term_of(pddl_name_to_asp(predicate), names)
             if pddl_name_to_asp(predicate) not in self.static:
-                self.emit(rule(f"{kind}({atom})", typing))
+                # (A predicate read from its uses has the atoms the task uses:
+                # planning/pddl.lp makes them variables.)
+                if predicate not in self.inferred:
+                    self.emit(rule(f"{kind}({atom})", typing))
             else:
                 # A static atom is a variable where the task uses it (pddl.lp):
                 # in the initial state, a precondition, a condition or the
@@ -480,7 +557,8 @@ class _Translator:
         pruning = [
             f"init({atom})" if value == "true" else f"not init({atom})" for atom, value in static
         ]
-        self.emit(rule(anchor, typing + precondition.comparisons + pruning))
+        valued = self.action_cost(action, head, Scope(scope.variables, tuple(typing)))
+        self.emit(rule(anchor, typing + precondition.comparisons + pruning + valued))
         for atom, value in precondition.literals:
             self.emit(rule(f"pre({head},{atom},{value})", [anchor]))
         self.schema(head, typing + precondition.comparisons, static)
@@ -553,8 +631,63 @@ class _Translator:
         elif isinstance(effect, CostEffect):
             if self.costs is None:
                 self.costs = effect.pos
+            if conditions or scope.variables != self.action_scope:
+                raise self.domain.file.unsupported(
+                    effect.pos,
+                    "conditional action costs (an increase of total-cost in when or forall)",
+                )
         else:
             raise TypeError(effect)
+
+    def action_cost(self, action: Action, head: str, scope: Scope) -> list[str]:
+        """The cost of an action (with ``(:metric minimize (total-cost))``): the
+        sum of its increases of ``total-cost``, numbers or values of functions
+        in the initial state (``pddl_value/2``); 0 without any.  Returns the
+        conditions under which the action exists: an instance whose cost
+        reads a function without a value has no cost, and cannot be applied
+        (as in PDDL 2.1, where an effect on an undefined value makes an
+        action inapplicable; Fast Downward's translator asserts that no
+        reachable action has one)."""
+        self.action_scope = scope.variables
+        if not self.problem.minimizes_cost:
+            return []
+        file = self.domain.file
+        parts, body, exists = [], [f"action({head})"], []
+        for number, effect in enumerate(cost_effects(action.effect)):
+            if effect.function is None:
+                parts.append(str(self.integer(file, effect.pos, effect.amount or "")))
+                continue
+            arguments = [self.term(t, scope, file, effect.pos) for t in effect.function.terms]
+            term = term_of(pddl_name_to_asp(effect.function.predicate), arguments)
+            self.cost_functions.add(effect.function.predicate)
+            body.append(f"pddl_value({term},Cost{number})")
+            exists.append(f"pddl_value({term},_)")
+            parts.append(f"Cost{number}")
+        self.emit(rule(f"cost({head},{'+'.join(parts) or '0'})", body))
+        return exists
+
+    @staticmethod
+    def integer(file: PddlFile, pos: int, text: str) -> int:
+        """A cost or a function's value, which must be an integer (1.0 is 1)."""
+        try:
+            value = float(text)
+        except ValueError:
+            raise file.error(pos, f"an action cost must be a number, found {text}") from None
+        if value != int(value):
+            raise file.error(pos, f"action costs must be integers, found {text}")
+        return int(value)
+
+    def numeric_values(self) -> None:
+        """The values of the functions that action costs read (``pddl_value/2``)."""
+        if not self.problem.minimizes_cost:
+            return
+        file = self.problem.file
+        for fact in self.problem.numeric_init:
+            if fact.function not in self.cost_functions:
+                continue
+            arguments = [pddl_name_to_asp(term) for term in fact.terms]
+            term = term_of(pddl_name_to_asp(fact.function), arguments)
+            self.emit(f"pddl_value({term},{self.integer(file, fact.pos, fact.value)}).")
 
     # -- the problem -------------------------------------------------------------
 
@@ -594,14 +727,32 @@ class _Translator:
                     f"requirement{'s' if len(missing) > 1 else ''} "
                     f"{', '.join(missing)} used but not declared (read anyway)"
                 )
+            if file is self.domain.file and self.inferred:
+                names = ", ".join(
+                    f"{name}/{len(self.domain.predicates[name])}" for name in self.inferred
+                )
+                notes.append(f"no :predicates section (predicates read from their uses: {names})")
+            if file is self.domain.file and self.implicit:
+                names = ", ".join(self.implicit)
+                notes.append(
+                    f"constant{'s' if len(self.implicit) > 1 else ''} {names} used but not "
+                    "declared (read as objects)"
+                )
             if file is self.domain.file and self.undeclared_types:
                 names = ", ".join(self.undeclared_types)
                 notes.append(
                     f"type{'s' if len(self.undeclared_types) > 1 else ''} {names} "
                     "used but not declared (read as having no objects)"
                 )
-            if file is self.domain.file and self.costs is not None:
-                notes.append("action costs are ignored (plans are shortest in number of actions)")
+            if (
+                file is self.domain.file
+                and self.costs is not None
+                and not self.problem.minimizes_cost
+            ):
+                notes.append(
+                    "action costs are ignored: the problem has no (:metric minimize (total-cost)) "
+                    "(plans are shortest in number of actions)"
+                )
             if file is self.problem.file and self.undeclared_functions:
                 names = ", ".join(self.undeclared_functions)
                 notes.append(
@@ -609,17 +760,24 @@ class _Translator:
                     f"{'s' if len(self.undeclared_functions) > 1 else ''} {names} "
                     "are ignored"
                 )
-            if file is self.problem.file and self.problem.metric is not None:
-                notes.append("the metric is ignored (plans are shortest in number of actions)")
+            if (
+                file is self.problem.file
+                and self.problem.metric is not None
+                and not self.problem.minimizes_cost
+            ):
+                notes.append(
+                    "the metric is ignored: only (:metric minimize (total-cost)) is read (plans "
+                    "are shortest in number of actions)"
+                )
             if notes:
                 lines.append(f"{file.name}: warning: {'; '.join(notes)}")
         return lines
 
     def check_numeric_init(self) -> None:
         """Numeric facts are ignored; those of undeclared functions are noted."""
-        for function, _ in self.problem.numeric_init:
-            if function not in self.domain.functions:
-                self.undeclared_functions.setdefault(function)
+        for fact in self.problem.numeric_init:
+            if fact.function not in self.domain.functions:
+                self.undeclared_functions.setdefault(fact.function)
 
     def check_types(self) -> None:
         """Types that the domain uses but that are neither declared nor given to
@@ -657,6 +815,7 @@ class _Translator:
         for action in self.domain.actions:
             self.action(action)
         self.initial_state()
+        self.numeric_values()
         self.goal()
         for names in sorted(self.eithers):
             for name in names:
@@ -664,6 +823,46 @@ class _Translator:
         for line in self.warnings():
             print(line, file=sys.stderr)
         return "\n".join(self.lines) + "\n"
+
+
+def formula_atoms(formula: Formula):
+    """The atoms and equalities of a formula, in the order written."""
+    if isinstance(formula, (Atom, Equal)):
+        yield formula
+    elif isinstance(formula, Not):
+        yield from formula_atoms(formula.argument)
+    elif isinstance(formula, (And, Or)):
+        for part in formula.parts:
+            yield from formula_atoms(part)
+    elif isinstance(formula, Imply):
+        yield from formula_atoms(formula.left)
+        yield from formula_atoms(formula.right)
+    elif isinstance(formula, (Exists, Forall)):
+        yield from formula_atoms(formula.body)
+
+
+def effect_atoms(effect: Effect):
+    """The atoms of an effect and of its conditions, in the order written."""
+    if isinstance(effect, Literal):
+        yield effect.atom
+    elif isinstance(effect, AllEffects):
+        for part in effect.parts:
+            yield from effect_atoms(part)
+    elif isinstance(effect, ForallEffect):
+        yield from effect_atoms(effect.effect)
+    elif isinstance(effect, When):
+        yield from formula_atoms(effect.condition)
+        yield from effect_atoms(effect.effect)
+
+
+def cost_effects(effect: Effect) -> list[CostEffect]:
+    """The increases of ``total-cost`` of an effect, outside ``when`` and
+    ``forall`` (which :meth:`_Translator.effects` refuses to contain them)."""
+    if isinstance(effect, CostEffect):
+        return [effect]
+    if isinstance(effect, AllEffects):
+        return [cost for part in effect.parts for cost in cost_effects(part)]
+    return []
 
 
 def effect_predicates(effect: Effect) -> set[str]:

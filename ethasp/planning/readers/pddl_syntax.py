@@ -261,9 +261,13 @@ class When:
 
 @dataclass(frozen=True)
 class CostEffect:
-    """``(increase (total-cost) ...)``: an action cost, which is ignored."""
+    """``(increase (total-cost) N)`` or ``(increase (total-cost) (f t ...))``:
+    an action cost, a number (``amount``) or the value of a function the
+    problem's initial state gives (``function``, an atom of the function)."""
 
     pos: int
+    amount: str | None = None
+    function: Atom | None = None
 
 
 Effect = Literal | AllEffects | ForallEffect | When | CostEffect
@@ -297,10 +301,21 @@ class Domain:
     constants: list[Param] = field(default_factory=list)
     predicates: dict[str, tuple[Param, ...]] = field(default_factory=dict)
     predicate_pos: dict[str, int] = field(default_factory=dict)
+    declares_predicates: bool = False  # has a :predicates section
     functions: set[str] = field(default_factory=set)
     actions: list[Action] = field(default_factory=list)
     derived: list[Derived] = field(default_factory=list)
     used: dict[str, int] = field(default_factory=dict)  # requirement -> first offset
+
+
+@dataclass(frozen=True)
+class NumericFact:
+    """``(= (f c ...) N)`` in the initial state: a function's value."""
+
+    function: str
+    terms: tuple[str, ...]
+    value: str
+    pos: int
 
 
 @dataclass
@@ -311,9 +326,10 @@ class Problem:
     requirements: set[str] = field(default_factory=set)
     objects: list[Param] = field(default_factory=list)
     init: list[Atom] = field(default_factory=list)
-    numeric_init: list[tuple[str, int]] = field(default_factory=list)  # function, offset
+    numeric_init: list[NumericFact] = field(default_factory=list)
     goal: Formula = And(())
     metric: int | None = None  # offset of (:metric ...)
+    minimizes_cost: bool = False  # the metric is (:metric minimize (total-cost))
     used: dict[str, int] = field(default_factory=dict)
 
 
@@ -542,7 +558,15 @@ class _Reader:
                 and self.head(target) == "total-cost"
             ):
                 self.use(":action-costs", group)
-                return CostEffect(group.pos)
+                self.arity(group, 2, "increase")
+                amount = group[2]
+                if isinstance(amount, Group):
+                    if not amount:
+                        raise self.file.syntax_error(amount, "expected (f ...)")
+                    function = self.name(amount[0], "a function")
+                    terms = tuple(self.term(item) for item in amount[1:])
+                    return CostEffect(group.pos, function=Atom(function, terms, amount.pos))
+                return CostEffect(group.pos, amount=str(amount))
             raise self.file.unsupported(group, f"numeric effects ({head})")
         if head == "oneof":
             raise self.file.unsupported(group, "non-deterministic effects (oneof)")
@@ -652,6 +676,7 @@ def read_domain(file: PddlFile) -> Domain:
         elif head == ":constants":
             domain.constants += reader.typed_list(group[1:], False)
         elif head == ":predicates":
+            domain.declares_predicates = True
             reader.predicate_declarations(group, domain)
         elif head == ":functions":
             reader.use(":action-costs", group)
@@ -694,6 +719,14 @@ def read_problem(file: PddlFile) -> Problem:
             has_goal = True
         elif head == ":metric":
             problem.metric = group.pos
+            target = group[2] if len(group) == 3 else None
+            problem.minimizes_cost = (
+                len(group) == 3
+                and group[1] == "minimize"
+                and isinstance(target, Group)
+                and len(target) == 1
+                and target[0] == "total-cost"
+            )
         elif head in SECTIONS_UNSUPPORTED:
             raise file.unsupported(group, SECTIONS_UNSUPPORTED[head])
         else:
@@ -725,7 +758,9 @@ def _read_init(reader: _Reader, group: Group, problem: Problem) -> None:
             if not function:
                 raise reader.file.syntax_error(function, "expected (f ...)")
             name = reader.name(function[0], "a function")
-            problem.numeric_init.append((name, element.pos))
+            terms = tuple(reader.name(item, "an object") for item in function[1:])
+            value = reader.word(element[2], "a number")
+            problem.numeric_init.append(NumericFact(name, terms, str(value), element.pos))
             continue
         if head == "not":  # closed world: negative facts are the default
             reader.arity(element, 1, "not")

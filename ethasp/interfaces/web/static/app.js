@@ -128,7 +128,7 @@ function remembered() {
 function setBusy(job) {
   running = Boolean(job && job.state === "running");
   $("status").hidden = !running;
-  for (const button of document.querySelectorAll("#ask-form button, #undo, #start, #action-menu button, #drop-question, #drop-offer button, #shorter, #explain-plan")) {
+  for (const button of document.querySelectorAll("#ask-form button, #undo, #start, #action-menu button, #drop-question, #drop-offer button, #shorter, #cheaper, #explain-plan")) {
     button.disabled = running;
   }
   $("under").disabled = running || !state || !state.dialogue;
@@ -400,8 +400,11 @@ function renderCurrent() {
   const unanswered = later > 0
     ? `; ${later === 1 ? `question ${state.steps.length} has` : `questions ${source + 1} to ${state.steps.length} have`} no contrast plan, so it stays the current plan`
     : "";
+  const cost = current.cost === undefined || current.cost === null ? "" : `, cost ${current.cost}`;
   $("current-summary").textContent =
-    `${count}: ${origin}; final state utility ${current.utility}${unanswered}`;
+    `${count}${cost}: ${origin}; final state utility ${current.utility}${unanswered}`;
+  // A model with action costs: ask for a cheaper plan (none costs less than 0).
+  $("cheaper").hidden = !current.cost;
   // "Why not in N-1 steps?": for a plan of one step only when the empty plan is a plan.
   const shorter = steps >= 2 || (steps === 1 && current.empty_plan_is_plan);
   $("shorter").hidden = !shorter;
@@ -647,7 +650,7 @@ async function ask() {
   if (!text) {
     place($("ask-messages"));
     showNote(null);
-    showError("question: expected 'why ...' (forms: why A | why not A | why A rather than B | why A before B | why A after B | why [not] A at T | why [not] A within T1..T2 | why [not] F | why [not] F at T | why not in N steps | why step T)");
+    showError("question: expected 'why ...' (forms: why A | why not A | why A rather than B | why A before B | why A after B | why [not] A at T | why [not] A within T1..T2 | why [not] F | why [not] F at T | why not in N steps | why not a cheaper plan | why step T)");
     return;
   }
   const step = /^why\s+step\s+(\S+?)\s*\??$/i.exec(text);
@@ -710,6 +713,10 @@ async function explainStep(step) {
   data.lines.forEach((line, index) => list.append(el("li", {
     class: data.step && data.steps[data.step - 1] && line.startsWith(`Step ${data.step},`) ? "viewing" : null,
     text: line })));
+  const links = clear($("explain-links"));
+  (data.link_lines || []).forEach((line) => links.append(el("li", {
+    class: data.step && line.startsWith(`Step ${data.step},`) ? "viewing" : null,
+    text: line })));
   const removable = data.steps.filter((s) => s.removable).map((s) => s.step);
   $("explain-removable").textContent = removable.length
     ? `Not needed (the plan without them is still a plan): step ${removable.join(", ")}.`
@@ -758,6 +765,7 @@ function bind() {
   $("undo").addEventListener("click", () => move(() => post(`/api/sessions/${sid}/undo`, {}),
     $("history-messages")));
   $("explain-plan").addEventListener("click", () => explainStep(null));
+  $("cheaper").addEventListener("click", () => askText("why not a cheaper plan"));
   $("shorter").addEventListener("click", () => {
     const steps = state.current.plan.length;
     if (steps > 0) askText(`why not in ${steps - 1} ${steps - 1 === 1 ? "step" : "steps"}`);
