@@ -597,3 +597,41 @@ def plan_through(spec: RandomModel, rng: random.Random, walk: int) -> list[str] 
                     parent[succ] = (current, action)
                     queue.append(succ)
     return None
+
+
+# -- goal subsets, conflicts and repairs (Eifler et al.'s explanations under a principle) --
+
+
+def with_goal(spec: RandomModel, goal: dict) -> RandomModel:
+    """The model with another goal."""
+    from dataclasses import replace
+
+    return replace(spec, goal=dict(goal))
+
+
+def goal_reachable(spec: RandomModel, literals, principle: str) -> bool:
+    """Does a plan permissible under the principle reach the goal facts
+    ``literals`` ((variable, value) pairs), the model's goal replaced by them?"""
+    return with_goal(spec, dict(literals)).shortest_permissible_length([principle]) is not None
+
+
+def goal_structure(spec: RandomModel, principle: str):
+    """The subset-minimal sets of goal facts that no permissible plan reaches
+    (conflicts) and the subset-maximal ones that a permissible plan reaches
+    (goal subsets), by trying every subset of the goal."""
+    import itertools
+
+    facts = sorted(spec.goal.items())
+    reachable = {}
+    for size in range(len(facts) + 1):
+        for subset in itertools.combinations(facts, size):
+            reachable[frozenset(subset)] = goal_reachable(spec, subset, principle)
+    conflicts = [
+        s for s, ok in reachable.items() if not ok and all(reachable[s - {f}] for f in s)
+    ]
+    subsets = [
+        s
+        for s, ok in reachable.items()
+        if ok and all(not reachable[s | {f}] for f in facts if f not in s)
+    ]
+    return set(conflicts), set(subsets)
