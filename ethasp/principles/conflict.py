@@ -36,8 +36,8 @@ import clingo
 
 from ethasp.planning.budget import Budget
 from ethasp.planning.driver.planner import Constraint
-from ethasp.planning.messages import Messages
 from ethasp.planning.engines.best_state import BestReachable
+from ethasp.planning.messages import Messages
 from ethasp.planning.model import Model
 from ethasp.planning.naming import Naming
 from ethasp.planning.plan import Plan
@@ -306,9 +306,7 @@ def goal_conflicts(
             best=items.best,
         )
     exploration = Exploration(items, range(len(items.items)))
-    exploration.run(
-        lambda: len(exploration.conflicts) > limit and len(exploration.subsets) > limit
-    )
+    exploration.run(lambda: len(exploration.conflicts) > limit and len(exploration.subsets) > limit)
     subsets = []
     for subset in _ordered(exploration.subsets)[:limit]:
         if items.budget.expired():

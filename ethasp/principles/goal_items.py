@@ -225,4 +225,3 @@ def _ends(variable: clingo.Symbol, value: bool) -> clingo.Symbol:
 
 def _active(constraint: Constraint) -> clingo.Symbol:
     return clingo.Function("active", [constraint.question, constraint.term])
-
