@@ -640,9 +640,7 @@ def goal_structure(spec: RandomModel, principle: str):
     for size in range(len(facts) + 1):
         for subset in itertools.combinations(facts, size):
             reachable[frozenset(subset)] = goal_reachable(spec, subset, principle)
-    conflicts = [
-        s for s, ok in reachable.items() if not ok and all(reachable[s - {f}] for f in s)
-    ]
+    conflicts = [s for s, ok in reachable.items() if not ok and all(reachable[s - {f}] for f in s)]
     subsets = [
         s
         for s, ok in reachable.items()

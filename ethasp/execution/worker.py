@@ -110,9 +110,7 @@ class _TreeMemory:
             self.below = descendants(self.worker)
         self.readings += 1
         return (
-            resident(os.getpid())
-            + resident(self.worker)
-            + sum(resident(pid) for pid in self.below)
+            resident(os.getpid()) + resident(self.worker) + sum(resident(pid) for pid in self.below)
         )
 
 
@@ -226,9 +224,7 @@ class Worker:
             return
         self._forget()
         mine, theirs = multiprocessing.Pipe()
-        forked = (
-            hasattr(os, "fork") and sys.platform.startswith("linux") and spawner.threads() == 1
-        )
+        forked = hasattr(os, "fork") and sys.platform.startswith("linux") and spawner.threads() == 1
         if forked:
             for stream in (sys.stdout, sys.stderr):
                 with contextlib.suppress(OSError, ValueError):
@@ -387,9 +383,7 @@ class Worker:
                     elif kind not in ("ready", "progress"):
                         return self._ended(outcome, kind, value, limits)
                 self.kill()
-                near = (
-                    limits.memory is not None and outcome.peak > SOFT_MEMORY * limits.memory
-                )
+                near = limits.memory is not None and outcome.peak > SOFT_MEMORY * limits.memory
                 return self._ended(
                     outcome,
                     MEMORY if near else DIED,

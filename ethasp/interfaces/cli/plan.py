@@ -156,6 +156,9 @@ def run_permissible(args: argparse.Namespace, model: Model) -> int:
         write_picture(args, model, lambda pictures: pictures.report(report, f"{head}: {shown[0]}"))
     elif result.status == "none":
         lines = [f"no permissible plan exists: {result.proof}"]
+        default_reasons_limit(args)
+        if args.reasons_limit:
+            lines += conflict_lines(args, model, result.principles, data, limits)
     elif result.plan is not None:
         # Permissible as far as searched: the search could not exclude what
         # would make it impermissible (a better reachable state).
@@ -176,3 +179,47 @@ def run_permissible(args: argparse.Namespace, model: Model) -> int:
         no_picture(args)
     emit(args, data, "\n".join(lines))
     return 0
+
+
+def conflict_lines(args, model: Model, principles, data: dict, limits) -> list[str]:
+    """The minimal conflicts and maximal goal subsets of a model without a
+    permissible plan, in words and as lists (their JSON added to ``data``)."""
+    from ethasp.principles.conflict import goal_conflicts
+    from ethasp.reasons.conflicts import explain_conflicts
+
+    conflicts = goal_conflicts(
+        model, principles, max_horizon=max_horizon(args), budget=limits, limit=args.reasons_limit
+    )
+    data.update(conflicts.to_json(model.naming))
+    words = explain_conflicts(model, conflicts, max_horizon=max_horizon(args), budget=limits)
+    data["conflicts_explanation"] = words.text
+    return [words.text, *conflict_list_lines(model, conflicts)]
+
+
+def conflict_list_lines(model: Model, conflicts) -> list[str]:
+    """The conflicts and goal subsets, one a line."""
+
+    def shown(items) -> str:
+        if not items:
+            return "{} (even the empty goal)"
+        return "{" + ", ".join(item.text(model.naming) for item in items) + "}"
+
+    more = " (more may exist)"
+    lines = [
+        f"minimal conflicts ({conflicts.status}){more if conflicts.conflicts_truncated else ''}:"
+    ]
+    lines += [f"  {shown(conflict)}" for conflict in conflicts.conflicts] or ["  none"]
+    lines.append(
+        "maximal goal subsets, each with a shortest permissible plan"
+        f"{more if conflicts.goal_subsets_truncated else ''}:"
+    )
+    for subset in conflicts.goal_subsets:
+        plan = (
+            "(not found in time)"
+            if subset.plan is None
+            else (model.naming.actions(subset.plan) or "(empty plan)")
+        )
+        lines.append(f"  {shown(subset.items)}: {plan}")
+    if not conflicts.goal_subsets:
+        lines.append("  none")
+    return lines
