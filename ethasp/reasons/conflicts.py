@@ -86,7 +86,8 @@ def explain_conflicts(
     budget = budget or Budget()
     labels = model_labels(model)
     under = words.join([words.principle_phrase(p) for p in conflicts.principles])
-    sentences = [f"No plan is permissible under {under}."] if conflicts.conflicts else []
+    none = "No plan meeting the questions is" if terms else "No plan is"
+    sentences = [f"{none} permissible under {under}."] if conflicts.conflicts else []
     examples = []
     unrestricted: GoalItems | None = None
     for conflict in conflicts.conflicts:
