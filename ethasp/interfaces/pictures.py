@@ -145,6 +145,8 @@ class Pictures:
         under the contrastive explanation (``words``)."""
         questions = "; ".join(str(question) for question in answer.questions)
         notes = [answer.explanation] if words else []
+        if answer.impasse is not None and words:
+            notes.append(answer.impasse.text)
         if answer.principle_dropped and words:
             notes.append(
                 f"The principle {answer.under} was dropped for the contrast: "

@@ -44,6 +44,8 @@ Commands:
 def answer_text(answer: Answer, naming) -> str:
     """An answer in words, then the plans, verdicts and constraints."""
     lines = [answer.explanation]
+    if answer.impasse is not None:
+        lines.append(answer.impasse.text)
     original = answer.original
     lines.append(
         f"  plan asked about: {naming.actions(original.plan) or '(empty)'} "

@@ -110,6 +110,11 @@ def _describe(problem: clingo.Symbol) -> str:
             f"{args[0]} is declared both an action and a creative alternative (a creative "
             "alternative exists only where a repair adds it: declare it with creative/1 only)"
         )
+    if name == "unknown_creative":
+        return (
+            f"creative alternative {args[0]} is no instance of an action of the PDDL domain "
+            "(its parameters' types, or a static precondition, rule it out)"
+        )
     if name == "not_a_goal":
         return f"{args[0]} names a fact that is no goal fact"
     if name == "bad_cost":

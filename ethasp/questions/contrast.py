@@ -436,8 +436,8 @@ class Answer:
     so the contrast plan was made without it (and is judged under it);
     ``conflict`` lists a minimal set of constraints that no plan meets.
     ``impasse``: with the principle dropped, the minimal conflicts of the goal
-    and the constraints under it, and the cheapest repair (in the
-    explanation's words too).
+    and the constraints under it, and the cheapest repair, with their words
+    (the contrastive explanation stays the paper's).
     ``difference`` holds the literals of the chosen reasons that only one side
     has; ``optimal`` is False when the contrast plan comes from an any-plan
     search (not proven shortest); ``note`` says what else was learnt (a plan
@@ -650,7 +650,6 @@ def answer_questions(
     stuck = None
     if search.principle_dropped and not budget.expired():
         stuck = impasse(model, under, constraints, max_horizon, budget, reasons_limit)
-        explanation = f"{explanation} {stuck.text}"
     return Answer(
         list(questions),
         principle,

@@ -199,8 +199,8 @@ def conflict_lines(args, model: Model, principles, data: dict, limits) -> list[s
 def conflict_list_lines(model: Model, conflicts) -> list[str]:
     """The conflicts and goal subsets, one a line."""
 
-    def shown(items) -> str:
-        if not items:
+    def shown(items, conflict: bool = False) -> str:
+        if not items and conflict:
             return "{} (even the empty goal)"
         return "{" + ", ".join(item.text(model.naming) for item in items) + "}"
 
@@ -208,7 +208,7 @@ def conflict_list_lines(model: Model, conflicts) -> list[str]:
     lines = [
         f"minimal conflicts ({conflicts.status}){more if conflicts.conflicts_truncated else ''}:"
     ]
-    lines += [f"  {shown(conflict)}" for conflict in conflicts.conflicts] or ["  none"]
+    lines += [f"  {shown(conflict, True)}" for conflict in conflicts.conflicts] or ["  none"]
     lines.append(
         "maximal goal subsets, each with a shortest permissible plan"
         f"{more if conflicts.goal_subsets_truncated else ''}:"

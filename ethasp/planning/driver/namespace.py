@@ -104,6 +104,7 @@ PDDL_VOCABULARY: dict[tuple[str, int], str] = {
     ("pddl_object", 2): "pddl_object(X,T): object X is declared of type T",
     ("pddl_add", 2): "pddl_add(A,V): an add effect",
     ("pddl_del", 2): "pddl_del(A,V): a delete effect",
+    ("pddl_action", 1): "pddl_action(A): A is an instance of an action schema",
     ("pddl_static", 1): "pddl_static(V): V is an atom of a static predicate (no action of "
     "the domain changes it)",
     ("pddl_candidate", 1): "pddl_candidate(A): a term of a plan that is no action (validation)",
@@ -123,6 +124,7 @@ VOCABULARY = {**MODEL_VOCABULARY, **PDDL_VOCABULARY}
 #: translation saved as an ASP model, which has no PDDL task behind it, may
 #: write them).
 TRANSLATION_ONLY = (
+    ("pddl_action", 1),
     ("pddl_static", 1),
     ("pddl_candidate", 1),
     ("pddl_schema_instance", 1),

@@ -494,6 +494,9 @@ function renderAnswer() {
       last ? " These constraints stay imposed: every later question would have no contrast plan either. " : null,
       last ? el("button", { type: "button", id: "drop-question", onclick: () => dropQuestion() }, "Drop this question") : null));
   }
+  if (answer.conflicts_explanation) {
+    notes.append(el("p", { class: "explanation", id: "conflicts-explanation" }, answer.conflicts_explanation));
+  }
   if (answer.conflicts && answer.conflicts.length) {
     notes.append(el("p", { class: "notice", id: "principle-conflicts" },
       el("strong", { text: `Conflicts under ${step.under} (${answer.conflicts_status}): ` }),
