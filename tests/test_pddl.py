@@ -517,7 +517,7 @@ def test_negative_static_preconditions_decide_which_actions_exist():
     domain = UNTYPED.replace("(near ?b ?h))\n    :effect", "(not (near ?b ?h)))\n    :effect")
     program = translated(domain, UNTYPED_PROBLEM)
     assert "not init(near(B,H))" in program
-    assert "pre(grab(H,B),near(B,H),false) :- action(grab(H,B))." in program
+    assert "pre(grab(H,B),near(B,H),false) :- pddl_action(grab(H,B))." in program
     assert ground_model(program)["action"] == {"action(grab(left,b2))"}
 
 

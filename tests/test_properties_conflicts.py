@@ -11,6 +11,7 @@ principle's judgement confirms.
 """
 
 import itertools
+import random
 
 import pytest
 from hypothesis import assume, given, settings
@@ -107,3 +108,96 @@ def test_the_oracle_is_monotone_on_an_example():
             covered = any(frozenset(subset) <= s for s in subsets)
             blocked = any(c <= frozenset(subset) for c in conflicts)
             assert covered != blocked
+
+
+# -- the questions' constraints count like goal facts --------------------------------
+
+QUESTION_PRINCIPLES = ["deontology", "utilitarianism", "do-no-harm"]
+
+
+def _random_terms(spec, rng) -> list[tuple]:
+    """One or two constraint terms in the oracle's form (question_oracle.py)."""
+    a, b = rng.choice(spec.actions), rng.choice(spec.actions)
+    f = rng.choice(spec.variables + list(spec.derived))
+    t = rng.randint(1, 3)
+    t1 = rng.randint(1, 2)
+    choices = [
+        ("used", a),
+        ("unused", a),
+        ("before", b, a),
+        ("at", a, t),
+        ("not_at", a, t),
+        ("within", a, t1, t1 + 1),
+        ("not_within", a, t1, t1 + 1),
+        ("ends", f, rng.random() < 0.5),
+        ("fact_at", f, rng.random() < 0.5, t),
+        ("at_most", rng.randint(0, 3)),
+    ]
+    return rng.sample(choices, rng.randint(1, 2))
+
+
+def _symbol(term: tuple):
+    import clingo
+
+    def argument(value):
+        if isinstance(value, bool):
+            return clingo.Function("true" if value else "false")
+        if isinstance(value, int):
+            return clingo.Number(value)
+        return clingo.Function(value)
+
+    return clingo.Function(term[0], [argument(value) for value in term[1:]])
+
+
+def _item_key(item) -> tuple:
+    if item.fact is not None:
+        return ("goal", str(item.fact[0]), item.fact[1])
+    term = item.term
+    return (term.name, *(_plain(argument) for argument in term.arguments))
+
+
+def _plain(symbol):
+    import clingo
+
+    if symbol.type == clingo.SymbolType.Number:
+        return symbol.number
+    if symbol.name in ("true", "false") and not symbol.arguments:
+        return symbol.name == "true"
+    return str(symbol)
+
+
+@pytest.mark.slow
+@settings(max_examples=120, deadline=None)
+@given(SEEDS, st.sampled_from(QUESTION_PRINCIPLES))
+def test_conflicts_of_goals_and_question_constraints_agree_with_the_oracle(seed, principle):
+    from question_oracle import shortest_meeting
+
+    spec = random_model(seed, **features(seed))
+    terms = _random_terms(spec, random.Random(seed))
+    model = Model.from_string(spec.to_asp())
+    constraints = model.planner.question([_symbol(term) for term in terms])
+    result = goal_conflicts(model, [principle], constraints, max_horizon=HORIZON)
+    items = [("goal", v, b) for v, b in sorted(spec.goal.items())] + [tuple(t) for t in terms]
+
+    def reachable(subset) -> bool:
+        goal = {i[1]: i[2] for i in subset if i[0] == "goal"}
+        asked = [i for i in subset if i[0] != "goal"]
+        return shortest_meeting(with_goal(spec, goal), asked, [principle]) is not None
+
+    known = {}
+    for size in range(len(items) + 1):
+        for subset in itertools.combinations(items, size):
+            known[frozenset(subset)] = reachable(subset)
+    conflicts = {s for s, ok in known.items() if not ok and all(known[s - {i}] for i in s)}
+    subsets = {
+        s for s, ok in known.items() if ok and all(not known[s | {i}] for i in items if i not in s)
+    }
+    assert result.status == "proven", (result.proof, terms, spec)
+    assert {frozenset(map(_item_key, c)) for c in result.conflicts} == conflicts, (terms, spec)
+    assert {frozenset(map(_item_key, s.items)) for s in result.goal_subsets} == subsets
+    for subset in result.goal_subsets:
+        keys = [_item_key(item) for item in subset.items]
+        goal = {k[1]: k[2] for k in keys if k[0] == "goal"}
+        asked = [k for k in keys if k[0] != "goal"]
+        expected = shortest_meeting(with_goal(spec, goal), asked, [principle])
+        assert len(subset.plan) == expected, (subset.plan, keys, spec)

@@ -392,6 +392,7 @@ def _made(
     if result.status != FOUND:
         return Repair(changes, cost, repaired, None, False)
     plan, optimal, gap = result.plan, result.optimal, None
+    assert plan is not None
     if towards is not None:
         plan, optimal, gap = _towards(entry.items, entry.required, plan, towards, budget)
     names = [principle.name for principle in chosen]

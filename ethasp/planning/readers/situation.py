@@ -267,7 +267,9 @@ class _Reader:
         self.labels(data.get("labels"), actions | creative)
         self.warn_undefined()
 
-    def actions(self, value: Any, taken: set[str] = frozenset(), creative: bool = False) -> set[str]:
+    def actions(
+        self, value: Any, taken: set[str] = frozenset(), creative: bool = False
+    ) -> set[str]:
         """The actions (with ``creative``: the creative alternatives of
         ``changes``, each with a cost, named unlike the ``taken`` actions)."""
         names: set[str] = set()
