@@ -204,14 +204,13 @@ def conflict_list_lines(model: Model, conflicts) -> list[str]:
             return "{} (even the empty goal)"
         return "{" + ", ".join(item.text(model.naming) for item in items) + "}"
 
-    more = " (more may exist)"
-    lines = [
-        f"minimal conflicts ({conflicts.status}){more if conflicts.conflicts_truncated else ''}:"
-    ]
+    more = "limit reached, more may exist"
+    cut = f"; {more}" if conflicts.conflicts_truncated else ""
+    lines = [f"minimal conflicts ({conflicts.status}{cut}):"]
     lines += [f"  {shown(conflict, True)}" for conflict in conflicts.conflicts] or ["  none"]
     lines.append(
         "maximal goal subsets, each with a shortest permissible plan"
-        f"{more if conflicts.goal_subsets_truncated else ''}:"
+        f"{f' ({more})' if conflicts.goal_subsets_truncated else ''}:"
     )
     for subset in conflicts.goal_subsets:
         plan = (
