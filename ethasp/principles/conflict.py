@@ -60,8 +60,8 @@ class Exploration:
     varied item costs (positive), for the seeds of greatest worth first.
     After :meth:`run`, ``conflicts`` and ``subsets`` hold what was found (sets
     of varied items), ``exact`` says that every decision was a proof, and
-    ``complete`` that every set was explored (or, with ``best_only``, every set
-    worth as much as the best goal subset found).
+    ``complete`` that every set was explored (with a ``floor`` of
+    :meth:`run`: every set worth at least that much).
     """
 
     def __init__(

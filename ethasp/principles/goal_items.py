@@ -183,6 +183,9 @@ class GoalItems:
     def _reach(self, items: frozenset[int]) -> Reach:
         planner = self.soft.planner
         setting = self.setting(items)
+        known = self._relaxed(items)
+        if known is not None:
+            return Reach(NONE, core=known)
         horizon = None if self.searched_in_asp else self.depth().horizon
         if horizon is None:
             result = self._search(setting)
@@ -201,6 +204,23 @@ class GoalItems:
             if any(_active(c) in failed for c in self._constraints[number])
         )
         return Reach(NONE, core=core)
+
+    def _relaxed(self, items: frozenset[int]) -> frozenset[int] | None:
+        """Items that no plan reaches even ignoring delete effects (relaxed
+        reachability: the soft HModel's own goal, or an item's condition),
+        known before any search and before the depth; else None."""
+        planner = self.soft.planner
+        if not planner.prepare(self.budget):
+            return None
+        if planner.is_fact("unreachable_goal"):
+            return frozenset()
+        failing = {
+            c for c, _ in planner.impossible(sorted(self.setting(items).constraints, key=str))
+        }
+        for number in sorted(items):
+            if self._constraints[number] & failing:
+                return frozenset({number})
+        return None
 
     def shortest(self, items: Iterable[int]) -> SearchResult:
         """A shortest permissible plan that reaches the items."""
