@@ -18,7 +18,9 @@ class Registry:
     own one too)."""
 
     def __init__(self):
-        self.lock = threading.Lock()
+        # Reentrant: the garbage collector may run a weak reference's callback
+        # (_forget) in the thread that holds the lock, inside of().
+        self.lock = threading.RLock()
         self.by_owner: dict[int, tuple[weakref.ref, dict]] = {}
 
     def of(self, owner) -> dict:
@@ -26,13 +28,17 @@ class Registry:
         with self.lock:
             entry = self.by_owner.get(key)
             if entry is None or entry[0]() is not owner:
-                entry = (weakref.ref(owner, lambda _, key=key: self._forget(key)), {})
+                entry = (weakref.ref(owner, lambda ref, key=key: self._forget(key, ref)), {})
                 self.by_owner[key] = entry
             return entry[1]
 
-    def _forget(self, key: int) -> None:
+    def _forget(self, key: int, ref: weakref.ref) -> None:
+        """Drop the results of a dead owner (not those of a later owner that
+        got its identity)."""
         with self.lock:
-            self.by_owner.pop(key, None)
+            entry = self.by_owner.get(key)
+            if entry is not None and entry[0] is ref:
+                del self.by_owner[key]
 
 
 _RESULTS = Registry()
