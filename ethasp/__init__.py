@@ -33,6 +33,10 @@ _HOMES = {
     "Validation": "ethasp.planning.validation",
     "validate": "ethasp.planning.validation",
     "batch": "ethasp.batch.run",
+    "Conflicts": "ethasp.principles.conflict",
+    "goal_conflicts": "ethasp.principles.conflict",
+    "RepairResult": "ethasp.principles.repair",
+    "repair": "ethasp.principles.repair",
 }
 
 if TYPE_CHECKING:  # the same names for type checkers, which do not run __getattr__
@@ -42,8 +46,10 @@ if TYPE_CHECKING:  # the same names for type checkers, which do not run __getatt
     from ethasp.planning.plan import Plan
     from ethasp.planning.search import SearchResult, find_plan
     from ethasp.planning.validation import Validation, validate
+    from ethasp.principles.conflict import Conflicts, goal_conflicts
     from ethasp.principles.formula import Formula, format_formula, format_literal, parse_formula
     from ethasp.principles.judgement import Judgement, JudgementReport, QueryResult, query
+    from ethasp.principles.repair import RepairResult, repair
     from ethasp.principles.restriction import HPlanResult, plan_with_principles
     from ethasp.questions.steps import explain_steps
     from ethasp.reasons.reasons import Explanation, explain, judge
@@ -62,6 +68,7 @@ def __dir__() -> list[str]:
 
 
 __all__ = [
+    "Conflicts",
     "Explanation",
     "Formula",
     "HPlanResult",
@@ -71,6 +78,7 @@ __all__ = [
     "Model",
     "Plan",
     "QueryResult",
+    "RepairResult",
     "SearchResult",
     "Validation",
     "batch",
@@ -79,9 +87,11 @@ __all__ = [
     "find_plan",
     "format_formula",
     "format_literal",
+    "goal_conflicts",
     "judge",
     "parse_formula",
     "plan_with_principles",
     "query",
+    "repair",
     "validate",
 ]

@@ -64,6 +64,15 @@ class RandomModel:
     # action costs (cost/2): empty, no costs (every action costs 1); else an
     # action without one costs 0
     action_cost: dict[str, int] = field(default_factory=dict)
+    # what a repair may change, with costs: initial values of variables,
+    # creative alternatives (actions with pre/eff like others, but not in
+    # ``actions``), preventable events; goal facts dropped (cost 1 unless in
+    # ``goal_cost``; never those in ``goal_fixed``)
+    changeable: dict[str, int] = field(default_factory=dict)
+    creative: dict[str, int] = field(default_factory=dict)
+    preventable: dict[str, int] = field(default_factory=dict)
+    goal_cost: dict[tuple[str, bool], int] = field(default_factory=dict)
+    goal_fixed: set = field(default_factory=set)
 
     # -- semantics ------------------------------------------------------------
 
@@ -439,7 +448,12 @@ class RandomModel:
     def to_asp(self) -> str:
         lines = [f"variable({v})." for v in self.variables]
         lines += [f"action({a})." for a in self.actions]
-        for a in self.actions:
+        lines += [f"creative({a},{c})." for a, c in self.creative.items()]
+        lines += [f"changeable({v},{c})." for v, c in self.changeable.items()]
+        lines += [f"preventable({e},{c})." for e, c in self.preventable.items()]
+        lines += [f"goal_cost({v},{str(b).lower()},{c})." for (v, b), c in self.goal_cost.items()]
+        lines += [f"goal_fixed({v},{str(b).lower()})." for v, b in sorted(self.goal_fixed)]
+        for a in list(self.actions) + list(self.creative):
             lines += [f"pre({a},{v},{str(b).lower()})." for v, b in self.pre[a].items()]
             lines += [f"eff({a},{v},{str(b).lower()})." for v, b in self.eff[a].items()]
         for a, effects in self.ceff.items():
@@ -692,3 +706,131 @@ def plan_through(spec: RandomModel, rng: random.Random, walk: int) -> list[str] 
                     parent[succ] = (current, action)
                     queue.append(succ)
     return None
+
+
+# -- goal subsets, conflicts and repairs (Eifler et al.'s explanations under a principle) --
+
+
+def with_goal(spec: RandomModel, goal: dict) -> RandomModel:
+    """The model with another goal."""
+    from dataclasses import replace
+
+    return replace(spec, goal=dict(goal))
+
+
+def goal_reachable(spec: RandomModel, literals, principle: str) -> bool:
+    """Does a plan permissible under the principle reach the goal facts
+    ``literals`` ((variable, value) pairs), the model's goal replaced by them?"""
+    return with_goal(spec, dict(literals)).shortest_permissible_length([principle]) is not None
+
+
+def goal_structure(spec: RandomModel, principle: str):
+    """The subset-minimal sets of goal facts that no permissible plan reaches
+    (conflicts) and the subset-maximal ones that a permissible plan reaches
+    (goal subsets), by trying every subset of the goal."""
+    import itertools
+
+    facts = sorted(spec.goal.items())
+    reachable = {}
+    for size in range(len(facts) + 1):
+        for subset in itertools.combinations(facts, size):
+            reachable[frozenset(subset)] = goal_reachable(spec, subset, principle)
+    conflicts = [s for s, ok in reachable.items() if not ok and all(reachable[s - {f}] for f in s)]
+    subsets = [
+        s
+        for s, ok in reachable.items()
+        if ok and all(not reachable[s | {f}] for f in facts if f not in s)
+    ]
+    return set(conflicts), set(subsets)
+
+
+def add_repairs(spec: RandomModel, rng: random.Random) -> None:
+    """Declare what a repair may change: one or two creative alternatives (with
+    preconditions, effects and maybe a utility), changeable initial values,
+    preventable events, costs and fixed goal facts."""
+    for index in range(rng.randint(1, 2)):
+        name = f"c{index}"
+        spec.pre[name] = {v: rng.random() < 0.5 for v in spec.variables if rng.random() < 0.3}
+        spec.eff[name] = {v: rng.random() < 0.5 for v in spec.variables if rng.random() < 0.5}
+        if not spec.eff[name]:
+            spec.eff[name] = {rng.choice(spec.variables): rng.random() < 0.5}
+        if rng.random() < 0.5:
+            spec.action_utility[name] = rng.randint(-2, 2)
+        spec.creative[name] = rng.randint(1, 3)
+    for variable in rng.sample(spec.variables, rng.randint(0, min(2, len(spec.variables)))):
+        spec.changeable[variable] = rng.randint(1, 3)
+    for event in spec.events:
+        if rng.random() < 0.5:
+            spec.preventable[event.name] = rng.randint(1, 3)
+    for fact in spec.goal.items():
+        if fact[0] not in spec.variables:
+            continue
+        roll = rng.random()
+        if roll < 0.3:
+            spec.goal_cost[fact] = rng.randint(2, 3)
+        elif roll < 0.45:
+            spec.goal_fixed.add(fact)
+
+
+def allowed_changes(spec: RandomModel) -> list[tuple[tuple, int]]:
+    """The changes a repair may make, with their costs: ("initial", v),
+    ("add", a), ("prevent", e), ("drop", v, b)."""
+    changes = [(("initial", v), c) for v, c in spec.changeable.items()]
+    changes += [(("add", a), c) for a, c in spec.creative.items()]
+    changes += [(("prevent", e), c) for e, c in spec.preventable.items()]
+    changes += [
+        (("drop", v, b), spec.goal_cost.get((v, b), 1))
+        for v, b in spec.goal.items()
+        if (v, b) not in spec.goal_fixed
+    ]
+    return changes
+
+
+def repaired(spec: RandomModel, changes) -> RandomModel:
+    """The model after the changes."""
+    from dataclasses import replace
+
+    kinds = {change[0] for change in changes}
+    assert kinds <= {"initial", "add", "prevent", "drop"}
+    init = set(spec.init)
+    for change in changes:
+        if change[0] == "initial":
+            init ^= {change[1]}
+    dropped = {(c[1], c[2]) for c in changes if c[0] == "drop"}
+    prevented = {c[1] for c in changes if c[0] == "prevent"}
+    added = [c[1] for c in changes if c[0] == "add"]
+    return replace(
+        spec,
+        actions=list(spec.actions) + sorted(added),
+        init=frozenset(init),
+        goal={v: b for v, b in spec.goal.items() if (v, b) not in dropped},
+        events=[event for event in spec.events if event.name not in prevented],
+        creative={},
+        changeable={},
+        preventable={},
+        goal_cost={},
+        goal_fixed=set(),
+    )
+
+
+def least_repairs(spec: RandomModel, principle: str) -> tuple[int | None, set]:
+    """The least cost of a repair that admits a plan permissible under the
+    principle (judged in the repaired model), and every repair of that cost,
+    by trying every set of changes in increasing cost."""
+    import itertools
+
+    changes = allowed_changes(spec)
+    subsets = []
+    for size in range(len(changes) + 1):
+        subsets += list(itertools.combinations(changes, size))
+    subsets.sort(key=lambda subset: sum(cost for _, cost in subset))
+    least, found = None, set()
+    for subset in subsets:
+        cost = sum(c for _, c in subset)
+        if least is not None and cost > least:
+            break
+        model = repaired(spec, [change for change, _ in subset])
+        if model.shortest_permissible_length([principle]) is not None:
+            least = cost
+            found.add(frozenset(change for change, _ in subset))
+    return least, found

@@ -178,6 +178,8 @@ def test_the_planners_task_refuses_what_it_does_not_write(extra, why):
     assert not engines.handles(downward.FEATURES, planner.features)
     with pytest.raises(sas.NotCompiled, match=why):
         sas.task(search_model(Atoms(planner)))
+
+
 # -- the planner asks before it uses an engine ---------------------------------------
 
 

@@ -92,6 +92,7 @@ def test_the_vocabulary_is_not_reserved_and_the_time_domain_is():
     assert {("time", 1), ("step", 1), ("horizon", 1)} <= reserved()
     assert ("ceff", 4) in MODEL_VOCABULARY and ("cpre", 4) in MODEL_VOCABULARY
     assert set(PDDL_VOCABULARY) == {
+        ("pddl_action", 1),
         ("pddl_subtype", 2),
         ("pddl_object", 2),
         ("pddl_add", 2),

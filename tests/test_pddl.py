@@ -142,10 +142,10 @@ ROOMS_PROBLEM = """
 def test_translation_is_lifted():
     program = translated(ROOMS_DOMAIN, ROOMS_PROBLEM)
     assert (
-        "action(go(A,From,To)) :- has_type(A,robot), has_type(From,room), "
+        "pddl_action(go(A,From,To)) :- has_type(A,robot), has_type(From,room), "
         "has_type(To,room), From != To, init(link(From,To))." in program
     )
-    assert "pre(go(A,From,To),at(A,From),true) :- action(go(A,From,To))." in program
+    assert "pre(go(A,From,To),at(A,From),true) :- pddl_action(go(A,From,To))." in program
     assert "variable(at(A,R)) :- has_type(A,agent), has_type(R,room)." in program
     # no action instance is written out: clingo grounds the rules
     assert not re.search(r"action\(go\([a-z]", program)
@@ -504,11 +504,11 @@ def test_static_predicates_decide_which_actions_exist():
     A changed predicate (free, on-floor) stays a precondition only."""
     program = translated(UNTYPED, UNTYPED_PROBLEM)
     assert (
-        "action(grab(H,B)) :- has_type(H,object), has_type(B,object), "
+        "pddl_action(grab(H,B)) :- has_type(H,object), has_type(B,object), "
         "init(hand(H)), init(ball(B)), init(near(B,H))."
     ) in program
-    assert "pre(grab(H,B),near(B,H),true) :- action(grab(H,B))." in program
-    assert "pre(grab(H,B),free(H),true) :- action(grab(H,B))." in program
+    assert "pre(grab(H,B),near(B,H),true) :- pddl_action(grab(H,B))." in program
+    assert "pre(grab(H,B),free(H),true) :- pddl_action(grab(H,B))." in program
     actions = ground_model(program)["action"]
     assert actions == {"action(grab(left,b1))"}
 
@@ -517,7 +517,7 @@ def test_negative_static_preconditions_decide_which_actions_exist():
     domain = UNTYPED.replace("(near ?b ?h))\n    :effect", "(not (near ?b ?h)))\n    :effect")
     program = translated(domain, UNTYPED_PROBLEM)
     assert "not init(near(B,H))" in program
-    assert "pre(grab(H,B),near(B,H),false) :- action(grab(H,B))." in program
+    assert "pre(grab(H,B),near(B,H),false) :- pddl_action(grab(H,B))." in program
     assert ground_model(program)["action"] == {"action(grab(left,b2))"}
 
 

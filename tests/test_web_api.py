@@ -10,6 +10,7 @@ import sys
 import threading
 import time
 import urllib.request
+from pathlib import Path
 
 import pytest
 from conftest import MODELS, ROOT
@@ -196,6 +197,31 @@ def test_a_minimal_conflict_is_shown(client):
         {"unused(refrain)", "used(refrain)"},
     )
     assert b"none (none:" in client.get(f"/api/sessions/{key}/steps/2.svg").data
+
+
+def test_a_dropped_principle_shows_the_conflicts_and_the_repaired_plan(tmp_path):
+    alarm = tmp_path / "alarm.lp"
+    alarm.write_text(
+        Path(TROLLEY).read_text()
+        + "creative(alarm,2). eff(alarm,done,true). eff(alarm,five_will_die,false).\n"
+    )
+    model = Model.load([alarm])
+    workspace = Workspace(model, [str(alarm)], "do-no-harm", Options(), Limits())
+    client = create_app(workspace, loopback=True).test_client()
+    key = start(client, plan="refrain")
+    ask(client, key, "why five_will_die")
+    answer = state(client, key)["steps"][0]["answer"]
+    assert answer["principle_dropped"]
+    assert answer["conflicts"] == [["ends(five_will_die,false)"]]
+    assert "The cheapest change" in answer["conflicts_explanation"]
+    assert answer["repair"]["repairs"][0]["plan"] == ["alarm"]
+    assert answer["repair"]["shown"] == [{"term": "alarm", "shown": "alarm"}]
+    picture = client.get(f"/api/sessions/{key}/steps/1/repair.svg")
+    assert picture.status_code == 200 and picture.mimetype == "image/svg+xml"
+    assert b"cheapest repair (cost 2)" in picture.data and b"repaired plan: alarm" in picture.data
+    # an answer without a repair has no repaired plan to draw
+    ask(client, key, "why not pull")
+    assert client.get(f"/api/sessions/{key}/steps/2/repair.svg").status_code == 404
 
 
 # -- errors: the command line's one-line messages --------------------------------------------------

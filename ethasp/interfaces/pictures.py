@@ -149,11 +149,37 @@ class Pictures:
             f"{role}: {self._actions(side.plan)} \u2014 {side.principle}: {verdict(side.judgement)}"
         )
 
+    def repair(self, answer: Answer, words: bool = True) -> str | None:
+        """An answer whose principle was dropped: the cheapest repair's plan,
+        in the repaired model, aligned with the plan asked about (None without
+        a repair's plan)."""
+        impasse = answer.impasse
+        result = impasse.repair if impasse is not None else None
+        if result is None or not result.repairs or result.repairs[0].plan is None:
+            return None
+        best = result.repairs[0]
+        naming = self.model.naming
+        changes = "; ".join(change.text(naming) for change in best.changes)
+        repaired = timeline(best.model, best.plan, Valuation.of_model(best.model))
+        verdicts = ", ".join(f"{j.principle}: {verdict(j)}" for j in best.judgements)
+        notes = [impasse.text] if words and impasse is not None else []
+        return contrast_svg(
+            self.timeline(answer.original.plan),
+            repaired,
+            naming,
+            title=f"cheapest repair (cost {best.cost}): {changes}",
+            notes=notes,
+            original_title=self._side_title("plan asked about", answer.original),
+            contrast_title=f"repaired plan: {self._actions(best.plan)} \u2014 {verdicts}",
+        )
+
     def answer(self, answer: Answer, words: bool = True) -> str:
         """An answer: the contrast plan drawn aligned with the plan asked about,
         under the contrastive explanation (``words``)."""
         questions = "; ".join(str(question) for question in answer.questions)
         notes = [answer.explanation] if words else []
+        if answer.impasse is not None and words:
+            notes.append(answer.impasse.text)
         if answer.principle_dropped and words:
             notes.append(
                 f"The principle {answer.under} was dropped for the contrast: "

@@ -48,6 +48,8 @@ STANDARD_OUTPUT = "-"  # as a file to save to: print the JSON instead
 def answer_text(answer: Answer, naming) -> str:
     """An answer in words, then the plans, verdicts and constraints."""
     lines = [answer.explanation]
+    if answer.impasse is not None:
+        lines.append(answer.impasse.text)
     original = answer.original
     lines.append(
         f"  plan asked about: {naming.actions(original.plan) or '(empty)'} "
@@ -71,6 +73,8 @@ def answer_text(answer: Answer, naming) -> str:
         )
     if answer.note:
         lines.append(f"  note: {answer.note}")
+    if answer.impasse is not None:
+        lines += impasse_lines(answer.impasse, naming, answer.under)
     constraints = ", ".join(naming.constraint(c.term) for c in answer.constraints)
     lines.append(f"  constraints: {constraints}")
     if answer.conflict:
@@ -91,6 +95,32 @@ def answer_text(answer: Answer, naming) -> str:
 def _cost(cost: int | None) -> str:
     """``; cost 5`` for a plan of a model with action costs."""
     return f"; cost {cost}" if cost is not None else ""
+
+
+def impasse_lines(impasse, naming, under: str) -> list[str]:
+    """The conflicts of a dropped principle and the cheapest repair, in lines."""
+    conflicts = impasse.conflicts
+
+    def shown(items) -> str:
+        return "{" + ", ".join(item.text(naming) for item in items) + "}"
+
+    found = "; ".join(shown(conflict) for conflict in conflicts.conflicts) or "none"
+    more = ", more may exist" if conflicts.conflicts_truncated else ""
+    lines = [f"  conflicts under {under} ({conflicts.status}{more}): {found}"]
+    result = impasse.repair
+    if result is not None:
+        if result.repairs:
+            best = result.repairs[0]
+            changes = "; ".join(change.text(naming) for change in best.changes)
+            status = "least, proven" if result.status == "found" else "bounded"
+            plan = naming.actions(best.plan) if best.plan is not None else "(none found)"
+            lines.append(
+                f"  cheapest repair (cost {best.cost}, {status}): {changes}; plan: "
+                f"{plan or '(empty plan)'}"
+            )
+        else:
+            lines.append(f"  no repair ({result.status}): {result.proof}")
+    return lines
 
 
 def _literals(literals: list[str]) -> str:

@@ -109,6 +109,20 @@ def _describe(problem: clingo.Symbol) -> str:
             f"{args[0]} in {args[1]}: names of the form ethasp(...) are reserved for the "
             "state variables that restrictions add to a model"
         )
+    if name == "creative_and_action":
+        return (
+            f"{args[0]} is declared both an action and a creative alternative (a creative "
+            "alternative exists only where a repair adds it: declare it with creative/1 only)"
+        )
+    if name == "unknown_creative":
+        return (
+            f"creative alternative {args[0]} is no instance of an action of the PDDL domain "
+            "(its parameters' types, or a static precondition, rule it out)"
+        )
+    if name == "not_a_goal":
+        return f"{args[0]} names a fact that is no goal fact"
+    if name == "bad_cost":
+        return f"the cost must be an integer from 1 to 1000000, one per change, in {args[0]}"
     if name == "override_without_condition":
         return f"{args[0]} names a condition that no cpre/4 has"
     return str(problem)

@@ -115,11 +115,26 @@ class Validation:
         }
 
 
-def _problem(problem: clingo.Symbol, naming: Naming = ASP_NAMING) -> str:
+def _problem(
+    problem: clingo.Symbol, naming: Naming = ASP_NAMING, creative: frozenset = frozenset()
+) -> str:
     args = problem.arguments
+    if problem.name == "unknown_action" and args[0] in creative:
+        return (
+            f"action {naming.action(args[0])} at step {args[1]} is a creative alternative: "
+            "it exists only where a repair adds it (ethasp repair)"
+        )
     if problem.name == "unknown_action":
         return f"unknown action {naming.action(args[0])} at step {args[1]}"
     return str(problem)
+
+
+def creative_alternatives(model: Model) -> frozenset:
+    """The model's creative alternatives (actions that only repairs add)."""
+    planner = model.planner
+    return frozenset(
+        atom.arguments[0] for arity in (1, 2) for atom in planner.get("creative", arity)
+    )
 
 
 def validate(model: Model, plan: Plan) -> Validation:
@@ -144,7 +159,7 @@ def plan_atoms(
         for answer in handle:
             symbols = list(answer.symbols(shown=True))
             break
-    validation = read_validation(plan, symbols)
+    validation = read_validation(plan, symbols, model)
     if not validation.valid:
         raise InputError(f"not a plan: {validation.message(model.naming)}")
     return symbols
@@ -163,8 +178,9 @@ def read_validation(
         static = _static_failure(model, problems) if model is not None else None
         if static is None:
             naming = model.naming if model is not None else Naming()
+            creative = creative_alternatives(model) if model is not None else frozenset()
             first = min(problems, key=lambda problem: _problem(problem))  # as ever: by text
-            raise InputError(f"plan: {_problem(first, naming)}")
+            raise InputError(f"plan: {_problem(first, naming, creative)}")
         if not failures or static[0] < failures[0]:
             return Validation(plan, False, *static, static=True)
     if failures:

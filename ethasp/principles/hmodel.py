@@ -31,6 +31,9 @@ import clingo
 from ethasp.memo import results
 from ethasp.planning.model import Model
 
+# A literal: a state (or derived) variable and its value.
+Literal = tuple[clingo.Symbol, bool]
+
 HMODEL = "restrictions/hmodel.lp"
 QUESTIONS = "questions/restriction.lp"
 QUESTION_RULES = "questions/questions.lp"
@@ -64,6 +67,7 @@ class Restriction:
     principles: tuple[str, ...] = ()
     terms: tuple[clingo.Symbol, ...] = ()
     best_utility: int | None = None
+    soft: bool = False
 
     @classmethod
     def of(
@@ -71,12 +75,18 @@ class Restriction:
         principles: Iterable[str] = (),
         terms: Iterable[clingo.Symbol] = (),
         best_utility: int | None = None,
+        soft: bool = False,
     ) -> Restriction:
-        return cls(tuple(sorted(set(principles))), tuple(sorted(set(terms), key=str)), best_utility)
+        return cls(
+            tuple(sorted(set(principles))),
+            tuple(sorted(set(terms), key=str)),
+            best_utility,
+            soft,
+        )
 
     @property
     def empty(self) -> bool:
-        return not self.principles and not self.terms
+        return not self.principles and not self.terms and not self.soft
 
     def describe(self) -> str:
         parts = list(self.principles) + [str(term) for term in self.terms]
@@ -97,6 +107,17 @@ def hmodel(model: Model, restriction: Restriction) -> Model:
     restriction): a model whose plans are the model's plans that satisfy it
     (the model itself where the restriction removes and adds nothing)."""
     return _made(model, restriction)[0]
+
+
+def goal_items(model: Model, restriction: Restriction) -> dict[clingo.Symbol, list[Literal]]:
+    """The items of the goal of a soft HModel (``restriction.soft``): for each
+    goal fact ``goal(V,B)`` of the model and each question constraint term, the
+    literals (V, B) it requires at the end of a plan of the HModel (its
+    ``goal_of/3``; goal-deontology adds an unreachable literal to a bad goal
+    fact's item).  The HModel itself requires none of them."""
+    if not restriction.soft:
+        raise ValueError("the goal items of an HModel whose goal is not soft")
+    return _made(model, restriction)[2]
 
 
 def impossible(model: Model, restriction: Restriction) -> list[tuple[clingo.Symbol, str]]:
@@ -127,22 +148,33 @@ def _compile(model: Model, restriction: Restriction):
     inputs: list[clingo.Symbol] = []
     question = clingo.Function("q")
     if restriction.terms:
-        encodings += [QUESTIONS, RELAXED, QUESTION_RULES]
+        encodings += [QUESTIONS]
+        if not restriction.soft:
+            encodings += [RELAXED, QUESTION_RULES]
         inputs += [clingo.Function("contrast", [question, term]) for term in restriction.terms]
     if restriction.best_utility is not None:
         inputs.append(clingo.Function("best_utility", [clingo.Number(restriction.best_utility)]))
-    shown = "".join(f"#show {name}/2.\n" for name, _ in IMPOSSIBLE) if restriction.terms else ""
-    shown += "#show removed/1. #show extra/1.\n"
+    if restriction.soft:
+        inputs.append(clingo.Function("soft_goals"))
+    shown = "#show restricts/0. #show goal_of/3.\n"
+    if restriction.terms and not restriction.soft:
+        shown += "".join(f"#show {name}/2.\n" for name, _ in IMPOSSIBLE)
     answer = model.planner.solve_program(encodings, shown, symbols=inputs)
     found = []
     for name, why in IMPOSSIBLE:
         found += [(atom.arguments[1], why) for atom in answer.get(name, 2)]
-    if not answer.get("removed", 1) and not answer.get("extra", 1):
+    items: dict[clingo.Symbol, list[Literal]] = {}
+    for atom in sorted(answer.get("goal_of", 3)):
+        item, variable, value = atom.arguments
+        items.setdefault(item, []).append((variable, value.name == "true"))
+    if not answer.get("restricts", 0):
         # The restriction changes nothing (deontology without bad actions, ...):
         # the HModel is the model itself, with its one grounding.
-        return model, sorted(found, key=str)
+        return model, sorted(found, key=str), items
     facts = [atom.arguments[0] for atom in answer.get("hmodel", 1)]
+    kind = "soft HModel" if restriction.soft else "HModel"
     return (
-        Model.of_facts(f"<HModel of {restriction.describe()}>", facts, model.naming),
+        Model.of_facts(f"<{kind} of {restriction.describe()}>", facts, model.naming),
         sorted(found, key=str),
+        items,
     )

@@ -406,7 +406,7 @@ def judge(
     if any(principle.needs for principle in chosen):
         _require_plan(model, validate(model, plan))  # before searching for inputs
     answer, inputs = _evaluation(model, plan, chosen, budget, max_horizon)
-    validation = read_validation(plan, answer.select(TRACE_ATOMS))
+    validation = read_validation(plan, answer.select(TRACE_ATOMS), model)
     _require_plan(model, validation)
     utility = final_utility(model, plan)
     compared = None

@@ -53,7 +53,7 @@ RESTRICTIONS = "restrictions"
 SEARCH_BOUNDS = ("at_most", "cheaper_than")
 
 
-def _principles(names: Sequence[str]) -> list[Principle]:
+def chosen_principles(names: Sequence[str]) -> list[Principle]:
     """The principles named, each once, each with a restriction encoding.
 
     A principle ``NAME`` (``encodings/principles/NAME.lp``) restricts plan
@@ -106,7 +106,7 @@ def principle_names(names: Sequence[str]) -> list[str]:
 
     Raises InputError for an unknown name.
     """
-    return [principle.name for principle in _principles(names)]
+    return [principle.name for principle in chosen_principles(names)]
 
 
 # -- HPlans ------------------------------------------------------------------
@@ -164,6 +164,46 @@ class HPlanResult:
         return data
 
 
+def derived_variables(model: Model) -> frozenset:
+    """The model's derived variables (terms)."""
+    return frozenset(atom.arguments[0] for atom in model.planner.get("derived", 1))
+
+
+def restriction_for(
+    model: Model,
+    chosen: Sequence[Principle],
+    terms: Sequence = (),
+    budget: Budget | None = None,
+    max_horizon: int = DEFAULT_MAX_HORIZON,
+    soft: bool = False,
+) -> tuple[Restriction | None, BestReachable | None]:
+    """The restriction of the principles and the question constraint terms
+    that compile (utilitarianism's best reachable utility searched first),
+    and that best reachable state (None without utilitarianism).  The
+    restriction is None where no reachable state is valued yet (a limit
+    struck).  ``soft``: the goal's items are soft
+    (:attr:`ethasp.principles.hmodel.Restriction.soft`), and ``at_most(N)``
+    compiles too (``cheaper_than(C)`` never: it bounds the search)."""
+    best: BestReachable | None = None
+    if any(principle.reads_alternatives for principle in chosen):
+        best = best_reachable(model.planner, budget or Budget(), max_horizon)
+        if best.utility is None:
+            return None, best
+    derived = derived_variables(model)
+    restriction = Restriction.of(
+        [p.asp_name for p in chosen],
+        [
+            t
+            for t in terms
+            if compiled(t, derived)
+            and (t.name not in SEARCH_BOUNDS or (soft and t.name == "at_most"))
+        ],
+        best.utility if best is not None else None,
+        soft,
+    )
+    return restriction, best
+
+
 def _final_utility(model: Model, plan: Plan) -> int:
     """The utility of the plan's final state (its trace)."""
     from ethasp.principles.judgement import final_utility
@@ -201,7 +241,7 @@ def plan_with_principles(
     if max_horizon is None:
         max_horizon = DEFAULT_SATISFICING_HORIZON if satisficing else DEFAULT_MAX_HORIZON
     budget = budget or Budget(time_limit)
-    chosen = _principles(principles)
+    chosen = chosen_principles(principles)
     names = [principle.name for principle in chosen]
     best: BestReachable | None = None
     plans = "plan meeting the question" if constraints else "plan"
@@ -217,23 +257,19 @@ def plan_with_principles(
         why = unhandled(model.planner)
         if why:
             return HPlanResult(BOUNDED, names, proof=f"no reachable state valued: {why}")
-        best = best_reachable(model.planner, budget, max_horizon)
-        if best.utility is None:
-            return HPlanResult(
-                BOUNDED,
-                names,
-                horizon=best.searched,
-                best=best,
-                proof=f"no reachable state valued yet: {best.proof}",
-            )
-    # The HModel: a planning model of its own, planned for by every engine.
     terms = [constraint.term for constraint in constraints]
-    derived = frozenset(atom.arguments[0] for atom in model.planner.get("derived", 1))
-    restriction = Restriction.of(
-        [p.asp_name for p in chosen],
-        [t for t in terms if compiled(t, derived) and t.name not in SEARCH_BOUNDS],
-        best.utility if best is not None else None,
-    )
+    restriction, best = restriction_for(model, chosen, terms, budget, max_horizon)
+    if restriction is None:
+        assert best is not None
+        return HPlanResult(
+            BOUNDED,
+            names,
+            horizon=best.searched,
+            best=best,
+            proof=f"no reachable state valued yet: {best.proof}",
+        )
+    # The HModel: a planning model of its own, planned for by every engine.
+    derived = derived_variables(model)
     restricted = model if restriction.empty else hmodel(model, restriction)
     restricted.planning_system = model.planning_system
     against = impossible(model, restriction) if restriction.terms else []

@@ -39,6 +39,7 @@ from ethasp.principles.restriction import (
     one_restricting_principle,
     plan_with_principles,
 )
+from ethasp.questions.impasse import Impasse, impasse
 from ethasp.questions.question import EITHER, Question
 from ethasp.reasons import words
 from ethasp.reasons.reasons import DEFAULT_LIMIT, judge
@@ -478,6 +479,9 @@ class Answer:
     constraints is permissible under ``under`` (proven: ``dropped_because``),
     so the contrast plan was made without it (and is judged under it);
     ``conflict`` lists a minimal set of constraints that no plan meets.
+    ``impasse``: with the principle dropped, the minimal conflicts of the goal
+    and the constraints under it, and the cheapest repair, with their words
+    (the contrastive explanation stays the paper's).
     ``difference`` holds, for each side, the literals of the reason its words
     give that do not hold of the other plan; ``optimal`` is False when the
     contrast plan comes from an any-plan search (not proven shortest);
@@ -500,6 +504,7 @@ class Answer:
     dropped_because: str = ""
     optimal: bool = True
     note: str = ""
+    impasse: Impasse | None = None
 
     @property
     def unmeetable(self) -> bool:
@@ -521,6 +526,7 @@ class Answer:
             "reason_difference": self.difference,
             "explanation": self.explanation,
             "note": self.note,
+            **(self.impasse.to_json() if self.impasse is not None else {}),
         }
 
 
@@ -694,6 +700,12 @@ def answer_questions(
     contrast = None
     if search.result.plan is not None:
         contrast = _judge_side(model, search.result.plan, under, max_horizon, budget, reasons_limit)
+    explanation = contrastive_text(
+        original, contrast, search.conflict, search.result.status, under, search.impermissible
+    )
+    stuck = None
+    if search.principle_dropped and not budget.expired():
+        stuck = impasse(model, under, constraints, max_horizon, budget, reasons_limit)
     return Answer(
         list(questions),
         principle,
@@ -706,12 +718,11 @@ def answer_questions(
         constraints,
         search.conflict,
         _difference(original, contrast),
-        contrastive_text(
-            original, contrast, search.conflict, search.result.status, under, search.impermissible
-        ),
+        explanation,
         search.dropped_because,
         search.result.optimal,
         search.note,
+        stuck,
     )
 
 

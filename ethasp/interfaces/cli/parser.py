@@ -12,13 +12,27 @@ import ethasp.interfaces.cli.explain as explain
 import ethasp.interfaces.cli.judge as judge
 import ethasp.interfaces.cli.plan as plan
 import ethasp.interfaces.cli.query as query
+import ethasp.interfaces.cli.repair as repair
 import ethasp.interfaces.cli.report as report
 import ethasp.interfaces.cli.serve as serve
 import ethasp.interfaces.cli.validate as validate
 from ethasp.interfaces.version import package_version
 
 # The commands in the order --help lists them.
-COMMANDS = (plan, validate, judge, query, ask, explain, dialogue, serve, completion, batch, report)
+COMMANDS = (
+    plan,
+    repair,
+    validate,
+    judge,
+    query,
+    ask,
+    explain,
+    dialogue,
+    serve,
+    completion,
+    batch,
+    report,
+)
 
 DESCRIPTION = """\
 Ethical plan explanation with Answer Set Programming (clingo), after Krarup,

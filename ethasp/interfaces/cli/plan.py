@@ -194,6 +194,9 @@ def run_permissible(args: argparse.Namespace, model: Model) -> int:
         write_picture(args, model, lambda pictures: pictures.report(report, f"{head}: {shown[0]}"))
     elif result.status == "none":
         lines = [f"no permissible plan exists: {result.proof}"]
+        default_reasons_limit(args)
+        if args.reasons_limit:
+            lines += conflict_lines(args, model, result.principles, data, limits)
     elif result.plan is not None and result.best is None:
         # A model with action costs: the cheapest permissible plan found, not
         # proven cheapest.
@@ -227,3 +230,46 @@ def run_permissible(args: argparse.Namespace, model: Model) -> int:
         no_picture(args)
     emit(args, data, "\n".join(lines))
     return 0
+
+
+def conflict_lines(args, model: Model, principles, data: dict, limits) -> list[str]:
+    """The minimal conflicts and maximal goal subsets of a model without a
+    permissible plan, in words and as lists (their JSON added to ``data``)."""
+    from ethasp.principles.conflict import goal_conflicts
+    from ethasp.reasons.conflicts import explain_conflicts
+
+    conflicts = goal_conflicts(
+        model, principles, max_horizon=max_horizon(args), budget=limits, limit=args.reasons_limit
+    )
+    data.update(conflicts.to_json(model.naming))
+    words = explain_conflicts(model, conflicts, max_horizon=max_horizon(args), budget=limits)
+    data["conflicts_explanation"] = words.text
+    return [words.text, *conflict_list_lines(model, conflicts)]
+
+
+def conflict_list_lines(model: Model, conflicts) -> list[str]:
+    """The conflicts and goal subsets, one a line."""
+
+    def shown(items, conflict: bool = False) -> str:
+        if not items and conflict:
+            return "{} (even the empty goal)"
+        return "{" + ", ".join(item.text(model.naming) for item in items) + "}"
+
+    more = "limit reached, more may exist"
+    cut = f"; {more}" if conflicts.conflicts_truncated else ""
+    lines = [f"minimal conflicts ({conflicts.status}{cut}):"]
+    lines += [f"  {shown(conflict, True)}" for conflict in conflicts.conflicts] or ["  none"]
+    lines.append(
+        "maximal goal subsets, each with a shortest permissible plan"
+        f"{f' ({more})' if conflicts.goal_subsets_truncated else ''}:"
+    )
+    for subset in conflicts.goal_subsets:
+        plan = (
+            "(not found in time)"
+            if subset.plan is None
+            else (model.naming.actions(subset.plan) or "(empty plan)")
+        )
+        lines.append(f"  {shown(subset.items)}: {plan}")
+    if not conflicts.goal_subsets:
+        lines.append("  none")
+    return lines

@@ -224,6 +224,16 @@ def create_app(workspace: Workspace, loopback: bool = True) -> Flask:
             raise Refused(404, f"no question {number} in this dialogue")
         return _svg(workspace.pictures.answer(dialogue.steps[number - 1].answer, words=_words()))
 
+    @app.get("/api/sessions/<key>/steps/<int:number>/repair.svg")
+    def repair_picture(key: str, number: int):
+        dialogue = workspace.session(key).require()
+        if not 1 <= number <= len(dialogue.steps):
+            raise Refused(404, f"no question {number} in this dialogue")
+        picture = workspace.pictures.repair(dialogue.steps[number - 1].answer, words=_words())
+        if picture is None:
+            raise Refused(404, f"the answer to question {number} has no repaired plan")
+        return _svg(picture)
+
     return app
 
 

@@ -61,6 +61,11 @@ def _step_json(workspace: Workspace, number: int, step: Step) -> dict:
     naming = workspace.model.naming
     data["constraints_shown"] = [naming.constraint(c.term) for c in answer.constraints]
     data["conflict_shown"] = [naming.constraint(c.term) for c in answer.conflict]
+    impasse = answer.impasse
+    if impasse is not None and impasse.repair is not None and impasse.repair.repairs:
+        best = impasse.repair.repairs[0]
+        if best.plan is not None:
+            data["repair"]["shown"] = _actions(workspace, best.plan)
     own = [
         str(c)
         for c in answer.constraints

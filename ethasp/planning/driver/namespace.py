@@ -83,6 +83,14 @@ MODEL_VOCABULARY: dict[tuple[str, int], str] = {
     ("alternative_plan", 2): "alternative_plan(K,N): alternative plan K has N steps",
     ("alternative_step", 3): "alternative_step(K,T,A): alternative plan K has action A at step T",
     ("override", 4): "override(A,K,V,B): cpre(A,K,V,B) only lets a later effect of A win",
+    ("changeable", 1): "changeable(V): a repair may change the initial value of V",
+    ("changeable", 2): "changeable(V,C): ... at cost C",
+    ("creative", 1): "creative(A): A is a creative alternative, an action a repair may add",
+    ("creative", 2): "creative(A,C): ... at cost C",
+    ("preventable", 1): "preventable(E): a repair may prevent event E",
+    ("preventable", 2): "preventable(E,C): ... at cost C",
+    ("goal_cost", 3): "goal_cost(V,B,C): dropping the goal fact V=B costs C",
+    ("goal_fixed", 2): "goal_fixed(V,B): a repair may not drop the goal fact V=B",
     ("agent_label", 2): "agent_label(Name,Possessive): words for the agent",
     ("action_label", 3): "action_label(A,Phrase,Gerund): words for action A",
     ("fact_label", 3): "fact_label(V,B,Phrase): words for the fact V=B",
@@ -97,6 +105,7 @@ PDDL_VOCABULARY: dict[tuple[str, int], str] = {
     ("pddl_object", 2): "pddl_object(X,T): object X is declared of type T",
     ("pddl_add", 2): "pddl_add(A,V): an add effect",
     ("pddl_del", 2): "pddl_del(A,V): a delete effect",
+    ("pddl_action", 1): "pddl_action(A): A is an instance of an action schema",
     ("pddl_static", 1): "pddl_static(V): V is an atom of a static predicate (no action of "
     "the domain changes it)",
     ("pddl_candidate", 1): "pddl_candidate(A): a term of a plan that is no action (validation)",
@@ -117,6 +126,7 @@ VOCABULARY = {**MODEL_VOCABULARY, **PDDL_VOCABULARY}
 #: translation saved as an ASP model, which has no PDDL task behind it, may
 #: write them).
 TRANSLATION_ONLY = (
+    ("pddl_action", 1),
     ("pddl_static", 1),
     ("pddl_candidate", 1),
     ("pddl_schema_instance", 1),

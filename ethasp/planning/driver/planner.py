@@ -295,12 +295,16 @@ class Setting:
 class Outcome:
     """The result of one solve: ``satisfiable`` (None when the budget stopped
     it), the shown atoms of the last model found (an optimal one when
-    optimising and not stopped) and that model's cost."""
+    optimising and not stopped) and that model's cost; for an unsatisfiable
+    solve, ``core``: question constraints imposed (``active(Q,C)`` atoms)
+    that already make it unsatisfiable together (clingo's core of the
+    assumptions)."""
 
     satisfiable: bool | None
     symbols: list[clingo.Symbol] = field(default_factory=list)
     cost: list[int] = field(default_factory=list)
     models: list[list[clingo.Symbol]] = field(default_factory=list)
+    core: list[clingo.Symbol] = field(default_factory=list)
 
 
 class GroundingStopped(Exception):
@@ -1029,11 +1033,25 @@ class Planner:
             if not budget.wait(handle):
                 return Outcome(None, found[-1] if found else [], costs[0] if costs else [])
             result = handle.get()
+            core = set(handle.core()) if result.unsatisfiable and assumptions else set()
         if result.interrupted or result.unknown:
             return Outcome(None, found[-1] if found else [], costs[0] if costs else [])
         return Outcome(
-            result.satisfiable, found[-1] if found else [], costs[0] if costs else [], found
+            result.satisfiable,
+            found[-1] if found else [],
+            costs[0] if costs else [],
+            found,
+            self._core(assumptions, core),
         )
+
+    def _core(self, assumptions, core: set[int]) -> list[clingo.Symbol]:
+        """The atoms assumed true whose literals are in a core."""
+        found = []
+        for atom, value in assumptions:
+            symbolic = self.ctl.symbolic_atoms[atom] if value else None
+            if symbolic is not None and symbolic.literal in core:
+                found.append(atom)
+        return found
 
     @_locked
     def threads(self, count: int) -> None:

@@ -294,7 +294,7 @@ def _bound_states(planner: Planner, r: Reachability):
 # -- models with exogenous events: explicit layers of configurations ----------------
 
 
-def _configurations(planner: Planner):
+def configurations(planner: Planner):
     """The explicit layers of the planner's ground model (events included), made once."""
     if "configurations" not in results(planner):
         from ethasp.planning.engines.explicit import Configurations, Events
@@ -323,7 +323,7 @@ def _best_explicit(
 ) -> BestReachable | None:
     """The best reachable state of a model with events, by explicit layers;
     None where they gave up (too many configurations) with time left."""
-    layers = _configurations(planner)
+    layers = configurations(planner)
     task = layers.task
     # other_than: the states that agree with all these literals are left out.
     pos = sum(1 << task.index[v] for v, b in other_than or () if b)
@@ -343,7 +343,7 @@ def _best_explicit(
                 found[:] = [(*key, configuration)]
         return False
 
-    layers = _configurations(planner)
+    layers = configurations(planner)
     stopped = _grow(layers, budget, max_horizon, visit, "best reachable state", "configurations")
     searched = len(layers.layers) - 1
     best = _final_state(planner, layers, found[0][3]) if found else None
@@ -370,7 +370,7 @@ def _better_explicit(
 ) -> Comparison | None:
     """Is a reachable state better than ``utility`` (a model with events, by
     explicit layers)?  None where they gave up with time left."""
-    layers = _configurations(planner)
+    layers = configurations(planner)
     found: list = []
 
     def visit(k: int) -> bool:
@@ -380,7 +380,7 @@ def _better_explicit(
                 return True
         return False
 
-    layers = _configurations(planner)
+    layers = configurations(planner)
     stopped = _grow(
         layers, budget, max_horizon, visit, "a better reachable state", "configurations"
     )

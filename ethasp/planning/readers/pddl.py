@@ -11,14 +11,16 @@ Python.  For a domain with ``(:types room robot)`` and
 
 it writes
 
-    action(move(R,From,To)) :- has_type(R,robot), has_type(From,room),
-                               has_type(To,room), From != To.
-    pre(move(R,From,To),at(R,From),true) :- action(move(R,From,To)).
-    pddl_del(move(R,From,To),at(R,From)) :- action(move(R,From,To)).
-    pddl_add(move(R,From,To),at(R,To)) :- action(move(R,From,To)).
+    pddl_action(move(R,From,To)) :- has_type(R,robot), has_type(From,room),
+                                    has_type(To,room), From != To.
+    pre(move(R,From,To),at(R,From),true) :- pddl_action(move(R,From,To)).
+    pddl_del(move(R,From,To),at(R,From)) :- pddl_action(move(R,From,To)).
+    pddl_add(move(R,From,To),at(R,To)) :- pddl_action(move(R,From,To)).
 
+(``encodings/planning/pddl.lp`` makes each instance an action, unless an
+annotation file declares it a creative alternative, which a repair adds.)
 A precondition on a static predicate (one that no effect changes) that is a
-plain conjunct also goes into the body of the ``action/1`` rule, as
+plain conjunct also goes into the body of the ``pddl_action/1`` rule, as
 ``init(p)`` or ``not init(p)``: an instance whose static precondition fails
 does not exist.  Per action schema, ``pddl_schema_instance/1`` and
 ``pddl_static_failure/3`` rules over ``pddl_candidate/1`` tell a validation
@@ -543,7 +545,7 @@ class _Translator:
         file = self.domain.file
         scope, names, typing = self.bind(Scope(), action.params)
         head = term_of(pddl_name_to_asp(action.name), names)
-        anchor = f"action({head})"
+        anchor = f"pddl_action({head})"
         scope = Scope(scope.variables, (anchor,))
         precondition = self.conjunction(nnf(action.precondition), scope, file, lift=False)
         # An action whose static precondition fails initially never occurs,

@@ -40,6 +40,12 @@ neg: [..]}}``                  ``affects(p,v,b,neg).``
 plans of ``alethicAlternatives``) the final states of these plans)
 ``labels`` (an extension)      ``agent_label/2``, ``action_label/3``, ``fact_label/3``,
                                ``patient_label/2``
+``changes`` (an extension):    what a repair may change (``ethasp repair``), each
+``initialState: {v: C}``       ``changeable(v,C).``
+``actions: [{name: a, ...,     ``creative(a,C).`` and the action's facts as above
+cost: C}]``                    (HERA's creative alternatives, as actions)
+``events: {e: C}``             ``preventable(e,C).``
+``goal: {v: C}``               ``goal_cost(v,b,C).`` (``fixed``: ``goal_fixed(v,b).``)
 ============================== ==================================================
 
 HERA applies an action's effects (and the events of one time point) one after
@@ -98,6 +104,8 @@ _CONSTANT = re.compile(r"[a-z][A-Za-z0-9_']*")
 # Copies of one conditional effect that override conditions may need; beyond,
 # the situation is refused.
 MAX_COPIES = 10_000
+# The largest cost of a change (encodings/planning/check.lp).
+MAX_COST = 1_000_000
 
 Literal = tuple[str, bool]
 
@@ -244,7 +252,9 @@ class _Reader:
             if value:
                 self.add("init", name_term(variable))
         actions = self.actions(data.get("actions"))
-        self.events(data.get("events"))
+        changes = self.mapping(data.get("changes"), "changes")
+        creative = self.actions(changes.get("actions"), actions, creative=True)
+        events = self.events(data.get("events"))
         self.utilities(data.get("utilities"))
         self.affects(data.get("affects"))
         for variable, value in self.partial(data.get("goal"), "goal"):
@@ -253,20 +263,30 @@ class _Reader:
             self.plan(data["plan"], actions, "plan")
         for number, plan in enumerate(self.sequence(data.get("alternatives"), "alternatives"), 1):
             self.plan(plan, actions, f"alternative {number}", number)
-        self.labels(data.get("labels"), actions)
+        self.changes(changes, data.get("goal"), events)
+        self.labels(data.get("labels"), actions | creative)
         self.warn_undefined()
 
-    def actions(self, value: Any) -> set[str]:
+    def actions(
+        self, value: Any, taken: set[str] = frozenset(), creative: bool = False
+    ) -> set[str]:
+        """The actions (with ``creative``: the creative alternatives of
+        ``changes``, each with a cost, named unlike the ``taken`` actions)."""
         names: set[str] = set()
-        for index, action in enumerate(self.sequence(value, "actions"), 1):
-            action = self.mapping(action, f"action {index}")
-            name = self.name(action.get("name"), f"the name of action {index}")
-            what = f"action {name}"
-            if name in names:
+        where = "the creative alternatives of changes" if creative else "actions"
+        for index, action in enumerate(self.sequence(value, where), 1):
+            kind = "creative alternative" if creative else "action"
+            action = self.mapping(action, f"{kind} {index}")
+            name = self.name(action.get("name"), f"the name of {kind} {index}")
+            what = f"{kind} {name}"
+            if name in names or name in taken:
                 self.fail(f"two actions are named {name}")
             names.add(name)
             term = name_term(name)
-            self.add("action", term)
+            if creative:
+                self.add("creative", term, self.cost(action.get("cost", 1), what))
+            else:
+                self.add("action", term)
             value = action.get("intrinsicvalue", "neutral")
             if value not in ("good", "bad", "neutral"):
                 self.fail(f"{what}: the intrinsicvalue must be good, bad or neutral, not {value!r}")
@@ -276,6 +296,36 @@ class _Reader:
             effects = self.effects(action.get("effects"), what)
             self.compile_action(term, pre, effects)
         return names
+
+    def cost(self, value: Any, what: str) -> int:
+        cost = self.integer(value, f"the cost of {what}")
+        if not 1 <= cost <= MAX_COST:
+            self.fail(f"the cost of {what} must be from 1 to {MAX_COST}, not {cost}")
+        return cost
+
+    def changes(self, changes: dict, goal: Any, events: set[str]) -> None:
+        """What a repair may change besides creative alternatives: initial
+        values, events, and the costs of goal facts (or ``fixed``)."""
+        for key, cost in self.mapping(changes.get("initialState"), "changes: initialState").items():
+            variable = self.name(key, "a variable in changes: initialState")
+            if variable not in self.variables:
+                self.fail(f"changes: initialState: {variable} is not a variable of initialState")
+            self.add("changeable", name_term(variable), self.cost(cost, f"changing {variable}"))
+        for key, cost in self.mapping(changes.get("events"), "changes: events").items():
+            event = self.name(key, "an event in changes: events")
+            if event not in events:
+                self.fail(f"changes: events: {event} is not an event of the situation")
+            self.add("preventable", name_term(event), self.cost(cost, f"preventing {event}"))
+        goals = dict(self.partial(goal, "goal", known=False, reads=False))
+        for key, cost in self.mapping(changes.get("goal"), "changes: goal").items():
+            variable = self.name(key, "a variable in changes: goal")
+            if variable not in goals:
+                self.fail(f"changes: goal: {variable} is not a variable of the goal")
+            if cost == "fixed":
+                self.add("goal_fixed", name_term(variable), goals[variable])
+            else:
+                cost = self.cost(cost, f"dropping the goal {variable}")
+                self.add("goal_cost", name_term(variable), goals[variable], cost)
 
     def effects(self, value: Any, what: str) -> list[tuple[list[Literal], list[Literal]]]:
         result = []
@@ -367,7 +417,7 @@ class _Reader:
                 self.add("cpre", action, key, name_term(w), c)
                 self.add("override", action, key, name_term(w), c)
 
-    def events(self, value: Any) -> None:
+    def events(self, value: Any) -> set[str]:
         names: set[str] = set()
         key = 0
         for index, event in enumerate(self.sequence(value, "events"), 1):
@@ -403,6 +453,7 @@ class _Reader:
                     self.add("event_effect", term, key, name_term(variable), truth)
                 for variable, truth in condition:
                     self.add("event_condition", term, key, name_term(variable), truth)
+        return names
 
     def utilities(self, value: Any) -> None:
         seen: dict[Literal, int] = {}

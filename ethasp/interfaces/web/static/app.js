@@ -590,6 +590,33 @@ function renderAnswer() {
       last ? " These constraints stay imposed: every later question would have no contrast plan either. " : null,
       last ? el("button", { type: "button", id: "drop-question", onclick: () => dropQuestion() }, "Drop this question") : null));
   }
+  if (answer.conflicts_explanation) {
+    notes.append(el("p", { class: "explanation", id: "conflicts-explanation" }, answer.conflicts_explanation));
+  }
+  if (answer.conflicts && answer.conflicts.length) {
+    notes.append(el("p", { class: "notice", id: "principle-conflicts" },
+      el("strong", { text: `Conflicts under ${step.under} (${answer.conflicts_status}): ` }),
+      answer.conflicts.map((items, index) => el("span", {},
+        index ? "; " : "", "{", items.map((c) => el("span", { class: "literal", text: c })), "}")),
+      answer.conflicts_truncated ? " (more may exist)" : ""));
+  }
+  const repaired = answer.repair && answer.repair.repairs && answer.repair.repairs[0];
+  if (answer.repair) {
+    notes.append(el("p", { class: "notice", id: "cheapest-repair" },
+      el("strong", { text: "Cheapest repair: " }),
+      repaired
+        ? `${repaired.changes.map((c) => c.text).join("; ")} (cost ${repaired.cost}, ` +
+          `${answer.repair.status === "found" ? "proven least" : "bounded"})` +
+          (repaired.plan ? `; plan: ${(answer.repair.shown || repaired.plan.map((t) => ({ shown: t }))).map((a) => a.shown).join(" ") || "(empty plan)"}` : "")
+        : `none (${answer.repair.status}): ${answer.repair.proof}`));
+  }
+  const repairBox = $("repair-box");
+  repairBox.hidden = !(repaired && repaired.plan);
+  if (!repairBox.hidden) {
+    const repairPicture = `/api/sessions/${sid}/steps/${step.number}/repair.svg`;
+    showPicture($("repair-picture"), `${repairPicture}?words=0`);
+    $("repair-svg").href = repairPicture;
+  }
   notes.append(el("p", { class: "proof" }, "Constraints imposed: ",
     (answer.constraints_shown || answer.constraints).map((c) => el("span", { class: "literal", text: c }))));
   const difference = answer.reason_difference || { original_only: [], contrast_only: [] };
