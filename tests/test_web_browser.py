@@ -22,6 +22,7 @@ import threading
 from pathlib import Path
 
 import pytest
+from busy_model import MAX_HORIZON, SLOW_QUESTION, busy_model
 from conftest import MODELS, ROOT
 
 pytestmark = pytest.mark.slow  # a real browser, end to end
@@ -37,7 +38,7 @@ from selenium.webdriver.support.ui import Select, WebDriverWait  # noqa: E402
 from ethasp import Model  # noqa: E402
 from ethasp.interfaces.version import package_version  # noqa: E402
 from ethasp.interfaces.web.server import Server  # noqa: E402
-from ethasp.interfaces.web.workspace import Workspace  # noqa: E402
+from ethasp.interfaces.web.workspace import Options, Workspace  # noqa: E402
 
 BROWSER = next(
     (
@@ -370,25 +371,12 @@ def test_conductor_example_in_the_browser(server, browser):
 
 
 @pytest.fixture
-def slow_server(monkeypatch):
-    """A server whose questions search until they are cancelled (reporting
-    progress as the searches do), to see a long request on the page."""
-    from ethasp.interfaces.web import workspace as workspace_module
-
-    original = workspace_module.searching
-
-    def slow(call, budget, *args, **kwargs):
-        if getattr(call, "__name__", "") == "ask":
-            budget.report("contrast plan search", horizon=2)
-            for _ in range(2400):  # until cancelled (at most a minute)
-                if budget.cancelled:
-                    break
-                threading.Event().wait(0.025)
-        return original(call, budget, *args, **kwargs)
-
-    monkeypatch.setattr(workspace_module, "searching", slow)
+def slow_server(tmp_path):
+    """A server whose model has a question that searches long (in a worker
+    process, reporting progress), to see a long request on the page."""
+    path = busy_model(tmp_path)
     workspace = Workspace(
-        Model.load([MODELS / "trolley.lp"]), [str(MODELS / "trolley.lp")], "do-no-harm"
+        Model.load([path]), [str(path)], "deontology", Options(max_horizon=MAX_HORIZON)
     )
     running = Server(workspace, None, 0)
     thread = threading.Thread(target=running.serve_forever, daemon=True)
@@ -402,29 +390,32 @@ def test_a_long_search_shows_progress_and_can_be_cancelled(slow_server, browser)
     driver = browser
     driver.get(slow_server.url)
     wait_for(
-        driver, lambda d: "do-no-harm" in text(d, "current-summary") and idle(d), "the first plan"
+        driver, lambda d: "deontology" in text(d, "current-summary") and idle(d), "the first plan"
     )
     box = driver.find_element(By.ID, "question")
     box.clear()
-    box.send_keys("why refrain rather than pull\n")
+    box.send_keys(f"{SLOW_QUESTION}\n")
     wait_for(
         driver,
         lambda d: (
             d.find_element(By.ID, "status").is_displayed()
-            and "contrast plan search: horizon 2" in text(d, "status-progress")
+            and "plan search under deontology: horizon" in text(d, "status-progress")
         ),
         "the progress",
     )
-    assert text(driver, "status-text") == "answering 'why refrain rather than pull'\u2026"
+    assert text(driver, "status-text") == f"answering '{SLOW_QUESTION}'\u2026"
     assert text(driver, "status-time").endswith(" s")
     assert not driver.find_element(By.ID, "ask").is_enabled()
     screenshot(driver, "page-running.png")
+    process = slow_server.app.extensions["ethasp"].workers.pids()
     click(driver, driver.find_element(By.ID, "cancel"))
     wait_for(driver, lambda d: idle(d) and "cancelled" in text(d, "note"), "the cancellation")
     assert text(driver, "note") == "cancelled: the dialogue is unchanged"
     assert driver.find_elements(By.CSS_SELECTOR, "#history li") == []
     assert not driver.find_element(By.ID, "answer-panel").is_displayed()
     assert driver.find_element(By.ID, "ask").is_enabled()
+    # The search's worker process was ended, and another took its place.
+    assert len(set(process) - set(slow_server.app.extensions["ethasp"].workers.pids())) == 1
 
 
 CARE = [

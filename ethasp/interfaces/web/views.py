@@ -82,11 +82,11 @@ def state_json(workspace: Workspace, session: Session) -> dict:
         "job": session.job.to_json() if session.job is not None else None,
         "dialogue": None,
     }
-    dialogue = session.dialogue
-    if dialogue is None:
+    shown = session.shown
+    if shown is None:
         return data
+    dialogue, report = shown.dialogue, shown.report
     plan = dialogue.current_plan
-    report = workspace.report(plan)
     naming = workspace.model.naming
     current = report.to_json()
     current["shown"] = _actions(workspace, plan)
@@ -119,7 +119,7 @@ def state_json(workspace: Workspace, session: Session) -> dict:
 def explain_json(workspace: Workspace, session: Session, step: int | None = None) -> dict:
     """The current plan explained step by step (``why step T`` with ``step``)."""
     dialogue = session.require()
-    explanation = workspace.explained(dialogue.current_plan)
+    explanation = session.shown.explained
     naming = workspace.model.naming
     data = explanation.to_json(naming)
     data["lines"] = explanation.lines()
