@@ -4,17 +4,20 @@ load, a state that survives a reload or a restart, cancelling, errors with
 the command line's messages, length limits and the guards."""
 
 import json
+import os
 import re
 import subprocess
 import sys
 import time
 import urllib.request
 
+import execution_work
 import pytest
 from busy_model import MAX_HORIZON, SLOW_QUESTION, busy_model
 from conftest import MODELS, ROOT
 
 from ethasp import InputError, Model, Plan
+from ethasp.execution.limits import GB, tree_resident
 from ethasp.interfaces.web.app import MAX_BODY, create_app
 from ethasp.interfaces.web.server import Server, is_loopback
 from ethasp.interfaces.web.workspace import Limits, Options, Workspace
@@ -436,6 +439,29 @@ def test_a_running_search_shows_progress_blocks_moves_and_can_be_cancelled(tmp_p
     # A new worker took the place of the one ended.
     assert len(workspace.workers.pids()) == Limits().running
     assert cancelled["process"] not in workspace.workers.pids()
+
+
+@pytest.mark.parametrize("work, limit", [("ground_forever", "time"), ("hog", "memory")])
+def test_a_move_ended_at_a_limit_says_so(trolley, work, limit):
+    """A move that cannot stop in time (a grounding) or takes memory without
+    end is ended with its worker; the job says which limit ended it."""
+    own = tree_resident(os.getpid()) / GB
+    options = Options(time_limit=3.0) if limit == "time" else Options(memory_limit=own + 0.4)
+    workspace = workspace_of(trolley, [TROLLEY], options=options)
+    client = create_app(workspace).test_client()
+    key = start(client)
+    before = state(client, key)
+    session = workspace.session(key)
+    move = getattr(execution_work, work)
+    job = workspace.submit(session, "ask", "a move that does not end", move)
+    job.wait(60)
+    data = client.get(f"/api/sessions/{key}/job").json["job"]
+    words = "the time limit of 3 s" if limit == "time" else "the memory limit of"
+    assert data["state"] == limit and data["error"].startswith(words), data
+    assert data["error"].endswith("was reached: the work was ended and the dialogue is unchanged")
+    assert ended(data["process"])
+    assert state(client, key)["steps"] == before["steps"]
+    assert ask(client, key, "why refrain rather than pull")["state"] == "done"
 
 
 # -- guards ----------------------------------------------------------------------------------------

@@ -131,8 +131,9 @@ def start(
                 execution.FAILED, message=f"{type(error).__name__}: {error}"
             )
             worker.kill()
-        finally:
-            give_back(worker)
+        if outcome.limited:  # ended, or an allocation failed in it: a new one is safer
+            worker.kill()
+        give_back(worker)
         try:
             _ended(job, outcome, commit)
         except Exception as error:  # a bug: tell the page, keep the trace on the console
