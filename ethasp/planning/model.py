@@ -289,7 +289,7 @@ class Model:
     def __reduce__(self):
         # A reference: resolved to the model the receiving process keeps (see
         # the module docstring).  This process keeps this one for the answer.
-        kept(self)
+        _keep(self)
         return (_resolve, (self.key, tuple(self.sources), self.allow_scripts, self.naming))
 
     def grounded(self) -> bool:
@@ -312,9 +312,9 @@ class Model:
             logger = _renamed(logger, "<block>", written[0].name)
         ctl = clingo.Control(list(arguments), logger=logger, message_limit=20)
         for source in self.sources:
-            if source.path is not None:
+            if source.path is not None and _unchanged(source):
                 ctl.load(str(source.path))
-            elif source.text:
+            elif source.text:  # (a file changed since it was read: the text read)
                 ctl.add("base", [], source.text)
             if source.facts:
                 with ctl.backend() as backend:
@@ -399,8 +399,18 @@ class Model:
         return self.planner.facts(predicates)
 
 
+def _unchanged(source: Source) -> bool:
+    """Does the file of a source still hold the text read from it?  (A model
+    is the text read when it was loaded, in every process that grounds it.)"""
+    try:
+        return source.path is not None and source.path.read_text(encoding="utf-8") == source.text
+    except (OSError, UnicodeDecodeError, ValueError):
+        return False
+
+
 # The models this process keeps by key, the most recently used last (a warm
-# worker keeps its model here between calls).
+# worker keeps its model here between calls; a process that sends a model
+# keeps that one, so that it comes back as itself).
 KEPT = 4
 _kept: OrderedDict[str, Model] = OrderedDict()
 _kept_lock = threading.Lock()
@@ -419,6 +429,16 @@ def kept(model: Model) -> Model:
                 _kept.popitem(last=False)
         _kept.move_to_end(key)
         return known
+
+
+def _keep(model: Model) -> None:
+    """Keep this model for its key (in place of one kept before)."""
+    key = model.key
+    with _kept_lock:
+        _kept[key] = model
+        _kept.move_to_end(key)
+        while len(_kept) > KEPT:
+            _kept.popitem(last=False)
 
 
 def _resolve(key: str, sources: tuple[Source, ...], allow_scripts: bool, naming: Naming) -> Model:

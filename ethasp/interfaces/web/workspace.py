@@ -181,8 +181,13 @@ class Workspace:
             self.workers.give_back(worker)
         if outcome.status == execution.DONE:
             return outcome.value
-        if outcome.status == execution.INPUT_ERROR or outcome.limited:
+        if outcome.status == execution.INPUT_ERROR:
             raise InputError(outcome.message)
+        if outcome.limited:
+            raise InputError(
+                f"{outcome.message} while the model was grounded and checked "
+                "(see --time-limit and --memory-limit)"
+            )
         raise RuntimeError(f"the worker process failed: {outcome.message}")
 
     def pictures_of(self, shown: Shown) -> Pictures:
