@@ -138,3 +138,25 @@ def test_a_spawner_starts_children_from_a_process_with_threads():
     finally:
         stop.set()
         busy.join()
+
+
+def test_symbols_mean_the_same_in_another_process():
+    """clingo pickles a symbol as its address in this process; ethasp.execution
+    makes it pickle as its text, which a fresh process reads back."""
+    import pickle
+    import subprocess
+    import sys
+
+    import clingo
+
+    import ethasp.execution.symbols  # noqa: F401
+
+    symbols = [clingo.parse_term(text) for text in ('move("a b",-1)', "(1,f(x))", "#sup")]
+    data = pickle.dumps(symbols)
+    read = subprocess.run(
+        [sys.executable, "-c", "import pickle, sys; print(list(map(str, pickle.loads(sys.stdin.buffer.read()))))"],
+        input=data,
+        capture_output=True,
+        check=True,
+    )
+    assert read.stdout.decode().strip() == str([str(symbol) for symbol in symbols])
