@@ -18,15 +18,10 @@ The limits are far beyond any planning model (and grounding terms nested
 10,000 deep already takes seconds), and they make clingo's limits errors
 instead of crashes.  :func:`parse_symbol` reads one ground term (an action,
 a variable) this way: through ``clingo.parse_term``, never as rule text.
-
-clingo pickles a symbol as the address of its value in the process, which
-means nothing in another process (a worker, :mod:`ethasp.execution`): here
-symbols are pickled as their text and read back with ``clingo.parse_term``.
 """
 
 from __future__ import annotations
 
-import copyreg
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -360,15 +355,3 @@ def _short(text: str, limit: int = 60) -> str:
     """A text cut for a message."""
     text = " ".join(text.split())
     return text if len(text) <= limit else text[: limit - 3] + "..."
-
-
-def _symbol(text: str) -> clingo.Symbol:
-    """A symbol pickled in another process."""
-    return clingo.parse_term(text)
-
-
-def _pickled_symbol(symbol: clingo.Symbol) -> tuple:
-    return (_symbol, (str(symbol),))
-
-
-copyreg.pickle(clingo.Symbol, _pickled_symbol)
