@@ -28,94 +28,24 @@ figures side by side.
 from __future__ import annotations
 
 import argparse
-import json
 import os
-import re
-import signal
 import subprocess
 import sys
 import tempfile
-import threading
 import time
-import urllib.error
-import urllib.request
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tests"))
 
-from busy_model import MAX_HORIZON, SLOW_QUESTION, busy_model  # noqa: E402
-
-from ethasp.execution.limits import tree_resident  # noqa: E402
-
-MB = 2**20
-QUICK = "why pull rather than refrain"
-
-
-class Served:
-    def __init__(self, model: Path, *options: str):
-        command = [sys.executable, "-m", "ethasp.interfaces.cli", "serve", str(model)]
-        command += ["--port", "0", "--quiet", "--principle", "deontology"]
-        command += ["--max-horizon", str(MAX_HORIZON), *options]
-        self.process = subprocess.Popen(
-            command, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, text=True
-        )
-        line = self.process.stdout.readline()
-        match = re.search(r" at (http://\S+/)$", line.strip())
-        if not match:
-            raise SystemExit(f"the server did not start: {line}")
-        self.url = match.group(1)
-
-    def call(self, path: str, body: dict | None = None) -> dict:
-        request = urllib.request.Request(
-            self.url + path,
-            data=None if body is None else json.dumps(body).encode(),
-            headers={"Content-Type": "application/json"},
-        )
-        try:
-            with urllib.request.urlopen(request, timeout=600) as reply:
-                return json.load(reply)
-        except urllib.error.HTTPError as error:
-            return json.load(error)
-
-    def move(self, path: str, body: dict) -> dict:
-        data = self.call(path, body)
-        job = data["job"]
-        while job["state"] == "running":
-            time.sleep(0.01)
-            job = self.call(f"api/sessions/{data['session']}/job")["job"]
-        return {**job, "session": data["session"]}
-
-    def memory(self) -> int:
-        return tree_resident(self.process.pid)
-
-    def settled(self) -> int:
-        readings: list[int] = []
-        end = time.monotonic() + 120
-        while time.monotonic() < end:
-            readings = [*readings, self.memory()][-10:]
-            if len(readings) == 10 and max(readings) - min(readings) < 2 * MB:
-                break
-            time.sleep(0.1)
-        return readings[-1]
-
-    def stop(self) -> None:
-        self.process.send_signal(signal.SIGINT)
-        self.process.wait(60)
-
-
-def gone(pid: int) -> bool:
-    try:
-        with open(f"/proc/{pid}/stat") as stat:
-            return stat.read().rsplit(")", 1)[1].split()[0] in ("Z", "X")
-    except OSError:
-        return True
+from busy_model import SLOW_QUESTION, busy_model  # noqa: E402
+from served import MB, QUICK, Peak, Served, ended, long_session  # noqa: E402
 
 
 def quick(server: Served, key: str, question: str = QUICK) -> float:
     """The time of a question answered at once (it is taken back after)."""
     began = time.monotonic()
-    job = server.move(f"api/sessions/{key}/ask", {"question": question})
+    job = server.ask(key, question)
     took = time.monotonic() - began
     assert job["state"] == "done", job
     server.move(f"api/sessions/{key}/undo", {})
@@ -129,65 +59,27 @@ def new_question(number: int) -> str:
 
 
 def cancel_round(server: Served, key: str, idle: int, grow: int, number: int) -> dict:
-    data = server.call(f"api/sessions/{key}/ask", {"question": SLOW_QUESTION})
     began = time.monotonic()
-    job = data["job"]
+    job = server.searching(key, SLOW_QUESTION)
     while server.memory() < idle + grow * MB and job["state"] == "running":
         time.sleep(0.02)
-        job = server.call(f"api/sessions/{key}/job")["job"]
+        job = server.job(key)
     searched = time.monotonic() - began
     grown = server.memory()
     began = time.monotonic()
-    server.call(f"api/sessions/{key}/cancel", {})
+    server.cancel(key)
     answered = time.monotonic() - began
-    while not gone(job["process"]):
-        time.sleep(0.001)
-    ended = time.monotonic() - began
+    assert ended(job["process"], 60.0)
+    gone = time.monotonic() - began
     after = quick(server, key, new_question(number))
     return {
         "searched": searched,
         "grown": grown,
         "cancel": answered,
-        "ended": ended,
+        "ended": gone,
         "next": after,
         "settled": server.settled(),
     }
-
-
-def session(server: Served, key: str, questions: int) -> tuple[float, int]:
-    peak = [0]
-    stop = threading.Event()
-
-    def sample() -> None:
-        while not stop.is_set():
-            peak[0] = max(peak[0], server.memory())
-            time.sleep(0.05)
-
-    sampler = threading.Thread(target=sample, daemon=True)
-    sampler.start()
-    began = time.monotonic()
-    try:
-        for number in range(1, questions + 1):
-            if number % 25 == 0:
-                data = server.call(f"api/sessions/{key}/ask", {"question": SLOW_QUESTION})
-                job = data["job"]
-                while "horizon" not in job["progress"] and job["state"] == "running":
-                    time.sleep(0.02)
-                    job = server.call(f"api/sessions/{key}/job")["job"]
-                server.call(f"api/sessions/{key}/cancel", {})
-                continue
-            question = (
-                f"why not press({number // 10 % 10 + 1}) at {number // 100 + 1}"
-                if number % 10 == 0
-                else ("why pull", "why not refrain", QUICK)[number % 3]
-            )
-            job = server.move(f"api/sessions/{key}/ask", {"question": question})
-            if job["state"] == "done":
-                server.move(f"api/sessions/{key}/undo", {})
-    finally:
-        stop.set()
-        sampler.join()
-    return time.monotonic() - began, peak[0]
 
 
 def uptime() -> str:
@@ -211,7 +103,7 @@ def main() -> None:
 
     server = Served(model)
     try:
-        key = server.move("api/sessions", {"plan": "pull"})["session"]
+        key = server.start()
         quick(server, key)  # the first question of a worker grounds its parts
         baseline = sorted(quick(server, key, new_question(k)) for k in range(1, args.repeat + 1))
         idle = server.settled()
@@ -239,15 +131,18 @@ def main() -> None:
 
     server = Served(model, "--memory-limit", str(args.memory_limit))
     try:
-        key = server.move("api/sessions", {"plan": "pull"})["session"]
+        key = server.start()
         idle = server.settled()
-        took, peak = session(server, key, args.questions)
+        began = time.monotonic()
+        with Peak(server) as peak:
+            long_session(server, key, args.questions)
+        took = time.monotonic() - began
         after = server.settled()
     finally:
         server.stop()
     print(
         f"session of {args.questions} questions ({args.questions // 25} cancelled): "
-        f"{took:.0f} s; tree idle {idle / MB:.0f} MB, peak {peak / MB:.0f} MB "
+        f"{took:.0f} s; tree idle {idle / MB:.0f} MB, peak {peak.bytes / MB:.0f} MB "
         f"(limit {args.memory_limit * 1024:.0f} MB), after {after / MB:.0f} MB"
     )
     print(f"load after: {uptime()}")

@@ -115,23 +115,22 @@ def descendants(pid: int) -> set[int]:
     return set(below(pid))
 
 
+def busy_dialogue(tmp_path, *options: str) -> subprocess.Popen:
+    """A dialogue about the plan "pull" of a model with a slow question
+    (tests/busy_model.py), once it shows the plan."""
+    model = busy_model(tmp_path, 10)
+    process = start(
+        *("dialogue", str(model), "--plan", "pull", "--principle", "deontology"),
+        *("--max-horizon", str(MAX_HORIZON), *options),
+    )
+    wait_for_line(process, "next contrasts must satisfy")
+    return process
+
+
 @pytest.mark.slow
 def test_ctrl_c_during_a_question_ends_its_work_and_the_dialogue_goes_on(tmp_path):
     saved = tmp_path / "dialogue.json"
-    model = busy_model(tmp_path, 10)
-    process = start(
-        "dialogue",
-        str(model),
-        "--plan",
-        "pull",
-        "--principle",
-        "deontology",
-        "--max-horizon",
-        str(MAX_HORIZON),
-        "--save",
-        str(saved),
-    )
-    wait_for_line(process, "next contrasts must satisfy")
+    process = busy_dialogue(tmp_path, "--save", str(saved))
     process.stdin.write(f"{SLOW_QUESTION}\n")
     process.stdin.flush()
     time.sleep(3)  # deep in the search (it takes about half a minute)
@@ -154,22 +153,7 @@ def test_ctrl_c_during_a_question_ends_its_work_and_the_dialogue_goes_on(tmp_pat
 
 @pytest.mark.slow
 def test_a_question_of_a_dialogue_past_its_time_limit_says_so(tmp_path):
-    model = busy_model(tmp_path, 10)
-    process = start(
-        "dialogue",
-        str(model),
-        "--plan",
-        "pull",
-        "--principle",
-        "deontology",
-        "--max-horizon",
-        str(MAX_HORIZON),
-        "--time-limit",
-        "2",
-        "--save",
-        "-",
-    )
-    wait_for_line(process, "next contrasts must satisfy")
+    process = busy_dialogue(tmp_path, "--time-limit", "2", "--save", "-")
     began = time.monotonic()
     process.stdin.write(f"{SLOW_QUESTION}\n")
     process.stdin.flush()

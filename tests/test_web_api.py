@@ -15,6 +15,7 @@ import execution_work
 import pytest
 from busy_model import MAX_HORIZON, SLOW_QUESTION, busy_model
 from conftest import MODELS, ROOT
+from served import ended
 
 from ethasp import InputError, Model, Plan
 from ethasp.execution.limits import GB, tree_resident
@@ -97,20 +98,6 @@ def state(client, key):
     reply = client.get(f"/api/sessions/{key}")
     assert reply.status_code == 200, reply.json
     return reply.json
-
-
-def ended(pid: int, seconds: float = 5.0) -> bool:
-    """Has the process ended (within a few seconds)?"""
-    end = time.monotonic() + seconds
-    while time.monotonic() < end:
-        try:
-            with open(f"/proc/{pid}/stat") as stat:
-                if stat.read().rsplit(")", 1)[1].split()[0] in ("Z", "X"):
-                    return True
-        except OSError:
-            return True
-        time.sleep(0.01)
-    return False
 
 
 def ask(client, key, question):
