@@ -10,6 +10,7 @@ was before the move.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import textwrap
 import threading
@@ -121,8 +122,10 @@ def _verdict(side) -> str:
 
 
 def warm(model: Model) -> None:
-    """A new worker's first work: keep the model and ground it."""
-    kept(model).planner  # noqa: B018 (grounds the model)
+    """A new worker's first work: keep the model and ground it (an error is
+    left to the first move, which meets it again and says it)."""
+    with contextlib.suppress(Exception):
+        kept(model).planner  # noqa: B018 (grounds the model)
 
 
 def opened(

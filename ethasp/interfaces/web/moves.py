@@ -13,6 +13,7 @@ other requests from what it keeps, without clingo and without a worker.
 
 from __future__ import annotations
 
+import contextlib
 import threading
 from collections import OrderedDict
 from dataclasses import dataclass, field
@@ -105,9 +106,11 @@ def _pictures_of(model: Model) -> Pictures:
 
 def warm(model: Model) -> None:
     """A new worker's first work: keep the model, ground it, and read what
-    every move needs (the valuation of its pictures)."""
+    every move needs (the valuation of its pictures).  An error here is left
+    to the first move, which meets it again and says it."""
     model = kept(model)
-    _pictures_of(model).valuation  # noqa: B018 (grounds the model and reads its facts)
+    with contextlib.suppress(Exception):
+        _pictures_of(model).valuation  # noqa: B018 (grounds the model and reads its facts)
 
 
 def glance(model: Model) -> Glance:
