@@ -21,6 +21,7 @@ import tempfile
 import threading
 from pathlib import Path
 
+import execution_work
 import pytest
 from busy_model import MAX_HORIZON, SLOW_QUESTION, busy_model
 from conftest import MODELS, ROOT
@@ -416,6 +417,54 @@ def test_a_long_search_shows_progress_and_can_be_cancelled(slow_server, browser)
     assert driver.find_element(By.ID, "ask").is_enabled()
     # The search's worker process was ended, and another took its place.
     assert len(set(process) - set(slow_server.app.extensions["ethasp"].workers.pids())) == 1
+
+
+@pytest.fixture
+def limited_server():
+    """A server whose moves have a time limit of a few seconds."""
+    workspace = Workspace(
+        Model.load([MODELS / "trolley.lp"]),
+        [str(MODELS / "trolley.lp")],
+        "do-no-harm",
+        Options(time_limit=LIMITED),
+    )
+    running = Server(workspace, None, 0)
+    thread = threading.Thread(target=running.serve_forever, daemon=True)
+    thread.start()
+    yield running
+    running.shutdown()
+    thread.join(30)
+
+
+LIMITED = 8.0  # seconds: long enough for the page to load and follow the move
+
+
+def test_a_move_ended_at_the_time_limit_says_so_on_the_page(limited_server, browser):
+    """A move that cannot stop (a grounding without end) is ended with its
+    worker at the time limit; the page says so and the dialogue is as it was."""
+    driver = browser
+    driver.execute_script("localStorage.clear()")
+    driver.get(limited_server.url)
+    wait_for(driver, lambda d: "do-no-harm" in text(d, "current-summary") and idle(d), "the plan")
+    workspace = limited_server.app.extensions["ethasp"]
+    key = driver.execute_script(
+        "return JSON.parse(localStorage.getItem(Object.keys(localStorage)[0])).session"
+    )
+    session = workspace.session(key)
+    workspace.submit(session, "ask", "grounding without end", execution_work.ground_forever)
+    driver.refresh()  # the page follows the session's running move
+    wait_for(
+        driver,
+        lambda d: "grounding without end" in text(d, "status-text"),
+        "the running move",
+    )
+    wait_for(driver, lambda d: idle(d) and text(d, "error"), "the end of the move")
+    assert text(driver, "error") == (
+        f"error: the time limit of {LIMITED:g} s was reached: the work was ended and the "
+        "dialogue is unchanged"
+    )
+    assert driver.find_elements(By.CSS_SELECTOR, "#history li") == []
+    assert driver.find_element(By.ID, "ask").is_enabled()
 
 
 CARE = [
