@@ -118,12 +118,12 @@ def state_json(workspace: Workspace, session: Session) -> dict:
 
 def explain_json(workspace: Workspace, session: Session, step: int | None = None) -> dict:
     """The current plan explained step by step (``why step T`` with ``step``)."""
-    dialogue = session.require()
-    explanation = session.shown.explained
+    session.require()
+    explanation = session.shown.explained  # (of the current plan)
     naming = workspace.model.naming
     data = explanation.to_json(naming)
     data["lines"] = explanation.lines()
-    data["shown"] = _actions(workspace, dialogue.current_plan)
+    data["shown"] = _actions(workspace, explanation.plan)
     if step is not None:
         data["step"] = step
         data["step_text"] = explanation.step_text(step)
