@@ -50,8 +50,10 @@ from typing import Any
 
 from ethasp.errors import InputError
 from ethasp.execution import context as context_module
-from ethasp.execution import spawner
-from ethasp.execution import symbols  # noqa: F401 (symbols pickle as text)
+from ethasp.execution import (
+    spawner,
+    symbols,  # noqa: F401 (symbols pickle as text)
+)
 from ethasp.execution.limits import (
     HARD_MEMORY,
     POLL,
