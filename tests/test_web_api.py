@@ -19,6 +19,7 @@ from served import ended
 
 from ethasp import InputError, Model, Plan
 from ethasp.execution.limits import GB, tree_resident
+from ethasp.interfaces.web import workers as workers_module
 from ethasp.interfaces.web.app import MAX_BODY, create_app
 from ethasp.interfaces.web.server import Server, is_loopback
 from ethasp.interfaces.web.workspace import Limits, Options, Workspace
@@ -449,6 +450,24 @@ def test_a_move_ended_at_a_limit_says_so(trolley, work, limit):
     assert ended(data["process"])
     assert state(client, key)["steps"] == before["steps"]
     assert ask(client, key, "why refrain rather than pull")["state"] == "done"
+
+
+def test_a_worker_grown_large_is_replaced_after_its_move(trolley, monkeypatch):
+    monkeypatch.setattr(workers_module, "REPLACE", 1e-6)  # every worker is large
+    workspace = workspace_of(trolley, [TROLLEY], options=Options(memory_limit=64.0))
+    client = create_app(workspace).test_client()
+    key = start(client)
+    job = ask(client, key, "why refrain rather than pull")
+    assert job["state"] == "done" and ended(job["process"])
+    for _ in range(100):  # the new worker is started in a thread
+        if len(workspace.workers.pids()) == Limits().running:
+            break
+        time.sleep(0.05)
+    assert job["process"] not in workspace.workers.pids()
+    assert len(workspace.workers.pids()) == Limits().running
+    # The dialogue goes on in a new worker, which grounds the model anew.
+    assert ask(client, key, "why pull rather than refrain")["state"] == "done"
+    assert len(state(client, key)["steps"]) == 2
 
 
 # -- guards ----------------------------------------------------------------------------------------

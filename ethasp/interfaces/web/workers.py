@@ -9,10 +9,10 @@ grounding and what its moves computed (judgements, best reachable states,
 HModels) for the moves after.
 
 A worker is ended at once when its move is cancelled or passes a limit, and
-a new one is started right away in its place, warm before the next move
-needs it.  A worker that grew large (what it keeps grows with the questions
-asked) is replaced after its move too, so that the server's memory stays
-near its idle size.
+a new one is started right away in its place, which grounds the model while
+it waits for a move.  A worker that grew large (what it keeps grows with the
+questions asked) is replaced after its move too, so that the server's memory
+stays near its idle size.
 """
 
 from __future__ import annotations
