@@ -434,7 +434,7 @@ def test_a_move_ended_at_a_limit_says_so(trolley, work, limit):
     """A move that cannot stop in time (a grounding) or takes memory without
     end is ended with its worker; the job says which limit ended it."""
     own = tree_resident(os.getpid()) / GB
-    options = Options(time_limit=3.0) if limit == "time" else Options(memory_limit=own + 0.4)
+    options = Options(time_limit=3.0) if limit == "time" else Options(memory_limit=own + 1.0)
     workspace = workspace_of(trolley, [TROLLEY], options=options)
     client = create_app(workspace).test_client()
     key = start(client)

@@ -31,6 +31,7 @@ from multiprocessing.connection import wait
 
 import ethasp.batch.task as task
 from ethasp.batch.task import Settings, Work, error_line
+from ethasp.execution import spawner
 
 # Seconds a case may run beyond twice its time limit before its worker is
 # killed (as for the command line, ethasp.interfaces.cli.execution.OVERRUN_GRACE).
@@ -71,6 +72,7 @@ def worker_main(connection, settings: Settings) -> None:
     """A worker process: cases in, result lines out, until the pipe closes."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the batch's process decides
     _end_with_parent()
+    spawner.start()  # while this process has one thread (the engines' children)
     task.warm()
     connection.send(("ready", os.getpid()))
     while True:
