@@ -153,12 +153,9 @@ def test_symbols_mean_the_same_in_another_process():
 
     symbols = [clingo.parse_term(text) for text in ('move("a b",-1)', "(1,f(x))", "#sup")]
     data = pickle.dumps(symbols)
+    program = "import pickle, sys; print(list(map(str, pickle.loads(sys.stdin.buffer.read()))))"
     read = subprocess.run(
-        [
-            sys.executable,
-            "-c",
-            "import pickle, sys; print(list(map(str, pickle.loads(sys.stdin.buffer.read()))))",
-        ],
+        [sys.executable, "-c", program],
         input=data,
         capture_output=True,
         check=True,

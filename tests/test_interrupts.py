@@ -11,7 +11,10 @@ import threading
 import time
 
 import pytest
+from busy_model import MAX_HORIZON, SLOW_QUESTION, busy_model
 from conftest import MODELS
+
+from ethasp.execution.limits import GRACE
 
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
 
@@ -104,6 +107,70 @@ def test_dialogue_after_a_question_keeps_the_question(tmp_path):
     assert_one_line(err, "dialogue saved to")
     steps = json.loads(saved.read_text())["steps"]
     assert [step["question"]["action"] for step in steps] == ["refrain"]
+
+
+def descendants(pid: int) -> set[int]:
+    from ethasp.execution.limits import descendants as below
+
+    return set(below(pid))
+
+
+def busy_dialogue(tmp_path, *options: str) -> subprocess.Popen:
+    """A dialogue about the plan "pull" of a model with a slow question
+    (tests/busy_model.py), once it shows the plan."""
+    model = busy_model(tmp_path, 10)
+    process = start(
+        *("dialogue", str(model), "--plan", "pull", "--principle", "deontology"),
+        *("--max-horizon", str(MAX_HORIZON), *options),
+    )
+    wait_for_line(process, "next contrasts must satisfy")
+    return process
+
+
+@pytest.mark.slow
+def test_ctrl_c_during_a_question_ends_its_work_and_the_dialogue_goes_on(tmp_path):
+    saved = tmp_path / "dialogue.json"
+    process = busy_dialogue(tmp_path, "--save", str(saved))
+    process.stdin.write(f"{SLOW_QUESTION}\n")
+    process.stdin.flush()
+    time.sleep(3)  # deep in the search (it takes about half a minute)
+    working = descendants(process.pid)
+    assert working, "the question has no worker process"
+    process.send_signal(signal.SIGINT)
+    lines = wait_for_line(process, "interrupted")
+    assert lines[-1] == "interrupted: the work was ended and the dialogue is as it was\n"
+    assert not working & descendants(process.pid), "the question's processes still run"
+    process.stdin.write("why pull rather than refrain\nhistory\nquit\n")
+    process.stdin.flush()
+    lines = wait_for_line(process, "1. why pull rather than refrain")
+    assert any(line.startswith("  contrast plan: refrain") for line in lines)
+    process.stdin.close()
+    assert process.wait(timeout=HANG) == 0, process.stderr.read()
+    assert process.stderr.read() == ""
+    steps = json.loads(saved.read_text())["steps"]
+    assert [step["question"]["action"] for step in steps] == ["pull"]
+
+
+@pytest.mark.slow
+def test_a_question_of_a_dialogue_past_its_time_limit_says_so(tmp_path):
+    process = busy_dialogue(tmp_path, "--time-limit", "2", "--save", "-")
+    began = time.monotonic()
+    process.stdin.write(f"{SLOW_QUESTION}\n")
+    process.stdin.flush()
+    lines = wait_for_line(process, "2 s was reached")
+    assert time.monotonic() - began < 2 + GRACE + 1.0
+    # Ended in its worker at the limit, or stopped there by its search.
+    assert lines[-1] in (
+        "no answer: the time limit of 2 s was reached; the work was ended and the "
+        "dialogue is as it was\n",
+    ) or lines[-1].startswith("  contrast plan: none (bounded: "), lines
+    # (A bounded answer keeps its question: it is taken back first.)
+    undo = "undo\n" if "bounded" in lines[-1] else ""
+    process.stdin.write(f"{undo}why pull rather than refrain\nquit\n")
+    process.stdin.flush()
+    wait_for_line(process, "contrast plan: refrain")
+    process.stdin.close()
+    assert process.wait(timeout=HANG) == 0, process.stderr.read()
 
 
 def hard_gripper(tmp_path, balls: int = 14):

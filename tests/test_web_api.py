@@ -4,19 +4,23 @@ load, a state that survives a reload or a restart, cancelling, errors with
 the command line's messages, length limits and the guards."""
 
 import json
+import os
 import re
 import subprocess
 import sys
-import threading
 import time
 import urllib.request
 from pathlib import Path
 
+import execution_work
 import pytest
+from busy_model import MAX_HORIZON, SLOW_QUESTION, busy_model
 from conftest import MODELS, ROOT
+from served import ended
 
 from ethasp import InputError, Model, Plan
-from ethasp.interfaces.web import workspace as workspace_module
+from ethasp.execution.limits import GB, tree_resident
+from ethasp.interfaces.web import workers as workers_module
 from ethasp.interfaces.web.app import MAX_BODY, create_app
 from ethasp.interfaces.web.server import Server, is_loopback
 from ethasp.interfaces.web.workspace import Limits, Options, Workspace
@@ -43,8 +47,25 @@ def trolley():
     return Model.load([TROLLEY])
 
 
+OPEN: list[Workspace] = []  # workspaces of the test running, closed after it
+
+
+@pytest.fixture(autouse=True)
+def close_workspaces():
+    yield
+    while OPEN:
+        OPEN.pop().close()
+
+
+def workspace_of(model, files, principle="do-no-harm", options=None, limits=None):
+    """A workspace, its worker processes ended after the test."""
+    workspace = Workspace(model, files, principle, options or Options(), limits or Limits())
+    OPEN.append(workspace)
+    return workspace
+
+
 def make_client(model, principle="do-no-harm", limits=None, loopback=True):
-    workspace = Workspace(model, [TROLLEY], principle, Options(), limits or Limits())
+    workspace = workspace_of(model, [TROLLEY], principle, limits=limits)
     return create_app(workspace, loopback=loopback).test_client()
 
 
@@ -396,31 +417,24 @@ def test_state_survives_a_reload_and_a_restart(trolley):
 # -- long requests: progress, busy, cancel ---------------------------------------------------------
 
 
-def test_a_running_search_shows_progress_blocks_moves_and_can_be_cancelled(client, monkeypatch):
-    key = start(client)
-    waiting = threading.Event()
-
-    def slow(call, budget, *args, **kwargs):
-        budget.report("contrast plan search", horizon=3)
-        waiting.set()
-        for _ in range(400):  # until cancelled (bounded)
-            if budget.cancelled:
-                return call(*args, **kwargs)
-            time.sleep(0.025)
-        return call(*args, **kwargs)
-
-    monkeypatch.setattr(workspace_module, "searching", slow)
-    reply = client.post(
-        f"/api/sessions/{key}/ask", json={"question": "why refrain rather than pull"}
+def test_a_running_search_shows_progress_blocks_moves_and_can_be_cancelled(tmp_path):
+    path = busy_model(tmp_path)
+    workspace = workspace_of(
+        Model.load([path]), [str(path)], "deontology", Options(max_horizon=MAX_HORIZON)
     )
+    client = create_app(workspace).test_client()
+    key = start(client, plan="pull")
+    reply = client.post(f"/api/sessions/{key}/ask", json={"question": SLOW_QUESTION})
     assert reply.status_code == 202
-    assert waiting.wait(10)
-    job = client.get(f"/api/sessions/{key}/job").json["job"]
-    assert (
-        job["state"] == "running"
-        and job["description"] == "answering 'why refrain rather than pull'"
-    )
-    assert job["progress"].startswith("contrast plan search: horizon 3 (")
+    job = reply.json["job"]
+    for _ in range(1200):  # until the search reports a horizon (bounded)
+        if job["progress"].startswith("plan search under deontology: horizon"):
+            break
+        time.sleep(0.05)
+        job = client.get(f"/api/sessions/{key}/job").json["job"]
+    assert job["state"] == "running" and job["description"] == f"answering '{SLOW_QUESTION}'"
+    assert job["progress"].startswith("plan search under deontology: horizon"), job
+    assert job["process"] in workspace.workers.pids()
     for path, body in (
         (f"/api/sessions/{key}/ask", {"question": "why pull"}),
         (f"/api/sessions/{key}/undo", {}),
@@ -430,17 +444,57 @@ def test_a_running_search_shows_progress_blocks_moves_and_can_be_cancelled(clien
         assert reply.status_code == 409 and reply.json["error"].startswith("busy")
     cancelled = client.post(f"/api/sessions/{key}/cancel", json={}).json["job"]
     assert cancelled["state"] == "cancelled" and "unchanged" in cancelled["note"]
+    assert ended(job["process"]), "the cancelled search's worker process still runs"
     data = state(client, key)
     assert data["steps"] == [] and data["job"]["state"] == "cancelled"
-    # The dialogue is free again at once.
-    monkeypatch.undo()
-    for _ in range(200):
-        reply = client.post(f"/api/sessions/{key}/ask", json={"question": "why refrain"})
-        if reply.status_code != 503:  # the cancelled search may still be ending
+    # The dialogue is free again at once, and another worker answers.
+    job = ask(client, key, "why pull rather than refrain")
+    assert job["state"] == "done" and job["process"] != cancelled["process"]
+    assert state(client, key)["steps"][0]["question"] == "why pull rather than refrain"
+    # A new worker took the place of the one ended.
+    assert len(workspace.workers.pids()) == Limits().running
+    assert cancelled["process"] not in workspace.workers.pids()
+
+
+@pytest.mark.parametrize("work, limit", [("ground_forever", "time"), ("hog", "memory")])
+def test_a_move_ended_at_a_limit_says_so(trolley, work, limit):
+    """A move that cannot stop in time (a grounding) or takes memory without
+    end is ended with its worker; the job says which limit ended it."""
+    own = tree_resident(os.getpid()) / GB
+    options = Options(time_limit=3.0) if limit == "time" else Options(memory_limit=own + 1.0)
+    workspace = workspace_of(trolley, [TROLLEY], options=options)
+    client = create_app(workspace).test_client()
+    key = start(client)
+    before = state(client, key)
+    session = workspace.session(key)
+    move = getattr(execution_work, work)
+    job = workspace.submit(session, "ask", "a move that does not end", move)
+    job.wait(60)
+    data = client.get(f"/api/sessions/{key}/job").json["job"]
+    words = "the time limit of 3 s" if limit == "time" else "the memory limit of"
+    assert data["state"] == limit and data["error"].startswith(words), data
+    assert data["error"].endswith("was reached: the work was ended and the dialogue is unchanged")
+    assert ended(data["process"])
+    assert state(client, key)["steps"] == before["steps"]
+    assert ask(client, key, "why refrain rather than pull")["state"] == "done"
+
+
+def test_a_worker_grown_large_is_replaced_after_its_move(trolley, monkeypatch):
+    monkeypatch.setattr(workers_module, "REPLACE", 1e-6)  # every worker is large
+    workspace = workspace_of(trolley, [TROLLEY], options=Options(memory_limit=64.0))
+    client = create_app(workspace).test_client()
+    key = start(client)
+    job = ask(client, key, "why refrain rather than pull")
+    assert job["state"] == "done" and ended(job["process"])
+    for _ in range(100):  # the new worker is started in a thread
+        if len(workspace.workers.pids()) == Limits().running:
             break
         time.sleep(0.05)
-    assert finish(client, reply)["state"] == "done"
-    assert state(client, key)["steps"][0]["question"] == "why refrain"
+    assert job["process"] not in workspace.workers.pids()
+    assert len(workspace.workers.pids()) == Limits().running
+    # The dialogue goes on in a new worker, which grounds the model anew.
+    assert ask(client, key, "why pull rather than refrain")["state"] == "done"
+    assert len(state(client, key)["steps"]) == 2
 
 
 # -- guards ----------------------------------------------------------------------------------------
@@ -466,7 +520,7 @@ def test_loopback_names():
 
 
 def test_server_binds_loopback_by_default(trolley):
-    server = Server(Workspace(trolley, [TROLLEY]), None, 0)
+    server = Server(workspace_of(trolley, [TROLLEY], "deontology"), None, 0)
     try:
         assert server.loopback and server.url == f"http://127.0.0.1:{server.port}/"
         assert server.httpd.server_address[0] == "127.0.0.1"
@@ -537,7 +591,7 @@ def test_a_pddl_model_is_shown_and_asked_in_pddl_form():
         str(MODELS / "pddl" / name)
         for name in ("trolley-domain.pddl", "trolley-problem.pddl", "trolley-utility.lp")
     ]
-    client = create_app(Workspace(Model.load(files), files, "do-no-harm")).test_client()
+    client = create_app(workspace_of(Model.load(files), files, "do-no-harm")).test_client()
     glance = client.get("/api/model").json["model"]
     assert [(a["term"], a["shown"]) for a in glance["actions"]] == [
         ("pull", "(pull)"),
@@ -648,7 +702,7 @@ def test_what_the_current_plan_is_and_a_question_no_plan_can_meet(client):
 
 def test_a_situation_starts_from_its_own_plan():
     files = [str(MODELS / "hera" / "robot-and-frank.yaml")]
-    client = create_app(Workspace(Model.load(files), files, "deontology")).test_client()
+    client = create_app(workspace_of(Model.load(files), files, "deontology")).test_client()
     key = start(client)
     assert state(client, key)["current"]["plan"] == ["lie_to_frank"]
 

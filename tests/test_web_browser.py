@@ -22,7 +22,9 @@ import tempfile
 import threading
 from pathlib import Path
 
+import execution_work
 import pytest
+from busy_model import MAX_HORIZON, SLOW_QUESTION, busy_model
 from conftest import MODELS, ROOT
 
 pytestmark = pytest.mark.slow  # a real browser, end to end
@@ -38,7 +40,7 @@ from selenium.webdriver.support.ui import Select, WebDriverWait  # noqa: E402
 from ethasp import Model  # noqa: E402
 from ethasp.interfaces.version import package_version  # noqa: E402
 from ethasp.interfaces.web.server import Server  # noqa: E402
-from ethasp.interfaces.web.workspace import Workspace  # noqa: E402
+from ethasp.interfaces.web.workspace import Options, Workspace  # noqa: E402
 
 BROWSER = next(
     (
@@ -393,64 +395,99 @@ def test_conductor_example_in_the_browser(server, browser):
     assert severe == [], severe
 
 
-def slowed(monkeypatch, call: str, wait) -> None:
-    """The workspace's searches of ``call`` (a function's name) first run
-    ``wait(budget)``, to see a long request on the page."""
-    from ethasp.interfaces.web import workspace as workspace_module
-
-    original = workspace_module.searching
-
-    def slow(function, budget, *args, **kwargs):
-        if getattr(function, "__name__", "") == call:
-            wait(budget)
-        return original(function, budget, *args, **kwargs)
-
-    monkeypatch.setattr(workspace_module, "searching", slow)
-
-
 @pytest.fixture
-def slow_server(monkeypatch):
-    """A server whose questions search until they are cancelled (reporting
-    progress as the searches do), to see a long request on the page."""
-
-    def until_cancelled(budget):
-        budget.report("contrast plan search", horizon=2)
-        for _ in range(2400):  # until cancelled (at most a minute)
-            if budget.cancelled:
-                break
-            threading.Event().wait(0.025)
-
-    slowed(monkeypatch, "ask", until_cancelled)
-    with served(trolley_workspace()) as running:
-        yield running
+def slow_server(tmp_path):
+    """A server whose model has a question that searches long (in a worker
+    process, reporting progress), to see a long request on the page."""
+    path = busy_model(tmp_path)
+    workspace = Workspace(
+        Model.load([path]), [str(path)], "deontology", Options(max_horizon=MAX_HORIZON)
+    )
+    running = Server(workspace, None, 0)
+    thread = threading.Thread(target=running.serve_forever, daemon=True)
+    thread.start()
+    yield running
+    running.shutdown()
+    thread.join(30)
 
 
 def test_a_long_search_shows_progress_and_can_be_cancelled(slow_server, browser):
     driver = browser
     driver.get(slow_server.url)
     wait_for(
-        driver, lambda d: "do-no-harm" in text(d, "current-summary") and idle(d), "the first plan"
+        driver, lambda d: "deontology" in text(d, "current-summary") and idle(d), "the first plan"
     )
     box = driver.find_element(By.ID, "question")
     box.clear()
-    box.send_keys("why refrain rather than pull\n")
+    box.send_keys(f"{SLOW_QUESTION}\n")
     wait_for(
         driver,
         lambda d: (
             d.find_element(By.ID, "status").is_displayed()
-            and "contrast plan search: horizon 2" in text(d, "status-progress")
+            and "plan search under deontology: horizon" in text(d, "status-progress")
         ),
         "the progress",
     )
-    assert text(driver, "status-text") == "answering 'why refrain rather than pull'\u2026"
+    assert text(driver, "status-text") == f"answering '{SLOW_QUESTION}'\u2026"
     assert text(driver, "status-time").endswith(" s")
     assert not driver.find_element(By.ID, "ask").is_enabled()
     screenshot(driver, "page-running.png")
+    process = slow_server.app.extensions["ethasp"].workers.pids()
     click(driver, driver.find_element(By.ID, "cancel"))
     wait_for(driver, lambda d: idle(d) and "cancelled" in text(d, "note"), "the cancellation")
     assert text(driver, "note") == "cancelled: the dialogue is unchanged"
     assert driver.find_elements(By.CSS_SELECTOR, "#history li") == []
     assert not driver.find_element(By.ID, "answer-panel").is_displayed()
+    assert driver.find_element(By.ID, "ask").is_enabled()
+    # The search's worker process was ended, and another took its place.
+    assert len(set(process) - set(slow_server.app.extensions["ethasp"].workers.pids())) == 1
+
+
+@pytest.fixture
+def limited_server():
+    """A server whose moves have a time limit of a few seconds."""
+    workspace = Workspace(
+        Model.load([MODELS / "trolley.lp"]),
+        [str(MODELS / "trolley.lp")],
+        "do-no-harm",
+        Options(time_limit=LIMITED),
+    )
+    running = Server(workspace, None, 0)
+    thread = threading.Thread(target=running.serve_forever, daemon=True)
+    thread.start()
+    yield running
+    running.shutdown()
+    thread.join(30)
+
+
+LIMITED = 8.0  # seconds: long enough for the page to load and follow the move
+
+
+def test_a_move_ended_at_the_time_limit_says_so_on_the_page(limited_server, browser):
+    """A move that cannot stop (a grounding without end) is ended with its
+    worker at the time limit; the page says so and the dialogue is as it was."""
+    driver = browser
+    driver.execute_script("localStorage.clear()")
+    driver.get(limited_server.url)
+    wait_for(driver, lambda d: "do-no-harm" in text(d, "current-summary") and idle(d), "the plan")
+    workspace = limited_server.app.extensions["ethasp"]
+    key = driver.execute_script(
+        "return JSON.parse(localStorage.getItem(Object.keys(localStorage)[0])).session"
+    )
+    session = workspace.session(key)
+    workspace.submit(session, "ask", "grounding without end", execution_work.ground_forever)
+    driver.refresh()  # the page follows the session's running move
+    wait_for(
+        driver,
+        lambda d: "grounding without end" in text(d, "status-text"),
+        "the running move",
+    )
+    wait_for(driver, lambda d: idle(d) and text(d, "error"), "the end of the move")
+    assert text(driver, "error") == (
+        f"error: the time limit of {LIMITED:g} s was reached: the work was ended and the "
+        "dialogue is unchanged"
+    )
+    assert driver.find_elements(By.CSS_SELECTOR, "#history li") == []
     assert driver.find_element(By.ID, "ask").is_enabled()
 
 
@@ -838,8 +875,19 @@ def test_suggestions_and_buttons_come_from_the_plan(long_server, server, browser
 
 @pytest.fixture
 def slow_start_server(monkeypatch):
-    """A server whose dialogues take two seconds to start, to see the page loading."""
-    slowed(monkeypatch, "start", lambda budget: threading.Event().wait(2.0))
+    """A server whose dialogues take two seconds longer to start (the first
+    plan is installed two seconds after its worker made it), to see the page
+    loading."""
+    from ethasp.interfaces.web.workspace import Session
+
+    install = Session.install
+
+    def slow_install(session, shown):
+        if session.job is not None and session.job.kind == "start":
+            threading.Event().wait(2.0)
+        return install(session, shown)
+
+    monkeypatch.setattr(Session, "install", slow_install)
     with served(trolley_workspace()) as running:
         yield running
 

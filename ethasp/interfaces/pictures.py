@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import threading
 from collections import OrderedDict
+from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -45,12 +46,23 @@ def write(path: str | Path, svg: str) -> None:
 
 
 class Pictures:
-    """Draws the plans of one model; keeps their timelines (thread-safe)."""
+    """Draws the plans of one model; keeps their timelines (thread-safe).
 
-    def __init__(self, model: Model):
+    Given the model's ``valuation`` and the ``timelines`` of the plans to
+    draw (made where the model is grounded), it draws without clingo, and
+    only those plans (a plan without its timeline is a LookupError).
+    """
+
+    def __init__(
+        self,
+        model: Model,
+        valuation: Valuation | None = None,
+        timelines: Mapping[tuple[str, ...], Timeline] | None = None,
+    ):
         self.model = model
-        self._valuation: Valuation | None = None
-        self._timelines: OrderedDict[tuple[str, ...], Timeline] = OrderedDict()
+        self._valuation = valuation
+        self._timelines: OrderedDict[tuple[str, ...], Timeline] = OrderedDict(timelines or {})
+        self._given = timelines is not None
         self._lock = threading.Lock()
 
     @property
@@ -65,6 +77,8 @@ class Pictures:
             if key in self._timelines:
                 self._timelines.move_to_end(key)
                 return self._timelines[key]
+        if self._given:
+            raise LookupError(f"no timeline of the plan {' '.join(key) or '(empty)'}")
         drawn = timeline(self.model, plan, self.valuation)
         with self._lock:
             self._timelines[key] = drawn

@@ -1,7 +1,19 @@
-"""Planning models: ASP files or text in the vocabulary of encodings/planning/model.lp."""
+"""Planning models: ASP files or text in the vocabulary of encodings/planning/model.lp.
+
+A model sent to another process (pickled) travels as a reference: its
+:attr:`~Model.key` with its sources.  The receiving process resolves it to
+the model it keeps under that key, with that model's grounding and the
+results kept for it (a warm worker, :mod:`ethasp.execution.worker`), or
+else makes one from the sources and keeps it (:func:`kept`).  So a dialogue
+sent to a worker is answered from the worker's grounding, and sent back it
+refers again to the model of the process that sent it.
+"""
 
 from __future__ import annotations
 
+import hashlib
+import threading
+from collections import OrderedDict
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -144,7 +156,8 @@ class Model:
 
     Build one with :meth:`load` (files) or :meth:`from_string`; both check that
     the sources parse, refuse ``#script`` blocks unless ``allow_scripts``, and
-    check the model with ``encodings/planning/check.lp``.
+    check the model with ``encodings/planning/check.lp`` (``checked`` says
+    that :meth:`check` passed in this process).
     """
 
     sources: list[Source] = field(default_factory=list)
@@ -153,6 +166,8 @@ class Model:
     # Which planning system searches its plans (ethasp.planning.systems).
     planning_system: str = "auto"
     _planner: Planner | None = field(default=None, repr=False, compare=False)
+    _key: str | None = field(default=None, repr=False, compare=False)
+    checked: bool = field(default=False, repr=False, compare=False)
 
     # -- construction ---------------------------------------------------------
 
@@ -270,6 +285,39 @@ class Model:
                 "it is refused (pass --allow-scripts to run it)"
             )
 
+    # -- in other processes -------------------------------------------------------
+
+    @property
+    def key(self) -> str:
+        """A fingerprint of the model's content (its sources, whether scripts
+        run, its naming): the same in every process."""
+        if self._key is None:
+            digest = hashlib.sha256()
+            digest.update(f"{self.allow_scripts} {type(self.naming).__name__}".encode())
+            for source in self.sources:
+                for part in (
+                    source.name,
+                    source.text,
+                    str(source.path),
+                    str(source.generated),
+                    source.kind,
+                    " ".join(map(str, source.facts)),
+                ):
+                    digest.update(len(part).to_bytes(8, "big"))
+                    digest.update(part.encode("utf-8", "surrogateescape"))
+            self._key = digest.hexdigest()
+        return self._key
+
+    def __reduce__(self):
+        # A reference: resolved to the model the receiving process keeps (see
+        # the module docstring).  This process keeps this one for the answer.
+        _keep(self)
+        return (_resolve, (self.key, tuple(self.sources), self.allow_scripts, self.naming))
+
+    def grounded(self) -> bool:
+        """Has this model been grounded in this process (a planner made)?"""
+        return self._planner is not None
+
     # -- use --------------------------------------------------------------------
 
     def control(
@@ -286,9 +334,9 @@ class Model:
             logger = _renamed(logger, "<block>", written[0].name)
         ctl = clingo.Control(list(arguments), logger=logger, message_limit=20)
         for source in self.sources:
-            if source.path is not None:
+            if source.path is not None and _unchanged(source):
                 ctl.load(str(source.path))
-            elif source.text:
+            elif source.text:  # (a file changed since it was read: the text read)
                 ctl.add("base", [], source.text)
             if source.facts:
                 with ctl.backend() as backend:
@@ -352,6 +400,7 @@ class Model:
                 "choice, a disjunction or a loop through negation); a model must "
                 "describe one planning task"
             )
+        self.checked = True
 
     def own_plan(self):
         """The plan the model comes with (``plan_length/1``, ``plan_step/2``: a
@@ -370,3 +419,54 @@ class Model:
         """The model's atoms of the given clorm predicates (its rules grounded
         once, by its planner), as a clorm FactBase."""
         return self.planner.facts(predicates)
+
+
+def _unchanged(source: Source) -> bool:
+    """Does the file of a source still hold the text read from it?  (A model
+    is the text read when it was loaded, in every process that grounds it.)"""
+    try:
+        return source.path is not None and source.path.read_text(encoding="utf-8") == source.text
+    except (OSError, UnicodeDecodeError, ValueError):
+        return False
+
+
+# The models this process keeps by key, the most recently used last (a warm
+# worker keeps its model here between calls; a process that sends a model
+# keeps that one, so that it comes back as itself).
+KEPT = 4
+_kept: OrderedDict[str, Model] = OrderedDict()
+_kept_lock = threading.Lock()
+
+
+def kept(model: Model) -> Model:
+    """The model this process keeps for ``model``'s key: the one kept before,
+    or else ``model`` itself, kept from now on (at most :data:`KEPT` models
+    are kept, the least recently used goes)."""
+    key = model.key
+    with _kept_lock:
+        known = _kept.get(key)
+        if known is None:
+            _kept[key] = known = model
+            while len(_kept) > KEPT:
+                _kept.popitem(last=False)
+        _kept.move_to_end(key)
+        return known
+
+
+def _keep(model: Model) -> None:
+    """Keep this model for its key (in place of one kept before)."""
+    key = model.key
+    with _kept_lock:
+        _kept[key] = model
+        _kept.move_to_end(key)
+        while len(_kept) > KEPT:
+            _kept.popitem(last=False)
+
+
+def _resolve(key: str, sources: tuple[Source, ...], allow_scripts: bool, naming: Naming) -> Model:
+    """A model that arrived from another process (see :meth:`Model.__reduce__`)."""
+    with _kept_lock:
+        known = _kept.get(key)
+    if known is not None:
+        return kept(known)
+    return kept(Model(list(sources), allow_scripts, naming, _key=key))

@@ -59,19 +59,22 @@ def read_stdin_model() -> str:
     return text
 
 
-def load_model(args: argparse.Namespace) -> Model:
+def load_model(args: argparse.Namespace, check: bool = True) -> Model:
     """The model of the command's MODEL arguments; ``-`` reads ASP text from
-    standard input (at most once); its planning system is ``--planner``'s."""
+    standard input (at most once); its planning system is ``--planner``'s.
+    Without ``check`` the model is read and parsed only, not grounded (a
+    worker process checks it: :meth:`Model.check`)."""
     names = list(args.model)
     if names.count(STDIN) > 1:
         raise InputError("standard input (-) can be given only once as a model file")
     if STDIN not in names:
-        model = Model.load(model_paths(names), allow_scripts=args.allow_scripts)
+        model = Model.load(model_paths(names), allow_scripts=args.allow_scripts, check=check)
     else:
         names.remove(STDIN)
         model = Model.load(
             model_paths(names),
             allow_scripts=args.allow_scripts,
+            check=check,
             texts=[(STDIN_NAME, read_stdin_model())],
         )
     model.planning_system = getattr(args, "planner", None) or model.planning_system

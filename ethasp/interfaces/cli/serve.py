@@ -86,16 +86,25 @@ def run(args: argparse.Namespace) -> int:
         ) from None
 
     default_reasons_limit(args)
-    model = load_model(args)
+    if args.quiet and args.log_requests:
+        raise InputError("--log-requests cannot go with --quiet")
+    # The server reads the model; its workers ground it (the first checks it).
+    model = load_model(args, check=False)
     files = model_files(args)
     workspace = Workspace(
         model,
         files,
         args.principle,
-        Options(max_horizon(args), args.time_limit, args.reasons_limit),
+        Options(max_horizon(args), args.time_limit, args.reasons_limit, args.memory_limit),
     )
-    if args.quiet and args.log_requests:
-        raise InputError("--log-requests cannot go with --quiet")
-    return serve(
-        workspace, args.host, args.port, args.open, log_requests=args.log_requests, quiet=args.quiet
-    )
+    try:
+        return serve(
+            workspace,
+            args.host,
+            args.port,
+            args.open,
+            log_requests=args.log_requests,
+            quiet=args.quiet,
+        )
+    finally:
+        workspace.close()

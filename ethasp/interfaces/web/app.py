@@ -18,6 +18,7 @@ from flask import Flask, Response, jsonify, request
 from werkzeug.exceptions import HTTPException
 
 from ethasp.errors import InputError
+from ethasp.interfaces.web.moves import Shown
 from ethasp.interfaces.web.views import explain_json, model_json, state_json
 from ethasp.interfaces.web.workspace import Refused, Workspace
 
@@ -189,12 +190,19 @@ def create_app(workspace: Workspace, loopback: bool = True) -> Flask:
         response.headers["Content-Disposition"] = 'attachment; filename="ethasp-dialogue.json"'
         return response
 
+    # The pictures are drawn from what the session keeps (no clingo here).
+
+    def shown(key: str) -> Shown:
+        session = workspace.session(key)
+        session.require()
+        return session.shown
+
     @app.get("/api/sessions/<key>/current.svg")
     def current_picture(key: str):
-        dialogue = workspace.session(key).require()
-        report = workspace.report(dialogue.current_plan)
+        kept = shown(key)
+        report = kept.report
         return _svg(
-            workspace.pictures.report(
+            workspace.pictures_of(kept).report(
                 report,
                 f"current plan: {workspace.model.naming.actions(report.plan) or '(empty)'}",
                 words=_words(),
@@ -212,17 +220,16 @@ def create_app(workspace: Workspace, loopback: bool = True) -> Flask:
 
     @app.get("/api/sessions/<key>/explain.svg")
     def explain_picture(key: str):
-        dialogue = workspace.session(key).require()
-        return _svg(
-            workspace.pictures.explained(workspace.explained(dialogue.current_plan), words=_words())
-        )
+        kept = shown(key)
+        return _svg(workspace.pictures_of(kept).explained(kept.explained, words=_words()))
 
     @app.get("/api/sessions/<key>/steps/<int:number>.svg")
     def step_picture(key: str, number: int):
-        dialogue = workspace.session(key).require()
-        if not 1 <= number <= len(dialogue.steps):
+        kept = shown(key)
+        steps = kept.dialogue.steps
+        if not 1 <= number <= len(steps):
             raise Refused(404, f"no question {number} in this dialogue")
-        return _svg(workspace.pictures.answer(dialogue.steps[number - 1].answer, words=_words()))
+        return _svg(workspace.pictures_of(kept).answer(steps[number - 1].answer, words=_words()))
 
     @app.get("/api/sessions/<key>/steps/<int:number>/repair.svg")
     def repair_picture(key: str, number: int):

@@ -1,31 +1,30 @@
-"""Long requests of the page run as jobs: a worker thread, a budget (time
-limit, progress records, cancellation) and a state the page polls.
+"""Long requests of the page run as jobs: a move made by a worker process
+(:mod:`ethasp.interfaces.web.workers`) under the server's limits, watched
+by a thread of the server, with a state the page polls.
 
-Every search a job makes goes through :func:`searching`, with the job's
-:class:`~ethasp.planning.budget.Budget`.  Cancelling a job cancels its budget
-and frees its session at once: the job's result, if it still comes, is
-thrown away, and the dialogue stays as it was.
+Cancelling a job ends its worker process at once (with every process below
+it) and frees its session: the dialogue stays as it was.  A job whose worker
+passed the time limit (plus a grace) or the memory limit is ended the same
+way and says so (state ``time`` or ``memory``).
 """
 
 from __future__ import annotations
 
+import sys
 import threading
 import time
-import traceback
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
-from ethasp.errors import InputError
-from ethasp.planning.budget import Budget, Progress
+from ethasp.execution import worker as execution
+from ethasp.execution.limits import Limits
+from ethasp.planning.budget import Progress
 
 RUNNING, DONE, FAILED, CANCELLED = "running", "done", "failed", "cancelled"
+TIME, MEMORY = execution.TIME, execution.MEMORY  # ended at a limit
 
-
-def searching(call: Callable[..., Any], budget: Budget, *args: Any, **kwargs: Any) -> Any:
-    """Run one search call of a job (plan search, a question, a judgement)
-    under the job's budget: cancelling the job stops its searches soon."""
-    return call(*args, budget=budget, **kwargs)
+UNCHANGED = "the dialogue is unchanged"
 
 
 @dataclass
@@ -35,20 +34,22 @@ class Job:
     id: str
     kind: str
     description: str
-    budget: Budget
+    limits: Limits = field(default_factory=Limits)
     started: float = field(default_factory=time.monotonic)
     state: str = RUNNING
     error: str = ""
     note: str = ""
     progress: list[str] = field(default_factory=list)
     ended: float | None = None
+    process: int | None = None  # the worker process that makes the move
     thread: threading.Thread | None = None
+    cancelled: threading.Event = field(default_factory=threading.Event)
     lock: threading.RLock = field(default_factory=threading.RLock)
 
     # -- from the worker ------------------------------------------------------------
 
     def record(self, progress: Progress) -> None:
-        """The budget's progress callback: keep the last few lines."""
+        """The progress callback: keep the last few lines."""
         with self.lock:
             self.progress = ([*self.progress, progress.line()])[-5:]
 
@@ -64,9 +65,17 @@ class Job:
     # -- from the page ----------------------------------------------------------------
 
     def cancel(self) -> bool:
-        """Cancel the job (its budget too); False if it had ended."""
-        self.budget.cancel()
-        return self.finish(CANCELLED, note="cancelled: the dialogue is unchanged")
+        """Cancel the job: its worker is ended; False if it had ended."""
+        with self.lock:
+            ended = self.finish(CANCELLED, note=f"cancelled: {UNCHANGED}")
+            if ended:
+                self.cancelled.set()
+            return ended
+
+    def wait(self, seconds: float) -> None:
+        """Wait for the thread that watches the worker (at most ``seconds``)."""
+        if self.thread is not None:
+            self.thread.join(seconds)
 
     @property
     def running(self) -> bool:
@@ -74,7 +83,7 @@ class Job:
 
     @property
     def alive(self) -> bool:
-        """Its thread still works (a cancelled job's search may still be finishing)."""
+        """Its thread still watches the worker."""
         return self.thread is not None and self.thread.is_alive()
 
     def elapsed(self) -> float:
@@ -91,31 +100,68 @@ class Job:
                 "progress": self.progress[-1] if self.progress else "",
                 "error": self.error,
                 "note": self.note,
+                "process": self.process,
             }
 
 
-def start(job: Job, work: Callable[[Budget], Callable[[], str]]) -> Job:
-    """Run ``work(budget)`` in a worker thread.
+def start(
+    job: Job,
+    worker: execution.Worker,
+    give_back: Callable[[execution.Worker], None],
+    move: Callable[..., Any],
+    args: tuple,
+    commit: Callable[[Any], str],
+) -> Job:
+    """Make ``move(*args)`` in ``worker`` under the job's limits, in a thread
+    that watches it; ``give_back`` returns the worker when the move ends.
 
-    ``work`` does the searches and returns a commit function that installs
-    its result (and returns a note); it is called under the job's lock, only
-    if the job was not cancelled, and must be quick.  InputErrors end the job ``failed``
-    with their one-line message.
+    ``commit`` installs the move's value (and returns a note); it is called
+    under the job's lock, only if the job was not cancelled, and must be quick.
+    InputErrors end the job ``failed`` with their one-line message.
     """
+    job.process = worker.pid
 
     def run() -> None:
         try:
-            commit = work(job.budget)
-        except InputError as error:
-            job.finish(FAILED, error=str(error))
+            outcome = worker.call(
+                move, *args, limits=job.limits, on_progress=job.record, cancel=job.cancelled
+            )
+        except Exception as error:  # the server is closing, or a bug
+            outcome = execution.Outcome(
+                execution.FAILED, message=f"{type(error).__name__}: {error}"
+            )
+            worker.kill()
+        if outcome.limited:  # ended, or an allocation failed in it: a new one is safer
+            worker.kill()
+        give_back(worker)
+        try:
+            _ended(job, outcome, commit)
         except Exception as error:  # a bug: tell the page, keep the trace on the console
-            traceback.print_exc()
+            print(f"ethasp: error in a job of the page: {error!r}", file=sys.stderr, flush=True)
             job.finish(FAILED, error=f"internal error: {type(error).__name__}: {error}")
-        else:
-            with job.lock:  # a cancel waits for the commit, or the commit is skipped
-                if job.state == RUNNING:
-                    job.finish(DONE, note=commit() or "")
 
     job.thread = threading.Thread(target=run, name=f"ethasp-job-{job.id}", daemon=True)
     job.thread.start()
     return job
+
+
+def _ended(job: Job, outcome: execution.Outcome, commit: Callable[[Any], str]) -> None:
+    """The job's state from how its move ended."""
+    status = outcome.status
+    if status == execution.DONE:
+        with job.lock:  # a cancel waits for the commit, or the commit is skipped
+            if job.state == RUNNING:
+                job.finish(DONE, note=commit(outcome.value) or "")
+    elif status == execution.INPUT_ERROR:
+        job.finish(FAILED, error=outcome.message)
+    elif outcome.limited:
+        job.finish(status, error=f"{outcome.message}: the work was ended and {UNCHANGED}")
+    elif status != execution.CANCELLED:  # a bug, or a worker that crashed
+        detail = outcome.message.strip().splitlines()
+        if outcome.message.strip():
+            print(outcome.message.rstrip(), file=sys.stderr, flush=True)
+        job.finish(
+            FAILED,
+            error=f"internal error: {detail[-1] if detail else status} (the server's "
+            f"console shows more); {UNCHANGED}",
+        )

@@ -134,6 +134,7 @@ class Server:
         ``log_requests``: a line per HTTP request on standard error (werkzeug's);
         ``quiet``: none of werkzeug's lines at all."""
         host = host or DEFAULT_HOST
+        self.workspace = workspace
         self.loopback = loopback = is_loopback(host)
         self.app = create_app(workspace, loopback=loopback)
         sock = listen(host, port)
@@ -158,8 +159,10 @@ class Server:
         self.httpd.serve_forever()
 
     def shutdown(self) -> None:
+        """Stop serving, and end the workspace's worker processes."""
         self.httpd.shutdown()
         self.httpd.server_close()
+        self.workspace.close()
 
 
 def browser_problem() -> str | None:

@@ -88,11 +88,11 @@ def state_json(workspace: Workspace, session: Session) -> dict:
         "job": session.job.to_json() if session.job is not None else None,
         "dialogue": None,
     }
-    dialogue = session.dialogue
-    if dialogue is None:
+    shown = session.shown
+    if shown is None:
         return data
+    dialogue, report = shown.dialogue, shown.report
     plan = dialogue.current_plan
-    report = workspace.report(plan)
     naming = workspace.model.naming
     current = report.to_json()
     current["shown"] = _actions(workspace, plan)
@@ -102,25 +102,22 @@ def state_json(workspace: Workspace, session: Session) -> dict:
     explained = [j for j in report.judgements if j.explanation is not None]
     if explained:
         current["plan_words"] = option_sentence(explained[0].explanation.labels, plan)
-        for shown, judgement in zip(current["judgements"], report.judgements, strict=True):
+        for entry, judgement in zip(current["judgements"], report.judgements, strict=True):
             if judgement.explanation is not None:
-                shown["verdict_words"] = verdict_sentence(judgement.explanation)
+                entry["verdict_words"] = verdict_sentence(judgement.explanation)
     # Whether "why not in N-1 steps" can have a contrast at all: for a plan of
     # one step, only when the empty plan is a plan.
-    current["empty_plan_is_plan"] = workspace.empty_plan_is_plan
-    for judgement, shown in zip(report.judgements, current["judgements"], strict=True):
+    current["empty_plan_is_plan"] = workspace.glance.empty_plan_is_plan
+    for judgement, entry in zip(report.judgements, current["judgements"], strict=True):
         if judgement.better_plan is not None:  # utilitarianism: a better reachable state
-            shown["better_plan_shown"] = _actions(workspace, judgement.better_plan)
+            entry["better_plan_shown"] = _actions(workspace, judgement.better_plan)
     current["final_shown"] = [naming.fact(literal) for literal in report.final_state]
     current["principle"] = dialogue.current_principle
     # Which question's contrast plan this is (0: the first plan), and whether
     # it was made without the principle (dropped on a proof).
     source = dialogue.current_step
     current["from_question"] = source
-    if workspace.model.planner.has_costs:
-        from ethasp.planning.validation import validate
-
-        current["cost"] = validate(workspace.model, plan).cost
+    # (the plan's cost, in a model with action costs: in the report's JSON)
     current["made_without_principle"] = (
         source > 0 and dialogue.steps[source - 1].answer.principle_dropped
     )
@@ -143,13 +140,13 @@ def state_json(workspace: Workspace, session: Session) -> dict:
 
 def explain_json(workspace: Workspace, session: Session, step: int | None = None) -> dict:
     """The current plan explained step by step (``why step T`` with ``step``)."""
-    dialogue = session.require()
-    explanation = workspace.explained(dialogue.current_plan)
+    session.require()
+    explanation = session.shown.explained  # (of the current plan)
     naming = workspace.model.naming
     data = explanation.to_json(naming)
     data["lines"] = explanation.lines()
     data["link_lines"] = explanation.link_lines()
-    data["shown"] = _actions(workspace, dialogue.current_plan)
+    data["shown"] = _actions(workspace, explanation.plan)
     if step is not None:
         data["step"] = step
         data["step_text"] = explanation.step_text(step)

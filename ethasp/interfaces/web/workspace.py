@@ -1,11 +1,16 @@
 """What a server holds: one model (named on its command line), its dialogues
 (one per page session) and the jobs that change them.
 
-Every move that may search (start a dialogue, ask, undo, load) runs as a job
-(:mod:`ethasp.interfaces.web.jobs`) on a copy of the session's dialogue; the
-copy replaces the dialogue only when the job ends without being cancelled.
-A session runs one job at a time, and the server at most
-:attr:`Limits.running` searches at once.
+The server keeps each dialogue as data, with what the page shows of it
+(:class:`~ethasp.interfaces.web.moves.Shown`).  Every move that needs clingo
+(start a dialogue, ask, undo, load) runs as a job
+(:mod:`ethasp.interfaces.web.jobs`) in one of the server's worker processes
+(:mod:`ethasp.interfaces.web.workers`), on a copy of the session's dialogue
+sent to it; what the worker sends back replaces the dialogue only when the
+job ends without being cancelled.  The server itself never grounds the
+model, so its requests for the state and the pictures are answered at once.
+A session runs one job at a time, and the server as many as it has workers
+(:attr:`Limits.running`).
 """
 
 from __future__ import annotations
@@ -13,25 +18,31 @@ from __future__ import annotations
 import json
 import secrets
 import threading
+import weakref
 from collections import OrderedDict
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from ethasp.errors import InputError
+from ethasp.execution import limits as execution_limits
+from ethasp.execution import worker as execution
 from ethasp.interfaces.pictures import Pictures
-from ethasp.interfaces.web.jobs import Job, searching, start
-from ethasp.planning.budget import Budget
+from ethasp.interfaces.web import jobs, moves
+from ethasp.interfaces.web.jobs import Job
+from ethasp.interfaces.web.moves import Glance, Settings, Shown
+from ethasp.interfaces.web.workers import Workers
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
-from ethasp.planning.validation import validate
-from ethasp.principles.judgement import JudgementReport
 from ethasp.principles.restriction import one_restricting_principle
 from ethasp.questions.dialogue import Dialogue
 from ethasp.questions.question import Question, step_question
-from ethasp.questions.steps import StepsExplanation, explain_steps
-from ethasp.reasons.reasons import DEFAULT_LIMIT, judge
+from ethasp.reasons.reasons import DEFAULT_LIMIT
+
+# Seconds a cancel waits for the job's worker to be ended.
+CANCEL_WAIT = 5.0
 
 
 class Refused(Exception):
@@ -44,18 +55,21 @@ class Refused(Exception):
 
 @dataclass(frozen=True)
 class Options:
-    """The search options of every dialogue (the command line's)."""
+    """The search options of every dialogue and the limits of every job (the
+    command line's): seconds and gigabytes, None for no limit.  The memory
+    limit holds for the whole server: its process and every worker."""
 
     max_horizon: int = DEFAULT_MAX_HORIZON
     time_limit: float | None = None
     reasons_limit: int = DEFAULT_LIMIT
+    memory_limit: float | None = None
 
-    def dialogue(self) -> dict:
-        return {
-            "max_horizon": self.max_horizon,
-            "time_limit": self.time_limit,
-            "reasons_limit": self.reasons_limit,
-        }
+    def settings(self) -> Settings:
+        return Settings(self.max_horizon, self.time_limit, self.reasons_limit)
+
+    def limits(self) -> execution_limits.Limits:
+        """The limits of a job starting now."""
+        return execution_limits.Limits.of(self.time_limit, self.memory_limit)
 
 
 @dataclass(frozen=True)
@@ -68,7 +82,7 @@ class Limits:
     dialogue: int = 1_000_000  # characters of a saved dialogue to load
     questions: int = 100  # questions in one dialogue
     sessions: int = 32  # dialogues kept (the least recently used idle one goes)
-    running: int = 2  # searches running at once (cancelled ones until they end)
+    running: int = 2  # moves running at once: the server's worker processes
 
     def check(self, what: str, text: object, limit: int) -> str:
         if not isinstance(text, str):
@@ -80,24 +94,48 @@ class Limits:
 
 @dataclass
 class Session:
-    """One page's dialogue and its current (or last) job."""
+    """One page's dialogue, what the page shows of it, and its current (or
+    last) job."""
 
     id: str
-    dialogue: Dialogue | None = None
+    shown: Shown | None = None
     job: Job | None = None
 
     @property
     def busy(self) -> bool:
         return self.job is not None and self.job.running
 
+    @property
+    def dialogue(self) -> Dialogue | None:
+        return self.shown.dialogue if self.shown is not None else None
+
     def require(self) -> Dialogue:
-        if self.dialogue is None:
+        if self.shown is None:
             raise InputError("no dialogue yet: start one")
-        return self.dialogue
+        return self.shown.dialogue
+
+    def have(self) -> frozenset[moves.PlanKey]:
+        """The plans whose timelines the session keeps."""
+        return frozenset(self.shown.timelines) if self.shown is not None else frozenset()
+
+    def install(self, shown: Shown) -> str:
+        """A move's result replaces the dialogue; the timelines kept before
+        are kept where the dialogue still draws their plans.  Its note."""
+        timelines = {**(self.shown.timelines if self.shown else {}), **shown.timelines}
+        needed = {moves.plan_key(plan) for plan in moves.plans_of(shown.dialogue)}
+        shown.timelines = {key: timelines[key] for key in timelines if key in needed}
+        self.shown = shown
+        return shown.note
 
 
 class Workspace:
-    """The served model, its dialogues, and caches of judgements and pictures."""
+    """The served model, its dialogues, and the worker processes that make
+    their moves.
+
+    The model is checked by a worker when the workspace is made (InputError
+    in one line if it describes no planning task); :meth:`close` ends the
+    workers (they end with this process too).
+    """
 
     def __init__(
         self,
@@ -116,68 +154,45 @@ class Workspace:
         )
         self.options = options
         self.limits = limits
-        self.pictures = Pictures(model)
-        self._reports: OrderedDict[tuple[str, ...], JudgementReport] = OrderedDict()
-        self._explained: OrderedDict[tuple[str, ...], StepsExplanation] = OrderedDict()
         self._sessions: OrderedDict[str, Session] = OrderedDict()
-        self._jobs: list[Job] = []
         self._lock = threading.Lock()
-        # Is the empty plan a plan (the goal holds at the start)?  Known before
-        # any job uses the planner: a trace of no steps.
-        self.empty_plan_is_plan = validate(model, Plan(())).valid
+        job_limits = options.limits()
+        self.workers = Workers(model, limits.running, job_limits.memory)
+        self._closing = weakref.finalize(self, self.workers.close)
+        try:
+            self.glance: Glance = self._now(moves.glance, model)
+        except BaseException:
+            self.close()
+            raise
+        self.pictures = Pictures(model, self.glance.valuation, {})
 
-    # -- judgements of plans (under every principle), kept --------------------------
+    def close(self) -> None:
+        """End the worker processes."""
+        self._closing()
 
-    def report(self, plan: Plan, budget: Budget | None = None) -> JudgementReport:
-        """The plan judged and explained under the default principles (the paper's three)."""
-        key = tuple(plan.to_list())
-        with self._lock:
-            if key in self._reports:
-                self._reports.move_to_end(key)
-                return self._reports[key]
-        budget = budget or Budget(self.options.time_limit)
-        report = searching(
-            judge,
-            budget,
-            self.model,
-            plan,
-            None,
-            self.options.max_horizon,
-            self.options.time_limit,
-            self.options.reasons_limit,
-        )
-        if any(judgement.status != "proven" for judgement in report.judgements):
-            return report  # cut short: judge it again next time
-        with self._lock:
-            self._reports[key] = report
-            while len(self._reports) > 64:
-                self._reports.popitem(last=False)
-        return report
+    def _now(self, move: Callable[..., Any], *args: Any) -> Any:
+        """Make a move in a worker and wait for it (when the server starts)."""
+        worker = self.workers.take()
+        if worker is None:
+            raise RuntimeError("no worker process is free")
+        try:
+            outcome = worker.call(move, *args, limits=self.options.limits())
+        finally:
+            self.workers.give_back(worker)
+        if outcome.status == execution.DONE:
+            return outcome.value
+        if outcome.status == execution.INPUT_ERROR:
+            raise InputError(outcome.message)
+        if outcome.limited:
+            raise InputError(
+                f"{outcome.message} while the model was grounded and checked "
+                "(see --time-limit and --memory-limit)"
+            )
+        raise RuntimeError(f"the worker process failed: {outcome.message}")
 
-    def explained(self, plan: Plan) -> StepsExplanation:
-        """The plan explained step by step (causal links; one clingo call), kept."""
-        key = tuple(plan.to_list())
-        with self._lock:
-            if key in self._explained:
-                self._explained.move_to_end(key)
-                return self._explained[key]
-        explanation = explain_steps(self.model, plan)
-        with self._lock:
-            self._explained[key] = explanation
-            while len(self._explained) > 64:
-                self._explained.popitem(last=False)
-        return explanation
-
-    def _prepare(self, dialogue: Dialogue, budget: Budget) -> None:
-        """Judge and draw the dialogue's current plan (and the last answer's
-        plans) inside the job, so that showing them is quick."""
-        self.report(dialogue.current_plan, budget)
-        self.pictures.timeline(dialogue.current_plan)
-        if dialogue.steps:
-            answer = dialogue.steps[-1].answer
-            self.pictures.timeline(answer.original.plan)
-            if answer.contrast is not None:
-                self.pictures.timeline(answer.contrast.plan)
+    def pictures_of(self, shown: Shown) -> Pictures:
+        """Pictures of a dialogue's plans, drawn from the timelines kept with it."""
+        return Pictures(self.model, self.glance.valuation, shown.timelines)
 
     # -- sessions -----------------------------------------------------------------------
 
@@ -205,10 +220,8 @@ class Workspace:
     # -- jobs ---------------------------------------------------------------------------
 
     def running(self) -> int:
-        """Searches still working, cancelled ones included."""
-        with self._lock:
-            self._jobs = [job for job in self._jobs if job.alive]
-            return len(self._jobs)
+        """Moves running now."""
+        return self.workers.busy()
 
     @staticmethod
     def free(session: Session) -> Session:
@@ -224,23 +237,22 @@ class Workspace:
         session: Session,
         kind: str,
         description: str,
-        work: Callable[[Budget], Callable[[], str]],
+        move: Callable[..., Shown],
+        *args: Any,
     ) -> Job:
-        """Start a job for the session (one at a time; a few in the server)."""
+        """Start a job for the session (one at a time; as many in the server
+        as it has workers)."""
         self.free(session)
-        if self.running() >= self.limits.running:
+        worker = self.workers.take()
+        if worker is None:
             raise Refused(
                 503,
-                f"busy: {self.limits.running} searches are still running "
-                "(cancelled searches end with their current solver call); "
-                "try again shortly",
+                f"busy: {self.limits.running} searches are running; try again shortly "
+                "(or cancel one)",
             )
-        job = Job(secrets.token_hex(8), kind, description, Budget(self.options.time_limit))
-        job.budget.on_progress = job.record
+        job = Job(secrets.token_hex(8), kind, description, self.options.limits())
         session.job = job
-        with self._lock:
-            self._jobs.append(job)
-        return start(job, work)
+        return jobs.start(job, worker, self.workers.give_back, move, args, session.install)
 
     # -- moves ----------------------------------------------------------------------------
 
@@ -254,33 +266,24 @@ class Workspace:
         )
         plan_text = self.limits.check("plan", plan_text or "", self.limits.plan)
         plan = Plan.parse(plan_text) if plan_text.strip() else None
-
-        def work(budget: Budget) -> Callable[[], str]:
-            dialogue = searching(
-                Dialogue.start,
-                budget,
-                self.model,
-                chosen,
-                plan,
-                self.files,
-                **self.options.dialogue(),
-            )
-            self._prepare(dialogue, budget)
-
-            def commit() -> str:
-                session.dialogue = dialogue
-                return f"a new dialogue under {chosen}"
-
-            return commit
-
         what = (
             f"judging the plan under {chosen}"
             if plan is not None
             else f"making a plan under {chosen}"
-            if self.model.own_plan() is None
+            if self.glance.own_plan is None
             else f"judging the model's own plan under {chosen}"
         )
-        return self.submit(session, "start", what, work)
+        return self.submit(
+            session,
+            "start",
+            what,
+            moves.start,
+            self.model,
+            chosen,
+            plan,
+            self.files,
+            self.options.settings(),
+        )
 
     def ask(self, session: Session, text: str) -> Job:
         """Ask a question (typed, the grammar of ``ethasp ask``) about the current plan
@@ -300,38 +303,18 @@ class Workspace:
                 f"at most {self.limits.questions} questions in one dialogue; "
                 "undo some, or save it and start anew"
             )
-
-        def work(budget: Budget) -> Callable[[], str]:
-            copy = replace(dialogue, steps=list(dialogue.steps))
-            searching(copy.ask, budget, question)
-            self._prepare(copy, budget)
-
-            def commit() -> str:
-                session.dialogue = copy
-                return f"answered: {question}"
-
-            return commit
-
-        return self.submit(session, "ask", f"answering '{question}'", work)
+        return self.submit(
+            session, "ask", f"answering '{question}'", moves.ask, dialogue, question, session.have()
+        )
 
     def undo(self, session: Session) -> Job:
         """Take back the last question."""
         dialogue = self.free(session).require()
         if not dialogue.steps:
             raise InputError("nothing to undo: no question asked yet")
-
-        def work(budget: Budget) -> Callable[[], str]:
-            copy = replace(dialogue, steps=list(dialogue.steps))
-            step = copy.undo()
-            self._prepare(copy, budget)
-
-            def commit() -> str:
-                session.dialogue = copy
-                return f"took back: {step.question}"
-
-            return commit
-
-        return self.submit(session, "undo", "taking back the last question", work)
+        return self.submit(
+            session, "undo", "taking back the last question", moves.undo, dialogue, session.have()
+        )
 
     def switch(self, session: Session, principle: str) -> str:
         """The principle later contrast plans must satisfy (no search)."""
@@ -361,24 +344,23 @@ class Workspace:
                     f"; it was saved for {', '.join(saved)} and was replayed with the "
                     f"served model {', '.join(served)}"
                 )
-
-        def work(budget: Budget) -> Callable[[], str]:
-            dialogue = searching(
-                Dialogue.from_json, budget, data, self.model, **self.options.dialogue()
-            )
-            dialogue.model_files = list(self.files)
-            self._prepare(dialogue, budget)
-
-            def commit() -> str:
-                session.dialogue = dialogue
-                return f"loaded {name} ({len(dialogue.steps)} questions){note}"
-
-            return commit
-
-        return self.submit(session, "load", f"loading {name} (asking its questions again)", work)
+        return self.submit(
+            session,
+            "load",
+            f"loading {name} (asking its questions again)",
+            moves.load,
+            data,
+            self.model,
+            self.files,
+            self.options.settings(),
+            name,
+            note,
+        )
 
     def cancel(self, session: Session) -> Job | None:
+        """Cancel the session's job: its worker process is ended (this waits
+        for that, a moment), and a new worker started in its place."""
         job = session.job
-        if job is not None:
-            job.cancel()
+        if job is not None and job.cancel():
+            job.wait(CANCEL_WAIT)
         return job

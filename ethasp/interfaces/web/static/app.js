@@ -150,7 +150,7 @@ async function follow(reply) {
   }
   setBusy(null);
   await refresh();
-  if (job && job.state === "failed") showError(job.error);
+  if (job && job.error) showError(job.error);  // failed, or ended at a limit
   if (job && job.note) showNote(job.note);
   return job;
 }
