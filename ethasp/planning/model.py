@@ -31,7 +31,8 @@ class Source:
     path: Path | None = None
     generated: bool = False  # written by ethasp (a translation), not by a user
     kind: str = "asp"  # asp, pddl (a PDDL translation), situation (a HERA
-    # situation) or hmodel (a restriction's, of facts)
+    # situation), cam (a HERA causal agency model) or hmodel (a restriction's,
+    # of facts)
     facts: tuple[clingo.Symbol, ...] = ()  # ground facts, added without parsing
 
 
@@ -148,17 +149,21 @@ class Model:
 
         Files ending in ``.pddl`` are translated into rules (see
         :mod:`ethasp.planning.readers.pddl`); the model then shows actions in PDDL form.
-        HERA situations (``.yaml``, ``.yml``, ``.json``) are translated into
-        facts (see :mod:`ethasp.planning.readers.situation`).  ``texts`` are more ASP
+        HERA's files (``.yaml``, ``.yml``, ``.json``) are situations or causal
+        agency models, told apart by their content, and translated into facts
+        (see :mod:`ethasp.planning.readers.situation` and
+        :mod:`ethasp.planning.readers.cam`).  ``texts`` are more ASP
         sources given as (name, text), e.g. ``("<stdin>", text)`` read from
         standard input; messages name them by that name.
         """
-        from ethasp.planning.readers.situation import situation_paths, translate
+        from ethasp.planning.readers.hera_data import translate_file
+        from ethasp.planning.readers.situation import situation_paths
 
         sources, naming = [], Naming()
         situations, files = situation_paths(Path(path) for path in paths)
         for path in situations:
-            sources.append(Source(str(path), translate(path), generated=True, kind="situation"))
+            kind, text = translate_file(path)
+            sources.append(Source(str(path), text, generated=True, kind=kind))
         if any(path.suffix.lower() == ".pddl" for path in files):
             from ethasp.planning.readers.pddl import split_paths, translate_files
 
@@ -218,6 +223,13 @@ class Model:
         """Is this a HERA situation (a translation, perhaps with ASP files)?
         Its plans are judged even where they miss the goal, as HERA does."""
         return any(source.kind == "situation" for source in self.sources)
+
+    @property
+    def is_cam(self) -> bool:
+        """Is this a causal agency model (HERA's CAM, perhaps with ASP files)?
+        Its choices are its actions, one at a time (a plan of one step), judged
+        by the encodings of ``encodings/cam/`` (:mod:`ethasp.principles.causal`)."""
+        return any(source.kind == "cam" for source in self.sources)
 
     def _parse(self, source: Source) -> None:
         """Parse a source: syntax, #script blocks, and the model's namespace

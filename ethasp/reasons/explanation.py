@@ -63,7 +63,8 @@ class Explanation:
     objects, with ``comparisons`` and ``labels``, for building other texts
     (see :mod:`ethasp.reasons.words`): the chosen reason, or the only
     sufficient reason when its literals are all of one kind (a permissible
-    plan of several actions under deontology: none of them is bad).
+    plan of several actions under deontology: none of them is bad);
+    ``conjunctions`` the members of the conjunctions its literals name.
     """
 
     principle: str
@@ -80,6 +81,7 @@ class Explanation:
     literals: list[Literal] = field(default_factory=list)
     comparisons: dict[clingo.Symbol, Comparison] = field(default_factory=dict)
     labels: Labels = field(default_factory=Labels)
+    conjunctions: dict[clingo.Symbol, list[tuple[clingo.Symbol, str]]] = field(default_factory=dict)
 
     def to_json(self) -> dict:
         data = {

@@ -45,13 +45,13 @@ from ethasp.planning.engines.best_state import ReachableState, best_reachable
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
-from ethasp.planning.validation import validate
+from ethasp.principles.causal import model_kind
 from ethasp.principles.formula import format_literal
 from ethasp.principles.judgement import (
     JudgementReport,
+    check_plan,
     evaluate,
     evaluation,
-    require_plan,
 )
 from ethasp.principles.judgement import judge as judge_verdicts
 from ethasp.principles.principle import Principle, select_principles
@@ -221,8 +221,12 @@ def explain(
     if limit < 1:
         raise InputError("the reasons limit must be at least 1")
     budget = budget or Budget(time_limit)
-    chosen = principle if isinstance(principle, Principle) else select_principles([principle])[0]
-    require_plan(model, validate(model, plan))
+    chosen = (
+        principle
+        if isinstance(principle, Principle)
+        else select_principles([principle], model_kind(model))[0]
+    )
+    check_plan(model, plan)
     key = (
         "explain",
         plan,
@@ -306,6 +310,7 @@ def explain(
         literals=spoken,
         comparisons=_comparisons(words),
         labels=_labels_of(model),
+        conjunctions=conj,
     )
     explanation.text = non_contrastive(explanation)
     memo[key] = explanation
@@ -331,7 +336,7 @@ def judge(
     """
     budget = budget or Budget(time_limit)
     report = judge_verdicts(model, plan, principles, max_horizon, budget=budget, best=best)
-    chosen = select_principles(principles)
+    chosen = select_principles(principles, model_kind(model))
     for principle, judgement in zip(chosen, report.judgements, strict=True):
         if reasons_limit:
             # An impermissible utilitarian plan is explained against the better
