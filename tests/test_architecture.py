@@ -107,3 +107,21 @@ def test_no_import_cycles():
     for module in sorted(graph):
         if module not in state:
             visit(module, [module])
+
+
+def test_each_command_has_its_own_module():
+    """The command line is a package: a module per command holds its parser and
+    what it runs, and main() with how a command runs is one module of its own."""
+    import argparse
+
+    from ethasp.interfaces import cli
+    from ethasp.interfaces.cli import execution
+
+    parser = cli.build_parser()
+    commands = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    for name, sub in commands.choices.items():
+        module = sub.get_default("run").__module__
+        assert module == f"ethasp.interfaces.cli.{name}", (name, module)
+    assert cli.main is execution.main
+    assert not (PACKAGE / "interfaces" / "cli.py").exists()
+    assert (PACKAGE / "interfaces" / "cli" / "__main__.py").is_file()  # python -m ...cli

@@ -149,8 +149,9 @@ def test_the_server_and_the_dialogue_outlive_the_time_limit(monkeypatch):
 
     import ethasp.interfaces.web.server as server
     from ethasp.interfaces import cli
+    from ethasp.interfaces.cli import execution
 
-    monkeypatch.setattr(cli, "OVERRUN_GRACE", 0.0)
+    monkeypatch.setattr(execution, "OVERRUN_GRACE", 0.0)
     served = []
 
     def serve(workspace, host, port, open_page, **options):
@@ -172,9 +173,10 @@ def test_a_command_stuck_after_its_time_limit_ends_in_one_line(monkeypatch, caps
     import time as clock
 
     from ethasp.interfaces import cli
+    from ethasp.interfaces.cli import execution, plan
 
-    monkeypatch.setattr(cli, "OVERRUN_GRACE", 0.0)
-    monkeypatch.setattr(cli, "find_plan", lambda *args, **kwargs: clock.sleep(5.0))
+    monkeypatch.setattr(execution, "OVERRUN_GRACE", 0.0)
+    monkeypatch.setattr(plan, "find_plan", lambda *args, **kwargs: clock.sleep(5.0))
     assert cli.main(["plan", "trolley", "--time-limit", "0.05"]) == 2
     assert "no answer within the time limit" in capsys.readouterr().err
 
@@ -186,6 +188,7 @@ def test_the_memory_limit_stops_the_search_and_then_the_command(monkeypatch, cap
     import time as clock
 
     from ethasp.interfaces import cli
+    from ethasp.interfaces.cli import execution, plan
     from ethasp.planning.search import BOUNDED, SearchResult
 
     def waits_for_its_budget(model, *args, budget=None, **kwargs):
@@ -193,14 +196,14 @@ def test_the_memory_limit_stops_the_search_and_then_the_command(monkeypatch, cap
             clock.sleep(0.01)
         return SearchResult(BOUNDED, proof=budget.why_stopped())
 
-    assert 2**20 < cli._memory() < 2**40  # the real reading: a plausible size
-    monkeypatch.setattr(cli, "find_plan", waits_for_its_budget)
-    monkeypatch.setattr(cli, "_memory", lambda: int(1.2 * 2**30))
+    assert 2**20 < execution._memory() < 2**40  # the real reading: a plausible size
+    monkeypatch.setattr(plan, "find_plan", waits_for_its_budget)
+    monkeypatch.setattr(execution, "_memory", lambda: int(1.2 * 2**30))
     assert cli.main(["plan", "trolley", "--memory-limit", "1", "--json"]) == 0
     out = capsys.readouterr().out
     assert "the memory limit of 1 GB was reached" in out and '"bounded"' in out
-    monkeypatch.setattr(cli, "find_plan", lambda *args, **kwargs: clock.sleep(5.0))
-    monkeypatch.setattr(cli, "_memory", lambda: 2 * 2**30)
+    monkeypatch.setattr(plan, "find_plan", lambda *args, **kwargs: clock.sleep(5.0))
+    monkeypatch.setattr(execution, "_memory", lambda: 2 * 2**30)
     assert cli.main(["plan", "trolley", "--memory-limit", "1"]) == 2
     err = capsys.readouterr().err
     assert err.startswith("ethasp: error: out of memory: 2.0 GB in use") and err.count("\n") == 1

@@ -46,6 +46,7 @@ PACKAGES = [
     "reasons",
     "questions",
     "interfaces",
+    "interfaces/cli",
     "interfaces/web",
 ]
 

@@ -33,7 +33,7 @@ import ethasp.batch.task as task
 from ethasp.batch.task import Settings, Work, error_line
 
 # Seconds a case may run beyond twice its time limit before its worker is
-# killed (as for the command line, ethasp.interfaces.cli.OVERRUN_GRACE).
+# killed (as for the command line, ethasp.interfaces.cli.execution.OVERRUN_GRACE).
 OVERRUN_GRACE = 10.0
 # How often the pool looks at the clock when nothing happens.
 TICK = 0.5

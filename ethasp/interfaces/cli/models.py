@@ -1,0 +1,126 @@
+"""The MODEL arguments: files, names of bundled models, standard input (``-``).
+
+:func:`model_options` is the parent parser of the commands that read a model
+(MODEL, ``--json``, ``--allow-scripts``); :func:`load_model` loads what they
+name.
+"""
+
+from __future__ import annotations
+
+import argparse
+import re
+import sys
+from collections.abc import Sequence
+from pathlib import Path
+
+from ethasp.errors import InputError
+from ethasp.planning.model import Model
+from ethasp.resources import MODELS
+
+
+def model_paths(names: Sequence[str]) -> list[Path]:
+    """Model files: paths as given, or else the bundled model of that name.
+
+    Bundled PDDL files and their annotations are in the folder ``pddl``, HERA
+    situations in the folder ``hera``.
+    """
+    paths = []
+    for name in names:
+        path = Path(name)
+        try:
+            exists = path.exists()
+        except (OSError, ValueError):  # a name too long, ...: read_text says so
+            exists = True
+        if not exists:
+            bundled = MODELS / (name if name.endswith(".lp") else name + ".lp")
+            if "/" not in name and not bundled.is_file():
+                bundled = MODELS / "pddl" / name
+            if "/" not in name and not bundled.is_file():
+                bundled = MODELS / "hera" / name
+            if "/" not in name and bundled.is_file():
+                path = bundled
+        paths.append(path)
+    return paths
+
+
+STDIN = "-"  # as a model file: read the model from standard input
+STDIN_NAME = "<stdin>"  # its name in messages
+
+
+def read_stdin_model() -> str:
+    """An ASP model from standard input (one line of error if it is not ASP text)."""
+    try:
+        data = (
+            sys.stdin.buffer.read()
+            if hasattr(sys.stdin, "buffer")
+            else sys.stdin.read().encode("utf-8", "surrogateescape")
+        )
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as error:
+        raise InputError(
+            f"{STDIN_NAME}: cannot be read (not UTF-8 text: byte {error.start + 1})"
+        ) from None
+    except (OSError, ValueError) as error:  # closed, or not readable
+        raise InputError(
+            f"{STDIN_NAME}: cannot be read ({getattr(error, 'strerror', None) or error})"
+        ) from None
+    head = text.lstrip()
+    if head[:1] in ("(", ";") and "(define" in head[:4096].lower():
+        raise InputError(
+            f"{STDIN_NAME}: this looks like PDDL; standard input takes an ASP "
+            "model (give a PDDL domain and problem as files)"
+        )
+    if re.match(r'\{\s*"|---', head):
+        raise InputError(
+            f"{STDIN_NAME}: this looks like a HERA situation; standard input "
+            "takes an ASP model (give a situation as a .yaml or .json file)"
+        )
+    return text
+
+
+def load_model(args: argparse.Namespace) -> Model:
+    """The model of the command's MODEL arguments; ``-`` reads ASP text from
+    standard input (at most once)."""
+    names = list(args.model)
+    if names.count(STDIN) > 1:
+        raise InputError("standard input (-) can be given only once as a model file")
+    if STDIN not in names:
+        return Model.load(model_paths(names), allow_scripts=args.allow_scripts)
+    names.remove(STDIN)
+    return Model.load(
+        model_paths(names),
+        allow_scripts=args.allow_scripts,
+        texts=[(STDIN_NAME, read_stdin_model())],
+    )
+
+
+def model_files(args: argparse.Namespace, resolve: bool = False) -> list[str]:
+    """The model's files as a dialogue or the page names them (``<stdin>`` for -)."""
+    return [
+        STDIN_NAME if name == STDIN else str(path.resolve() if resolve else path)
+        for name, path in zip(args.model, model_paths(args.model), strict=True)
+    ]
+
+
+MODEL_FILES_HELP = (
+    "model files (ASP), or a PDDL domain and problem (.pddl) with ASP "
+    "annotation files, or a HERA situation (.yaml, .json), or the name of a "
+    "bundled model"
+)
+MODEL_HELP = MODEL_FILES_HELP + "; - reads an ASP model from standard input"
+
+
+def model_options(stdin: bool = True) -> argparse.ArgumentParser:
+    """The parent parser of MODEL, ``--json`` and ``--allow-scripts`` (without
+    ``stdin``, MODEL cannot be ``-``)."""
+    parser = argparse.ArgumentParser(add_help=False)
+    parser.add_argument(
+        "model", nargs="+", metavar="MODEL", help=MODEL_HELP if stdin else MODEL_FILES_HELP
+    )
+    parser.add_argument("--json", action="store_true", help="print one JSON object")
+    parser.add_argument(
+        "--allow-scripts",
+        action="store_true",
+        help="run #script blocks in model files (refused by default)",
+    )
+    return parser
