@@ -119,6 +119,32 @@ def evaluation(
     return memo[key]
 
 
+QUESTIONS = (*WORLDS, "cam/questions.lp", "questions/questions.lp")
+
+
+def met_constraints(
+    model: Model, plan: Plan, terms: Sequence[clingo.Symbol]
+) -> set[clingo.Symbol]:
+    """The constraint terms of contrastive questions (``contrast(Q,C)``,
+    ``encodings/questions/questions.lp``) that a choice meets."""
+    action = chosen_action(model, plan)
+    key = ("cam met", action, tuple(terms))
+    memo = results(model.planner)
+    if key not in memo:
+        name = clingo.Function("q")
+        planner = model.planner
+        answer = planner.solve_program(
+            QUESTIONS,
+            planner.vocabulary_text(VOCABULARY),
+            symbols=[
+                clingo.Function("cam_chosen", [action]),
+                *(clingo.Function("contrast", [name, term]) for term in terms),
+            ],
+        )
+        memo[key] = {atom.arguments[1] for atom in answer.get("met", 3)}
+    return memo[key]
+
+
 def world(model: Model, answer: Answer) -> tuple[list[str], int, list[str]]:
     """The world of an evaluated choice as literals (``v``, ``-v``, in the
     order of the model's variables), the utility of its consequences, and the

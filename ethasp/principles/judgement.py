@@ -320,7 +320,10 @@ def trace_facts(model: Model, plan: Plan) -> list[clingo.Symbol]:
 
 
 def final_utility(model: Model, plan: Plan) -> int:
-    """u(s_n) of a plan's final state (``utility_of_final/1`` of judge.lp)."""
+    """u(s_n) of a plan's final state (``utility_of_final/1`` of judge.lp); of
+    a choice in a causal agency model, the utility of its consequences."""
+    if model.is_cam:
+        return causal.world(model, causal.evaluation(model, plan))[1]
     answer = unify([UtilityOfFinal], model.planner.trace(plan).get("utility_of_final", 1))
     return next(iter(answer.query(UtilityOfFinal).all())).utility
 
