@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -144,6 +144,7 @@ class Model:
         allow_scripts: bool = False,
         check: bool = True,
         texts: Sequence[tuple[str, str]] = (),
+        world: Mapping[str, bool] | None = None,
     ) -> Model:
         """Load a model from ASP files, or a PDDL domain and problem plus ASP files.
 
@@ -162,8 +163,13 @@ class Model:
         sources, naming = [], Naming()
         situations, files = situation_paths(Path(path) for path in paths)
         for path in situations:
-            kind, text = translate_file(path)
+            kind, text = translate_file(path, world)
             sources.append(Source(str(path), text, generated=True, kind=kind))
+        if world and not any(source.kind == "cam" for source in sources):
+            raise InputError(
+                "a world (--world) gives the background variables and events of a causal "
+                "agency model, and the model is none"
+            )
         if any(path.suffix.lower() == ".pddl" for path in files):
             from ethasp.planning.readers.pddl import split_paths, translate_files
 
@@ -230,6 +236,16 @@ class Model:
         Its choices are its actions, one at a time (a plan of one step), judged
         by the encodings of ``encodings/cam/`` (:mod:`ethasp.principles.causal`)."""
         return any(source.kind == "cam" for source in self.sources)
+
+    def require_planning(self, what: str) -> None:
+        """Raise InputError if the model is a causal agency model: ``what``
+        (plan search, validation, ...) applies to planning models."""
+        if self.is_cam:
+            names = ", ".join(source.name for source in self.sources if source.kind == "cam")
+            raise InputError(
+                f"{names} is a causal agency model: its choices are its actions, one at a "
+                f"time (ethasp judge, query, ask); {what} applies to planning models"
+            )
 
     def _parse(self, source: Source) -> None:
         """Parse a source: syntax, #script blocks, and the model's namespace

@@ -122,6 +122,7 @@ def _problem(problem: clingo.Symbol, naming: Naming = ASP_NAMING) -> str:
 def validate(model: Model, plan: Plan) -> Validation:
     """Validate a plan (its trace, computed once per plan by the model's
     planner); raise InputError if it names unknown actions."""
+    model.require_planning("validating a plan")
     return read_validation(plan, model.planner.trace(plan).select(TRACE_ATOMS), model)
 
 

@@ -22,7 +22,7 @@ def model_paths(names: Sequence[str]) -> list[Path]:
     """Model files: paths as given, or else the bundled model of that name.
 
     Bundled PDDL files and their annotations are in the folder ``pddl``, HERA
-    situations in the folder ``hera``.
+    situations in the folder ``hera``, causal agency models in ``cam``.
     """
     paths = []
     for name in names:
@@ -37,6 +37,8 @@ def model_paths(names: Sequence[str]) -> list[Path]:
                 bundled = MODELS / "pddl" / name
             if "/" not in name and not bundled.is_file():
                 bundled = MODELS / "hera" / name
+            if "/" not in name and not bundled.is_file():
+                bundled = MODELS / "cam" / name
             if "/" not in name and bundled.is_file():
                 path = bundled
         paths.append(path)
@@ -82,16 +84,35 @@ def load_model(args: argparse.Namespace) -> Model:
     """The model of the command's MODEL arguments; ``-`` reads ASP text from
     standard input (at most once)."""
     names = list(args.model)
+    world = parse_world(getattr(args, "world", None) or [])
     if names.count(STDIN) > 1:
         raise InputError("standard input (-) can be given only once as a model file")
     if STDIN not in names:
-        return Model.load(model_paths(names), allow_scripts=args.allow_scripts)
+        return Model.load(model_paths(names), allow_scripts=args.allow_scripts, world=world)
     names.remove(STDIN)
     return Model.load(
         model_paths(names),
         allow_scripts=args.allow_scripts,
         texts=[(STDIN_NAME, read_stdin_model())],
+        world=world,
     )
+
+
+def parse_world(items: Sequence[str]) -> dict[str, bool]:
+    """The values of ``--world NAME=VALUE,...`` (VALUE true, false, 1 or 0)."""
+    world: dict[str, bool] = {}
+    for item in items:
+        for part in item.split(","):
+            if not part.strip():
+                continue
+            name, equals, value = part.partition("=")
+            value = value.strip().lower()
+            if not equals or not name.strip() or value not in ("true", "false", "1", "0"):
+                raise InputError(
+                    f"--world: {part.strip()!r} is not NAME=VALUE with VALUE true or false"
+                )
+            world[name.strip()] = value in ("true", "1")
+    return world
 
 
 def model_files(args: argparse.Namespace, resolve: bool = False) -> list[str]:
@@ -104,8 +125,8 @@ def model_files(args: argparse.Namespace, resolve: bool = False) -> list[str]:
 
 MODEL_FILES_HELP = (
     "model files (ASP), or a PDDL domain and problem (.pddl) with ASP "
-    "annotation files, or a HERA situation (.yaml, .json), or the name of a "
-    "bundled model"
+    "annotation files, or a HERA situation or causal agency model (.yaml, "
+    ".json), or the name of a bundled model"
 )
 MODEL_HELP = MODEL_FILES_HELP + "; - reads an ASP model from standard input"
 
@@ -122,5 +143,12 @@ def model_options(stdin: bool = True) -> argparse.ArgumentParser:
         "--allow-scripts",
         action="store_true",
         help="run #script blocks in model files (refused by default)",
+    )
+    parser.add_argument(
+        "--world",
+        action="append",
+        metavar="NAME=VALUE,...",
+        help="the values (true or false) of background variables and events of a "
+        "causal agency model, over those of its file (default: false)",
     )
     return parser

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import json
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, NoReturn
@@ -202,9 +203,10 @@ class DataReader:
             self.add("patient_label", name_term(name), clingo.String(phrase))
 
 
-def translate_file(path: Path) -> tuple[str, str]:
+def translate_file(path: Path, world: Mapping[str, bool] | None = None) -> tuple[str, str]:
     """A HERA file as (its kind, ``situation`` or ``cam``, and its ASP facts);
-    warnings go to standard error."""
+    warnings go to standard error.  ``world``: values of a causal agency
+    model's background variables and events, over those of its file."""
     import sys
 
     from ethasp.planning.terms import read_text
@@ -214,6 +216,8 @@ def translate_file(path: Path) -> tuple[str, str]:
     if kind == CAM:
         from ethasp.planning.readers.cam import translate_data as translate_cam
 
+        if world:
+            data = dict(data, world={**(data.get("world") or {}), **world})
         text, warnings = translate_cam(data, str(path))
     else:
         from ethasp.planning.readers.situation import read_situation
