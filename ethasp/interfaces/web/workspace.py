@@ -25,6 +25,7 @@ from ethasp.planning.budget import Budget
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
+from ethasp.principles.causal import model_kind
 from ethasp.principles.judgement import JudgementReport
 from ethasp.principles.restriction import one_restricting_principle
 from ethasp.questions.dialogue import Dialogue
@@ -108,10 +109,13 @@ class Workspace:
     ):
         self.model = model
         self.files = list(files)
+        if model.is_cam and principle == "deontology":
+            principle = "hera-deontology"  # the same concept, for causal agency models
         self.principle = one_restricting_principle(
             principle,
             "the page starts dialogues under the principle that their contrast "
             "plans must satisfy, one of",
+            model_kind(model),
         )
         self.options = options
         self.limits = limits
@@ -168,6 +172,8 @@ class Workspace:
         """Judge and draw the dialogue's current plan (and the last answer's
         plans) inside the job, so that showing them is quick."""
         self.report(dialogue.current_plan, budget)
+        if self.model.is_cam:
+            return  # a choice has no timeline to draw
         self.pictures.timeline(dialogue.current_plan)
         if dialogue.steps:
             answer = dialogue.steps[-1].answer
@@ -247,6 +253,7 @@ class Workspace:
         chosen = one_restricting_principle(
             name,
             "a dialogue starts under the principle that its contrast plans must satisfy, one of",
+            model_kind(self.model),
         )
         plan_text = self.limits.check("plan", plan_text or "", self.limits.plan)
         plan = Plan.parse(plan_text) if plan_text.strip() else None

@@ -226,6 +226,29 @@ function renderModel() {
   $("start-principle").value = model.principle;
   $("question").maxLength = model.limits.question;
   $("start-plan").maxLength = model.limits.plan;
+  if (model.choices) renderChoices(box);
+}
+
+function renderChoices(box) {
+  // A causal agency model: its plans are its actions, one chosen at a time.
+  // The first plan is chosen from a list; there are no timelines to draw and
+  // no steps to explain.
+  const list = el("datalist", { id: "choices" });
+  for (const choice of model.choices) list.append(el("option", { value: choice.term, text: choice.shown }));
+  box.append(list);
+  $("start-plan").setAttribute("list", "choices");
+  $("start-plan").placeholder = "the action chosen (empty: the first permissible under the principle)";
+  $("current-heading").textContent = "Current choice";
+  const table = el("table", { class: "glance", id: "model-choices" },
+    el("tr", {}, el("th", { text: "action" })));
+  for (const choice of model.choices) {
+    table.append(el("tr", {}, el("td", {}, el("button", {
+      class: "chip", type: "button", "data-term": choice.term, title: `ask about ${choice.shown}`,
+      onclick: () => choose(choice.term, choice.shown) }, choice.shown))));
+  }
+  box.prepend(collapsible(`Choices (${model.choices.length})`, table, model.choices.length));
+  for (const id of ["explain-plan", "shorter", "current-picture", "answer-picture"]) $(id).hidden = true;
+  for (const button of document.querySelectorAll(".zoom")) button.parentElement.hidden = true;
 }
 
 function verdictNode(side) {
@@ -356,7 +379,7 @@ function renderCurrent() {
     : "";
   $("current-summary").textContent =
     `${count}: ${origin}; final state utility ${current.utility}${unanswered}`;
-  $("shorter").hidden = steps === 0;
+  $("shorter").hidden = steps === 0 || Boolean(model.choices);
   $("shorter").textContent = steps > 0 ? `Why not in ${steps - 1} ${steps - 1 === 1 ? "step" : "steps"}?` : "";
   const plan = planNode(current.shown, true);
   plan.id = "current-actions";
