@@ -167,3 +167,125 @@ def hera_verdicts(path: Path, data: dict, world: dict) -> dict[tuple[str, str], 
                 verdict = None
             verdicts[(action, name)] = verdict if isinstance(verdict, bool) else None
     return verdicts
+
+
+# -- reasons: HERA's literals and ethasp's, as comparable keys ---------------------
+
+
+def _hera_fact(formula) -> tuple[str, bool]:
+    """A fact of HERA's (``Atom('x')``, ``Not('x')``, ``Not(Not('x'))``) as (x, value)."""
+    from ethics.language import Not
+
+    value = True
+    while isinstance(formula, Not):
+        formula, value = formula.f1, not value
+    return str(formula), value
+
+
+def _hera_facts(formula) -> frozenset:
+    from ethics.language import And
+
+    if isinstance(formula, And):
+        return _hera_facts(formula.f1) | _hera_facts(formula.f2)
+    if isinstance(formula, bool) or formula is None:
+        return frozenset()
+    return frozenset([_hera_fact(formula)])
+
+
+def _hera_term(term):
+    from ethics.language import U
+
+    if isinstance(term, U):
+        return ("u", _hera_facts(term.t1))
+    return ("num", term)
+
+
+def hera_literal_key(literal) -> tuple:
+    """A literal of HERA's reasons as a key comparable with :func:`ethasp_literal_key`."""
+    from ethics import language as L
+
+    if isinstance(literal, L.Not) and not isinstance(literal.f1, (L.Atom, L.Not)):
+        return ("not", hera_literal_key(literal.f1))
+    names = {L.Good: "good", L.Bad: "bad", L.Neutral: "neutral", L.Caused: "caused"}
+    names |= {L.I: "intended", L.Goal: "goal_fact", L.Instrumental: "instrumental"}
+    for kind, name in names.items():
+        if type(literal) is kind:
+            return (name, _hera_fact(literal.f1))
+    for kind, name in ((L.Means, "means"), (L.Means2, "means2"), (L.End, "end")):
+        if type(literal) is kind:
+            return (name, str(literal.f1))
+    if isinstance(literal, L.Causes):
+        return ("causes", _hera_fact(literal.f1), _hera_fact(literal.f2))
+    if isinstance(literal, L.Intervention):  # HERA's do(): the last value of a variable wins
+        setting = dict(_hera_fact(part) for part in literal.f1.getConj())
+        return ("do", frozenset(setting.items()), _hera_fact(literal.f2))
+    if isinstance(literal, L.GEq):
+        first, second = _hera_term(literal.f1), _hera_term(literal.f2)
+        if first[0] == second[0] == "u":
+            return ("geq", first[1], second[1])
+        return ("ucompare", "geq", first, second)
+    if isinstance(literal, L.Gt):
+        return ("ucompare", "gt", _hera_term(literal.f1), _hera_term(literal.f2))
+    raise ValueError(f"a literal of HERA's not mapped: {literal!r}")
+
+
+def hera_reason_keys(reasons, conjunctive: bool) -> set[frozenset]:
+    """HERA's reasons (conjunctions for sufficient ones, disjunctions else) as
+    sets of literal keys."""
+    keys = set()
+    for reason in reasons:
+        parts = reason.getConj() if conjunctive else reason.getClause()
+        keys.add(frozenset(hera_literal_key(part) for part in parts))
+    return keys
+
+
+def ethasp_literal_key(text: str, elements) -> tuple:
+    """A literal of ethasp's reasons (text of L) as a key."""
+    import clingo
+
+    from ethasp.principles.formula import parse_formula
+
+    parsed = parse_formula(text, elements)
+
+    def fact(term) -> tuple[str, bool]:
+        name = term.arguments[0]
+        shown = name.string if name.type == clingo.SymbolType.String else str(name)
+        return shown, term.arguments[1].name == "true"
+
+    def utility(term):
+        if term.name == "u":
+            return ("u", frozenset(conj[term.arguments[0]]))
+        return ("num", term.arguments[0].number)
+
+    def key(term) -> tuple:
+        name, args = term.name, term.arguments
+        if name == "neg":
+            return ("not", key(args[0]))
+        if name in ("good", "bad", "neutral"):
+            return (name, fact(args[0]))
+        if name in ("caused", "intended", "goal_fact", "instrumental"):
+            return (name, fact(term))
+        if name in ("means", "means2", "end"):
+            return (name, _shown(args[0]))
+        if name == "causes":
+            return ("causes", fact(args[0]), fact(args[1]))
+        if name == "do":
+            return ("do", frozenset(conj[args[0]]), fact(args[1]))
+        if name == "geq":
+            return ("geq", *(frozenset(conj[a]) for a in args))
+        if name == "ucompare":
+            return ("ucompare", args[0].name, utility(args[1]), utility(args[2]))
+        raise ValueError(f"a literal of ethasp's not mapped: {text}")
+
+    def _shown(symbol) -> str:
+        return symbol.string if symbol.type == clingo.SymbolType.String else str(symbol)
+
+    conj = {
+        name: [(_shown(v), b == "true") for v, b in members]
+        for name, members in parsed.conjunctions.items()
+    }
+    return key(parsed.term)
+
+
+def ethasp_reason_keys(reasons, elements) -> set[frozenset]:
+    return {frozenset(ethasp_literal_key(text, elements) for text in reason) for reason in reasons}

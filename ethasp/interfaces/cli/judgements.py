@@ -92,6 +92,7 @@ def explanation_text(report: JudgementReport) -> list[str]:
         for kind, reasons, truncated in (
             ("necessary", explanation.necessary_reasons, explanation.necessary_truncated),
             ("sufficient", explanation.sufficient_reasons, explanation.sufficient_truncated),
+            ("INUS", explanation.inus_reasons, explanation.inus_truncated),
         ):
             kind_lines, cut = reasons_lines(kind, reasons, truncated, width)
             lines += kind_lines
