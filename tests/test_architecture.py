@@ -11,7 +11,14 @@ PACKAGE = ROOT / "ethasp"
 
 # Lowest first: a group may import itself and the groups before it.
 LAYERS = ["core", "planning", "principles", "reasons", "questions", "batch", "interfaces"]
-CORE = {"ethasp", "ethasp.errors", "ethasp.memo", "ethasp.resources", "ethasp.vocabulary"}
+CORE = {
+    "ethasp",
+    "ethasp.errors",
+    "ethasp.execution",
+    "ethasp.memo",
+    "ethasp.resources",
+    "ethasp.vocabulary",
+}
 
 
 def _module(path: Path) -> str:
@@ -22,7 +29,7 @@ def _module(path: Path) -> str:
 
 
 def _group(module: str) -> str:
-    if module in CORE or module.startswith("ethasp.vocabulary."):
+    if module in CORE or module.startswith(("ethasp.vocabulary.", "ethasp.execution.")):
         return "core"
     return module.split(".")[1]
 

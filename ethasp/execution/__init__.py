@@ -8,5 +8,7 @@
 * :mod:`ethasp.execution.context`: the call a worker runs, as the work sees
   it (progress, partial results, cancellation);
 * :mod:`ethasp.execution.spawner`: child processes for the engines, started
-  safely from a process with threads.
+  safely from a process with threads;
+* :mod:`ethasp.execution.symbols`: clingo's symbols pickled as text, so that
+  they mean the same in another process.
 """

@@ -36,6 +36,12 @@ class Context:
             self.reasons[:] = [reason]
         self.cancelled.set()
 
+    def send(self, message: tuple) -> None:
+        """A message to the front end: ``(kind, value)``; besides progress
+        records and partial results, ``("stderr", text)`` relays text written
+        to standard error."""
+        self._send(message)
+
     def progress(self, record: Any) -> None:
         """A progress record for the front end (its latest one is shown)."""
         self._send(("progress", record))

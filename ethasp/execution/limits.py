@@ -23,7 +23,7 @@ from dataclasses import dataclass
 # Seconds after the time limit at which a front end ends work that is still
 # running (where clingo cannot be interrupted: a grounding).  The promise to
 # users is the time limit plus one second, process teardown included.
-GRACE = 0.5
+GRACE = 0.3
 # Seconds before the time limit at which the work's own budget expires, so
 # that it can still put what it found into words: a part of the limit, at
 # most this much.
@@ -31,8 +31,8 @@ RESERVE = 0.4
 RESERVE_SHARE = 0.1
 # Fractions of the memory limit: beyond SOFT the work is asked to stop and
 # answer bounded; beyond HARD its processes are ended.
-SOFT_MEMORY = 0.75
-HARD_MEMORY = 0.92
+SOFT_MEMORY = 0.7
+HARD_MEMORY = 0.9
 # How often a front end reads the memory of the processes it watches.
 POLL = 0.02
 
@@ -51,12 +51,15 @@ class Limits:
     started: float = 0.0
 
     @classmethod
-    def of(cls, seconds: float | None, gigabytes: float | None) -> Limits:
-        """Limits from the command line's units, starting now."""
+    def of(
+        cls, seconds: float | None, gigabytes: float | None, started: float | None = None
+    ) -> Limits:
+        """Limits from the command line's units, starting at ``started`` (a
+        :func:`time.monotonic` reading; None: now)."""
         return cls(
             seconds if seconds else None,
             int(gigabytes * GB) if gigabytes else None,
-            time.monotonic(),
+            time.monotonic() if started is None else started,
         )
 
     def restarted(self) -> Limits:
@@ -93,6 +96,20 @@ class Limits:
         return f"the memory limit of {self.memory / GB:g} GB was reached"
 
 
+def process_started() -> float:
+    """When this process started, as a :func:`time.monotonic` reading (now,
+    where that cannot be read): a command's limits count its start-up too."""
+    now = time.monotonic()
+    try:
+        with open("/proc/self/stat") as stat:
+            text = stat.read()
+        ticks = int(text[text.rfind(")") + 2 :].split()[19])
+        age = time.clock_gettime(time.CLOCK_BOOTTIME) - ticks / os.sysconf("SC_CLK_TCK")
+    except (OSError, ValueError, IndexError, AttributeError):
+        return now
+    return now - age if 0 <= age < 60 else now
+
+
 def resident(pid: int) -> int:
     """The resident memory of one process in bytes (0 where it cannot be read)."""
     try:
@@ -100,6 +117,19 @@ def resident(pid: int) -> int:
             return int(statm.read().split()[1]) * PAGE
     except (OSError, ValueError, IndexError):
         return 0
+
+
+def data_size(pid: int) -> int:
+    """The private writable memory of a process in bytes (``VmData``: what
+    ``RLIMIT_DATA`` limits); 0 where it cannot be read."""
+    try:
+        with open(f"/proc/{pid}/status") as status:
+            for line in status:
+                if line.startswith("VmData:"):
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        pass
+    return 0
 
 
 def _parents() -> dict[int, int]:

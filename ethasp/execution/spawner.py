@@ -32,6 +32,7 @@ import threading
 from collections.abc import Callable, Iterator
 from typing import Any
 
+from ethasp.execution import symbols  # noqa: F401 (symbols pickle as text)
 from ethasp.execution.limits import limit_data
 
 # Modules a forkserver imports before it forks children.
@@ -155,7 +156,11 @@ class Spawner:
                 data, _ = _receive(sock)
             except (EOFError, OSError):
                 return
-            target, args, memory = pickle.loads(data)
+            try:
+                target, args, memory = pickle.loads(data)
+            except Exception as error:  # e.g. a target this process cannot import
+                _send(sock, pickle.dumps(f"{type(error).__name__}: {error}"))
+                continue
             read, write = os.pipe()
             child = os.fork()
             if child == 0:
@@ -181,6 +186,8 @@ class Spawner:
             _send(self._socket, data)
             answer, fds = _receive(self._socket, with_fd=True)
         pid = pickle.loads(answer)
+        if not isinstance(pid, int):
+            raise RuntimeError(f"the spawner could not start a child process: {pid}")
         stream = os.fdopen(fds[0], "r")
 
         def lines() -> Iterator[str]:

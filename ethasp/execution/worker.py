@@ -51,11 +51,13 @@ from typing import Any
 from ethasp.errors import InputError
 from ethasp.execution import context as context_module
 from ethasp.execution import spawner
+from ethasp.execution import symbols  # noqa: F401 (symbols pickle as text)
 from ethasp.execution.limits import (
     HARD_MEMORY,
     POLL,
     SOFT_MEMORY,
     Limits,
+    data_size,
     descendants,
     limit_data,
     resident,
@@ -72,6 +74,8 @@ DIED = "died"  # the worker ended on its own (a crash)
 
 # Modules a forkserver imports before it forks workers.
 PRELOAD = ["ethasp.execution.worker", "ethasp.planning.model"]
+
+NO_LIMITS = Limits()
 
 # How often (in memory readings) the processes below a worker are listed anew.
 RESCAN = 10
@@ -97,23 +101,40 @@ class Outcome:
 
 
 class _TreeMemory:
-    """The resident memory of the front end and a worker's processes, with the
-    processes below the worker listed anew every :data:`RESCAN` readings."""
+    """The resident memory of a process tree (the front end's, with every
+    worker and the processes below them; or one worker's), its processes
+    listed anew every :data:`RESCAN` readings."""
 
-    def __init__(self, worker: int):
+    def __init__(self, root: int, worker: int):
+        self.root = root
         self.worker = worker
         self.readings = 0
         self.below: list[int] = []
 
     def __call__(self) -> int:
         if self.readings % RESCAN == 0:
-            self.below = descendants(self.worker)
+            self.below = descendants(self.root)
+            if self.worker not in self.below and self.worker != self.root:
+                self.below.append(self.worker)
         self.readings += 1
-        return (
-            resident(os.getpid())
-            + resident(self.worker)
-            + sum(resident(pid) for pid in self.below)
-        )
+        return resident(self.root) + sum(resident(pid) for pid in self.below)
+
+
+@contextlib.contextmanager
+def _main_importable():
+    """A new worker imports the main module of this process, as multiprocessing
+    does, from its file; a main module read from standard input or typed in has
+    no file to import, so it is not imported (the workers need only ethasp)."""
+    main = sys.modules.get("__main__")
+    path = getattr(main, "__file__", None)
+    if path is None or os.path.isfile(path) or getattr(main, "__spec__", None) is not None:
+        yield
+        return
+    del main.__file__
+    try:
+        yield
+    finally:
+        main.__file__ = path
 
 
 def _is_memory_error(error: BaseException) -> bool:
@@ -193,12 +214,21 @@ class Worker:
     """A child process that runs calls one at a time (see the module docstring).
 
     ``warm`` runs once in each new worker before its first call (imports,
-    encodings read); it must be a module-level function.
+    encodings read); it must be a module-level function.  The memory limit of
+    a call holds for the whole process tree of this process (every worker
+    and the processes below them), or with ``own_tree`` for the worker's
+    processes alone (a batch's workers, each with a limit of its own).
     """
 
-    def __init__(self, warm: Callable[[], None] | None = None, name: str = "ethasp-worker"):
+    def __init__(
+        self,
+        warm: Callable[[], None] | None = None,
+        name: str = "ethasp-worker",
+        own_tree: bool = False,
+    ):
         self.warm = warm
         self.name = name
+        self.own_tree = own_tree
         self.pid: int | None = None
         self._connection = None
         self._process: multiprocessing.process.BaseProcess | None = None
@@ -226,9 +256,7 @@ class Worker:
             return
         self._forget()
         mine, theirs = multiprocessing.Pipe()
-        forked = (
-            hasattr(os, "fork") and sys.platform.startswith("linux") and spawner.threads() == 1
-        )
+        forked = hasattr(os, "fork") and sys.platform.startswith("linux") and spawner.threads() == 1
         if forked:
             for stream in (sys.stdout, sys.stderr):
                 with contextlib.suppress(OSError, ValueError):
@@ -248,7 +276,8 @@ class Worker:
             process = _context().Process(
                 target=_serve, args=(theirs, self.warm), name=self.name, daemon=True
             )
-            process.start()
+            with _main_importable():
+                process.start()
             self._process, self.pid = process, process.pid
         theirs.close()
         self._connection = mine
@@ -301,27 +330,35 @@ class Worker:
         self,
         function: Callable[..., Any],
         *args: Any,
-        limits: Limits = Limits(),
+        limits: Limits = NO_LIMITS,
         on_progress: Callable[[Any], None] | None = None,
         on_partial: Callable[[Any], None] | None = None,
+        on_stderr: Callable[[str], None] | None = None,
         cancel: threading.Event | None = None,
         **kwargs: Any,
     ) -> Outcome:
         """Run ``function(*args, **kwargs)`` in the worker under ``limits``
         (measured from ``limits.started``); ``cancel`` (set by another
         thread) ends it at once.  ``function`` and its arguments and value
-        must pickle (a module-level function)."""
+        must pickle (a module-level function).  ``on_progress``,
+        ``on_partial`` and ``on_stderr`` receive what the work reports
+        (:mod:`ethasp.execution.context`) as it comes."""
+        handlers = {"progress": on_progress, "partial": on_partial, "stderr": on_stderr}
         with self._lock:
-            return self._call(function, args, kwargs, limits, on_progress, on_partial, cancel)
+            return self._call(function, args, kwargs, limits, handlers, cancel)
 
-    def _call(self, function, args, kwargs, limits, on_progress, on_partial, cancel) -> Outcome:
+    def _call(self, function, args, kwargs, limits, handlers, cancel) -> Outcome:
         self.start()
         self._calls += 1
         call = self._calls
-        memory = _TreeMemory(self.pid) if limits.memory is not None else None
-        budget = None
+        memory = None
         if limits.memory is not None:
-            budget = max(64 * 2**20, int(limits.memory * HARD_MEMORY) - resident(os.getpid()))
+            memory = _TreeMemory(self.pid if self.own_tree else os.getpid(), self.pid)
+        budget = None
+        if memory is not None:
+            # The worker's data may grow by what the tree has left below the limit.
+            headroom = int(limits.memory * HARD_MEMORY) - memory()
+            budget = data_size(self.pid) + max(16 * 2**20, headroom)
         outcome = Outcome(DONE)
         try:
             self._connection.send(("call", call, function, args, kwargs, limits, budget))
@@ -347,13 +384,11 @@ class Worker:
                     kind, value = DIED, None
                 if kind == "ready":
                     self._ready = True
-                elif kind == "progress":
-                    if on_progress is not None:
-                        on_progress(value)
-                elif kind == "partial":
-                    outcome.partial = value
-                    if on_partial is not None:
-                        on_partial(value)
+                elif kind in handlers:
+                    if kind == "partial":
+                        outcome.partial = value
+                    if handlers[kind] is not None:
+                        handlers[kind](value)
                 else:
                     return self._ended(outcome, kind, value, limits)
                 continue
@@ -382,14 +417,15 @@ class Worker:
                         kind, value = self._receive()
                     except (EOFError, OSError):
                         break
-                    if kind == "partial":
-                        outcome.partial = value
-                    elif kind not in ("ready", "progress"):
+                    if kind in handlers:
+                        if kind == "partial":
+                            outcome.partial = value
+                        if handlers[kind] is not None:
+                            handlers[kind](value)
+                    elif kind != "ready":
                         return self._ended(outcome, kind, value, limits)
                 self.kill()
-                near = (
-                    limits.memory is not None and outcome.peak > SOFT_MEMORY * limits.memory
-                )
+                near = limits.memory is not None and outcome.peak > SOFT_MEMORY * limits.memory
                 return self._ended(
                     outcome,
                     MEMORY if near else DIED,
@@ -406,6 +442,8 @@ class Worker:
         outcome.status = kind
         if kind == DONE:
             outcome.value = value
+        elif kind == MEMORY and limits.memory is not None:
+            outcome.message = limits.memory_words()  # an allocation beyond it failed
         else:
             outcome.message = "" if value is None else str(value)
         outcome.seconds = time.monotonic() - limits.started if limits.started else 0.0
@@ -415,7 +453,7 @@ class Worker:
 def run(
     function: Callable[..., Any],
     *args: Any,
-    limits: Limits = Limits(),
+    limits: Limits = NO_LIMITS,
     warm: Callable[[], None] | None = None,
     **kwargs: Any,
 ) -> Outcome:

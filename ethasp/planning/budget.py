@@ -8,7 +8,11 @@ of time or is cancelled stops soon and answers ``bounded``, never a claim it
 has not proven.
 
 One budget covers one command (or one question of a dialogue): every search
-made for it shares the same deadline.
+made for it shares the same deadline.  A budget made while a worker process
+runs a call for a front end (:mod:`ethasp.execution`) joins that call: it
+expires by the call's soft deadline, is cancelled with it (for example when
+the memory of the process tree nears its limit), and reports progress to the
+front end unless it has a callback of its own.
 """
 
 from __future__ import annotations
@@ -17,6 +21,8 @@ import threading
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
+
+from ethasp.execution import context as execution_context
 
 # The default time limit of a command line search, in seconds (``ethasp ...
 # --time-limit 0`` for none; the Python API has no limit unless given one).
@@ -70,6 +76,16 @@ class Budget:
         self._cancelled = threading.Event()
         self._reason: list[str] = []  # why it was cancelled, if a reason was given
         self._share = False
+        running = execution_context.current()
+        if running is not None:
+            self._cancelled = running.cancelled
+            self._reason = running.reasons
+            soft = running.limits.soft_deadline()
+            if soft is not None and (self.deadline is None or soft < self.deadline):
+                self.deadline = soft
+                self.time_limit = running.limits.time
+            if self.on_progress is None:
+                self.on_progress = running.progress
 
     def share(self, seconds: float) -> Budget:
         """A part of this budget: at most ``seconds`` more, cancelled with it,

@@ -157,17 +157,16 @@ class _Exact:
             # proves that there is none) instead of the layers.
             from ethasp.planning.engines.greedy import Greedy
 
-            reader = (lambda: Atoms(planner)) if layers_module.can_fork() else Atoms(planner)
-            self.greedy = Greedy(reader, budget, read_plan=True).start()
+            self.greedy = Greedy(Atoms(planner), budget, read_plan=True).start()
             return
         large = (
             len(planner.get("action", 1)) >= LAYERS_AT_ONCE_ACTIONS
             or len(planner.get("variable", 1)) >= LAYERS_AT_ONCE_VARIABLES
         )
         if large and layers_module.can_fork():
-            # Started now, before any solve: the child process reads the
-            # ground atoms itself while this process goes on grounding.
-            self.layers = Layers(lambda: Atoms(planner), budget, read_plan=read_plan).start()
+            # Started now, before any solve: the child process works while
+            # this process goes on grounding.
+            self.layers = Layers(Atoms(planner), budget, read_plan=read_plan).start()
         else:
             # The ground atoms the layers need, read now: the planner's control
             # cannot be read while it solves, which is when the layers start.

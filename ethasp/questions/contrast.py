@@ -271,6 +271,38 @@ def check_question(model: Model, question: Question, plan: Plan) -> list[Constra
     return [Constraint(clingo.Function("q", [clingo.Number(1)]), term) for term in resolved.terms]
 
 
+def beyond_horizon(question: Question, terms: Sequence[clingo.Symbol], max_horizon: int) -> str:
+    """Why a question cannot be searched within ``max_horizon`` steps: the
+    empty text if it can.  A question that needs a step beyond the horizon
+    (``why not A at T``, ``why not A within T1..T2`` with T1 beyond it) is
+    answered ``bounded`` without a search; one that only names such a step
+    (``why A at T``, ``why F at T``, a window that ends beyond it) is
+    refused in one line (InputError).  Either way nothing is grounded for it:
+    a step of a question is a horizon of its own (``questions/
+    restriction.lp`` counts the steps up to it)."""
+    for term in terms:
+        steps_named = [
+            argument.number
+            for argument in term.arguments
+            if argument.type == clingo.SymbolType.Number
+        ]
+        if term.name == "at_most" or not steps_named or max(steps_named) <= max_horizon:
+            continue
+        first = steps_named[0]
+        if term.name in ("at", "within") and first > max_horizon:
+            return (
+                f"the question needs an action at step {first}, beyond the maximal horizon "
+                f"{max_horizon}: no plan up to horizon {max_horizon} has one "
+                "(--max-horizon N searches further)"
+            )
+        raise InputError(
+            f"question '{question}': step {max(steps_named)} is beyond the maximal horizon "
+            f"{max_horizon}, where no plan is searched; ask about steps up to "
+            f"{max_horizon}, or raise it with --max-horizon N"
+        )
+    return ""
+
+
 def longest(constraints: Sequence[Constraint]) -> int | None:
     """The most steps a plan meeting the constraints may have (their
     ``at_most(N)``), or None."""
@@ -618,12 +650,21 @@ def answer_questions(
     under = one_restricting_principle(under, kind=kind)
     check_plan(model, plan)
     new: list[Constraint] = []
+    beyond = ""
     for question in questions:
-        terms = [constraint.term for constraint in check_question(model, question, plan)]
-        new += _constraints(model, terms, len(previous) + len(new))
+        asked = check_question(model, question, plan)
+        terms = [constraint.term for constraint in asked]
+        why = beyond_horizon(question, terms, max_horizon) if not model.is_cam else ""
+        if why:
+            beyond = beyond or why
+            new += asked  # not registered: nothing is grounded for it
+        else:
+            new += _constraints(model, terms, len(previous) + len(new))
     constraints = list(dict.fromkeys(list(previous) + new))
     original = _judge_side(model, plan, principle, max_horizon, budget, reasons_limit)
-    if conflicting and set(conflicting) <= set(previous):
+    if beyond:
+        search = ContrastSearch(HPlanResult(BOUNDED, [under], None, max_horizon, beyond), False)
+    elif conflicting and set(conflicting) <= set(previous):
         search = ContrastSearch(
             HPlanResult(
                 NONE,

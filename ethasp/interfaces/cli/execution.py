@@ -1,32 +1,39 @@
-"""How a command runs: in a worker thread, watched for its memory and time limits.
+"""How a command runs: in a worker process that ends at its limits.
 
-:func:`main` parses the command line (:mod:`ethasp.interfaces.cli.parser`),
-runs the command's ``run`` function, turns errors into one line on standard
-error and an exit code, and handles Ctrl-C.
+:func:`main` parses the command line (:mod:`ethasp.interfaces.cli.parser`)
+and runs the command's ``run`` function.  A command that gives one answer
+(``plan``, ``judge``, ``ask``, ...) runs in a worker process
+(:mod:`ethasp.execution.worker`) under ``--time-limit`` and
+``--memory-limit``: its searches stop a little before the time limit and
+answer ``bounded``; where clingo cannot be stopped (a grounding), the worker
+is ended at the limit plus half a second and the command answers ``bounded``
+with what it had found (the partial answers the command reported, see
+:func:`checkpoint`).  The memory of this process and the worker's together
+stays below the memory limit.  The answer is written by this process, whole
+or not at all; lines on standard error (warnings, one-line errors) come
+through as the worker writes them.
+
+The dialogue, the page and the batch keep this process and run each of their
+searches in workers of their own.  Errors become one line on standard error
+and an exit code; Ctrl-C ends the worker at once and exits with code 130.
 """
 
 from __future__ import annotations
 
 import argparse
 import contextlib
+import io
+import json
 import os
 import sys
-import threading
-import time
 from collections.abc import Sequence
 
 from ethasp.errors import InputError
-from ethasp.interfaces.cli.options import MEMORY_HARD
+from ethasp.execution import context as execution_context
+from ethasp.execution.limits import Limits, process_started
+from ethasp.execution.worker import CANCELLED, DONE, FAILED, INPUT_ERROR, Worker
 from ethasp.interfaces.cli.parser import build_parser
-
-
-def _memory() -> int:
-    """This process's resident memory in bytes (0 where it cannot be read)."""
-    try:
-        with open("/proc/self/statm") as statm:
-            return int(statm.read().split()[1]) * os.sysconf("SC_PAGE_SIZE")
-    except (OSError, ValueError, IndexError):
-        return 0
+from ethasp.interfaces.progress import ProgressLine
 
 
 def _command(args: argparse.Namespace) -> int:
@@ -55,6 +62,9 @@ def _command(args: argparse.Namespace) -> int:
         _error("the input is nested too deeply to read")
         return 2
     except MemoryError:
+        running = execution_context.current()
+        if running is not None and running.limits.memory is not None:
+            raise  # the memory limit: the front end answers bounded
         _error("out of memory: the input is too large")
         return 2
 
@@ -63,27 +73,173 @@ def _error(message: str) -> None:
     print(f"ethasp: error: {' '.join(message.split())}", file=sys.stderr, flush=True)
 
 
-# A command that has not answered this long after its time limit is stuck where
-# clingo cannot be stopped (the searches' groundings stop at the limit, but
-# not a model's own grounding, nor a program over one plan): seconds = limit + this.
-# Only commands that give one answer are watched (``one_answer``): the dialogue
-# and the web page run jobs, each under the time limit of its own budget, and
-# stay up however long they are used.
-OVERRUN_GRACE = 10.0
+# -- in the worker -------------------------------------------------------------------
 
 
-def _end(code: int, end_process: bool) -> int:
-    """Leave with ``code`` while the command's thread may still be inside clingo
-    (or reading input): the process ends at once when it is the command line's."""
-    if end_process:
-        for stream in (sys.stdout, sys.stderr):
-            with contextlib.suppress(OSError, ValueError):
-                stream.flush()
-        os._exit(code)
-    return code
+class _Relay(io.TextIOBase):
+    """Standard error of a command in a worker: each line to the front end as
+    it is written."""
+
+    def __init__(self, running: execution_context.Context):
+        self.running = running
+        self.pending = ""
+
+    def writable(self) -> bool:
+        return True
+
+    def isatty(self) -> bool:
+        return False
+
+    def write(self, text: str) -> int:
+        self.pending += text
+        if "\n" in self.pending:
+            complete, _, self.pending = self.pending.rpartition("\n")
+            self.running.send(("stderr", complete + "\n"))
+        return len(text)
+
+    def flush(self) -> None:
+        if self.pending:
+            self.running.send(("stderr", self.pending))
+            self.pending = ""
 
 
-def _interrupted(args: argparse.Namespace, done: threading.Event, end_process: bool) -> int:
+def run_in_worker(args: argparse.Namespace) -> tuple[int, str]:
+    """A command in a worker: its exit code and what it wrote on standard output."""
+    running = execution_context.current()
+    out = io.StringIO()
+    err = _Relay(running) if running is not None else sys.stderr
+    sys.stdout, sys.stderr = out, err
+    try:
+        code = _command(args)
+    finally:
+        with contextlib.suppress(OSError, ValueError):
+            err.flush()
+        sys.stdout, sys.stderr = sys.__stdout__, sys.__stderr__
+    return code, out.getvalue()
+
+
+def checkpoint(args: argparse.Namespace, data: dict, text: str) -> None:
+    """The answer so far (text, or JSON with --json), for the front end to print
+    if the command is ended at a limit before it answers; ``data`` and
+    ``text`` say ``bounded`` and why."""
+    execution_context.partial(json.dumps(data, indent=2) if args.json else text)
+
+
+# -- in this process -------------------------------------------------------------------
+
+
+def _bounded(args: argparse.Namespace, why: str) -> str:
+    """The answer of a command ended at a limit before it reported anything."""
+    proof = f"{why} before an answer was found"
+    if getattr(args, "json", False):
+        return json.dumps({"status": "bounded", "proof": proof}, indent=2)
+    return f"bounded: {proof}; nothing was proven"
+
+
+def _write(text: str, stream=None) -> None:
+    stream = stream or sys.stdout
+    if text:
+        stream.write(text if text.endswith("\n") else text + "\n")
+    stream.flush()
+
+
+def supervised(args: argparse.Namespace, limits: Limits) -> int:
+    """Run a command that gives one answer in a worker process (see the module
+    docstring); the exit code."""
+    progress = ProgressLine(enabled=False if getattr(args, "quiet", False) else None)
+    worker = Worker()
+
+    def relay(text: str) -> None:
+        progress.clear()
+        sys.stderr.write(text)
+        sys.stderr.flush()
+
+    try:
+        outcome = worker.call(
+            run_in_worker, args, limits=limits, on_progress=progress, on_stderr=relay
+        )
+    except KeyboardInterrupt:
+        worker.kill()
+        progress.clear()
+        print("ethasp: interrupted", file=sys.stderr, flush=True)
+        return 130
+    finally:
+        worker.kill()
+    progress.clear()
+    if outcome.status == DONE:
+        code, text = outcome.value
+        try:
+            # With --svg - the answer went to standard error and the picture here.
+            if text:
+                sys.stdout.write(text)
+            sys.stdout.flush()
+        except BrokenPipeError:
+            with contextlib.suppress(OSError):
+                sys.stderr.close()
+            return 1
+        return code
+    if outcome.status == INPUT_ERROR:
+        _error(outcome.message)
+        return 2
+    if outcome.limited:
+        stream = sys.stderr if getattr(args, "svg", None) == "-" else sys.stdout
+        _write(outcome.partial or _bounded(args, outcome.message), stream)
+        return 0
+    if outcome.status == CANCELLED:
+        print("ethasp: interrupted", file=sys.stderr, flush=True)
+        return 130
+    detail = outcome.message.strip().splitlines()
+    if outcome.status == FAILED and os.environ.get("ETHASP_DEBUG"):
+        print(outcome.message, file=sys.stderr, flush=True)
+    _error(
+        f"internal error: {detail[-1] if detail else outcome.status} (please report it; "
+        "ETHASP_DEBUG=1 shows where)"
+    )
+    return 70
+
+
+def main(argv: Sequence[str] | None = None, worker: bool | None = None) -> int:
+    """The ethasp command line (``argv`` None: the process's arguments).
+
+    A command that gives one answer runs in a worker process under its
+    limits (see the module docstring) when ``worker`` is true, which is the
+    default for the command line itself (``argv`` None).  Called from Python
+    with ``argv``, the command runs in this process by default, under the
+    cooperative limits of its searches only (they answer ``bounded`` at the
+    time limit, but a grounding is not stopped).
+    """
+    try:
+        parser = build_parser()
+        try:
+            args = parser.parse_args(argv)
+        except SystemExit as done:  # --help, or a usage error already printed
+            return done.code if isinstance(done.code, int) else (0 if done.code is None else 2)
+        in_worker = (argv is None) if worker is None else worker
+        if args.one_answer and in_worker:
+            limits = Limits.of(
+                getattr(args, "time_limit", None),
+                getattr(args, "memory_limit", None),
+                process_started() if argv is None else None,
+            )
+            return supervised(args, limits)
+        try:
+            return _command(args)
+        except KeyboardInterrupt:
+            return _interrupted(args)
+        except Exception as error:
+            if os.environ.get("ETHASP_DEBUG"):
+                raise
+            _error(
+                f"internal error: {type(error).__name__}: {error} (please report it; "
+                "ETHASP_DEBUG=1 shows where)"
+            )
+            return 70
+    except KeyboardInterrupt:
+        print("ethasp: interrupted", file=sys.stderr, flush=True)
+        return 130
+
+
+def _interrupted(args: argparse.Namespace) -> int:
     """Ctrl-C: one line (after saving a dialogue), exit code 130."""
     hook = getattr(args, "on_interrupt", None)
     note = ""
@@ -93,83 +249,4 @@ def _interrupted(args: argparse.Namespace, done: threading.Event, end_process: b
         except Exception as error:
             note = f"; dialogue not saved: {error}"
     print(f"ethasp: interrupted{note}", file=sys.stderr, flush=True)
-    return 130 if done.is_set() else _end(130, end_process)
-
-
-def main(argv: Sequence[str] | None = None) -> int:
-    """The ethasp command line (``argv`` None: the process's arguments).
-
-    The command runs in a worker thread, so that Ctrl-C is handled at once even
-    while clingo grounds or solves, and so that a command still running long
-    after its time limit (clingo cannot interrupt grounding) is ended with an
-    error.  Called with ``argv`` from Python, main returns in these cases and
-    leaves the worker behind; as the command line, it ends the process.
-    """
-    end_process = argv is None
-    args = None
-    try:
-        parser = build_parser()
-        try:
-            args = parser.parse_args(argv)
-        except SystemExit as done:  # --help, or a usage error already printed
-            return done.code if isinstance(done.code, int) else (0 if done.code is None else 2)
-        outcome: dict = {}
-        done = threading.Event()
-
-        def work() -> None:
-            try:
-                outcome["code"] = _command(args)
-            except BaseException as error:
-                outcome["error"] = error
-            finally:
-                done.set()
-
-        limit = getattr(args, "time_limit", None)
-        overrun = limit + OVERRUN_GRACE if limit and args.one_answer else None
-        started = time.monotonic()
-        # (An Event, not Thread.join: an interrupted join can mark a running
-        # thread as stopped.)
-        threading.Thread(target=work, name="ethasp-command", daemon=True).start()
-        memory = getattr(args, "memory_limit", None)
-        memory = memory * 2**30 if memory else None
-        try:
-            while not done.wait(0.5):
-                if memory is not None and args.one_answer:
-                    used = _memory()
-                    limits = getattr(args, "limits", None)
-                    if used > memory and limits is not None and not limits.cancelled:
-                        limits.cancel(f"the memory limit of {args.memory_limit:g} GB was reached")
-                    if used > MEMORY_HARD * memory:
-                        _error(
-                            f"out of memory: {used / 2**30:.1f} GB in use, more than "
-                            f"{MEMORY_HARD:g} times the memory limit of "
-                            f"{args.memory_limit:g} GB, where clingo cannot be stopped "
-                            "(--memory-limit GB raises it)"
-                        )
-                        return _end(2, end_process)
-                if overrun is not None and time.monotonic() - started > overrun:
-                    _error(
-                        f"no answer within the time limit of {limit:g} s: still working "
-                        f"after {overrun:g} s, where clingo cannot be stopped (the model's "
-                        "own grounding, or a program over one plan; does it end?)"
-                    )
-                    return _end(2, end_process)
-        except KeyboardInterrupt:
-            return _interrupted(args, done, end_process)
-        if "error" in outcome:
-            error = outcome["error"]
-            if isinstance(error, KeyboardInterrupt):
-                return _interrupted(args, done, end_process)
-            if os.environ.get("ETHASP_DEBUG"):
-                raise error
-            _error(
-                f"internal error: {type(error).__name__}: {error} (please report it; "
-                "ETHASP_DEBUG=1 shows where)"
-            )
-            return 70
-        # The command is done and its output written: the process ends at
-        # once, without tearing down clingo's grounding (tens of milliseconds).
-        return _end(outcome["code"], end_process)
-    except KeyboardInterrupt:
-        print("ethasp: interrupted", file=sys.stderr, flush=True)
-        return 130
+    return 130

@@ -28,8 +28,6 @@ trace (``encodings/planning/trace.lp``) before anyone sees it.
 
 from __future__ import annotations
 
-import os
-import signal
 import sys
 import threading
 from collections.abc import Callable
@@ -38,6 +36,7 @@ from typing import TYPE_CHECKING
 
 import clingo
 
+from ethasp.execution import spawner
 from ethasp.planning.budget import Budget
 from ethasp.planning.engines import ALL_FEATURES
 
@@ -300,26 +299,27 @@ class Status:
 
 
 def can_fork() -> bool:
-    """Whether the layers may run in a child process (a fork of this one)."""
-    return hasattr(os, "fork") and sys.platform.startswith("linux")
+    """Whether the layers run in a child process (:mod:`ethasp.execution.spawner`)."""
+    return sys.platform.startswith("linux")
 
 
 class Layers:
     """Exact layers of a planner's search model (given by its :class:`Atoms`,
-    read between solves, or by a function that reads them: called in the child
-    process, so only where the planner is not solving when the layers start),
-    computed beside the search.
+    or by a function that reads them, called by :meth:`start`: so only where
+    the planner is not solving then), computed beside the search.
 
     :meth:`start` starts the work, :attr:`status` tells what is proven so
     far (:attr:`news` is set whenever it changes), :meth:`stop` ends the work.
     ``read_plan``: read a shortest plan off the layers once the goal layer is
     found.
 
-    On Linux the layers are computed in a child process (a fork of this
-    one, which ends it when the search ends): the diagram library holds
-    Python's interpreter lock for every operation, which a thread of this
-    process would have to share with the solver's driver.  The child reports
-    through a pipe, one line a finding.  Elsewhere they run in a thread.
+    On Linux the layers are computed in a child process, which the search
+    ends when it ends (started by this process's spawner,
+    :mod:`ethasp.execution.spawner`, never by a fork of this process and its
+    threads): the diagram library holds Python's interpreter lock for every
+    operation, which a thread of this process would have to share with the
+    solver's driver.  The child gets the atoms and reports through a pipe,
+    one line a finding.  Elsewhere they run in a thread.
     """
 
     def __init__(
@@ -339,15 +339,15 @@ class Layers:
         self.news = threading.Event()  # set whenever the status changes
         self._stop = threading.Event()
         self._budget = budget.until(self._stop.is_set)
-        self._child: int | None = None
+        self._child: spawner.Child | None = None
         self._lock = threading.Lock()
 
     def start(self) -> Layers:
+        if callable(self._atoms):  # read here, while the planner does not solve
+            self._atoms = self._atoms()
         if can_fork():
             self._start_child()
         else:
-            if callable(self._atoms):  # read here: a thread shares the control
-                self._atoms = self._atoms()
             threading.Thread(
                 target=self._run, args=(self._publish,), name="ethasp-layers", daemon=True
             ).start()
@@ -359,11 +359,7 @@ class Layers:
         with self._lock:
             child, self._child = self._child, None
         if child is not None:
-            try:
-                os.kill(child, signal.SIGKILL)
-                os.waitpid(child, 0)
-            except (ProcessLookupError, ChildProcessError):
-                pass
+            child.kill()
 
     def _publish(self, **changes) -> None:
         self.status = Status(**{**self.status.__dict__, **changes})
@@ -372,34 +368,28 @@ class Layers:
     # -- in a child process --------------------------------------------------------
 
     def _start_child(self) -> None:
-        read, write = os.pipe()
-        parent = os.getpid()
-        child = os.fork()
-        if child == 0:  # the child: compute, report, end
-            code = 0
-            try:
-                os.close(read)
-                signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent ends it
-                self._budget = self._budget.until(lambda: os.getppid() != parent)
-                with os.fdopen(write, "w", buffering=1) as pipe:
-                    self._run(lambda **changes: _report(pipe, changes))
-            except BaseException:
-                code = 1
-            finally:
-                os._exit(code)
-        os.close(write)
+        child = spawner.spawn(
+            _compute,
+            (
+                type(self),
+                self._atoms,
+                self.read_plan,
+                self.node_limit,
+                self.bidirectional,
+                self._budget.deadline,
+            ),
+        )
         self._child = child
         threading.Thread(
-            target=self._listen, args=(read,), name="ethasp-layers", daemon=True
+            target=self._listen, args=(child,), name="ethasp-layers", daemon=True
         ).start()
 
-    def _listen(self, read: int) -> None:
-        """Read the child's reports into :attr:`status` (until the pipe closes)."""
-        with os.fdopen(read, "r") as pipe:
-            for line in pipe:
-                changes = _parse_report(line)
-                if changes:
-                    self._publish(**changes)
+    def _listen(self, child: spawner.Child) -> None:
+        """Read the child's reports into :attr:`status` (until it ends)."""
+        for line in child.lines():
+            changes = _parse_report(line)
+            if changes:
+                self._publish(**changes)
         if self.status.working:
             self._publish(stopped="exact reachability ended")
 
@@ -501,6 +491,24 @@ class Layers:
         values = engine.bdd.pick(engine.layers[layer] & goal, care_vars=names)
         state = frozenset(v for v in self.model.variables if values[f"x{engine.index[v]}"])
         return engine.path_to(state, layer)
+
+
+def _compute(
+    engine: type[Layers],
+    atoms: Atoms,
+    read_plan: bool,
+    node_limit: int,
+    bidirectional: bool,
+    deadline: float | None,
+    out,
+) -> None:
+    """In a child process: an engine's work, each finding a line on ``out``."""
+    budget = Budget(None)
+    budget.deadline = deadline
+    layers = engine(
+        atoms, budget, read_plan=read_plan, node_limit=node_limit, bidirectional=bidirectional
+    )
+    layers._run(lambda **changes: _report(out, changes))
 
 
 def _report(pipe, changes: dict) -> None:
