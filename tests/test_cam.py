@@ -195,8 +195,11 @@ def test_a_cam_is_told_from_a_situation_by_its_content(tmp_path):
     situation = ROOT / "asp" / "hera" / "trolley.yaml"
     assert Model.load([situation]).is_situation
     (tmp_path / "neither.json").write_text('{"description": "nothing"}')
-    with pytest.raises(InputError, match="neither a HERA situation"):
+    with pytest.raises(InputError, match="has no initialState"):
         Model.load([tmp_path / "neither.json"])
+    (tmp_path / "list.json").write_text("[1, 2]")
+    with pytest.raises(InputError, match="the file must be a mapping"):
+        Model.load([tmp_path / "list.json"])
 
 
 def test_the_world_gives_background_variables_and_events(tmp_path):

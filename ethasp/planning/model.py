@@ -157,7 +157,7 @@ class Model:
         sources given as (name, text), e.g. ``("<stdin>", text)`` read from
         standard input; messages name them by that name.
         """
-        from ethasp.planning.readers.hera_data import translate_file
+        from ethasp.planning.readers.hera import translate_file
         from ethasp.planning.readers.situation import situation_paths
 
         sources, naming = [], Naming()

@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import json
 import re
-from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, NoReturn
@@ -74,30 +73,24 @@ def load_data(path: Path, text: str) -> Any:
 
 
 def kind_of(data: Any, where: str) -> str:
-    """Which of HERA's models the data is, by its content: a situation
-    (``initialState``, or actions described by mappings) or a causal agency
-    model (actions named by strings, ``action``, ``mechanisms``); one line
-    if it is neither."""
+    """Which of HERA's models the data is, by its content: a causal agency
+    model names its actions by strings (``actions``, or its older layout's
+    ``action``) or has ``mechanisms`` or ``consequences``; anything else is
+    read as a situation (whose reader says what it lacks)."""
     if not isinstance(data, dict):
         raise InputError(
-            f"{where}: neither a HERA situation nor a causal agency model (the file "
-            f"holds {type(data).__name__ if data is not None else 'nothing'}, not a mapping)"
+            f"{where}: the file must be a mapping (a HERA situation or causal agency "
+            f"model), not {type(data).__name__ if data is not None else 'empty'}"
         )
     actions = data.get("actions")
     if "initialState" in data or (
         isinstance(actions, list) and any(isinstance(action, dict) for action in actions)
     ):
         return SITUATION
-    if (
-        "mechanisms" in data
-        or "action" in data
-        or (isinstance(actions, list) and all(isinstance(a, (str, int)) for a in actions))
-    ):
+    named = isinstance(actions, list) and bool(actions)
+    if "mechanisms" in data or "action" in data or "consequences" in data or named:
         return CAM
-    raise InputError(
-        f"{where}: neither a HERA situation (it has no initialState) nor a causal agency "
-        "model (it has no actions named by strings and no mechanisms)"
-    )
+    return SITUATION
 
 
 @dataclass
@@ -201,28 +194,3 @@ class DataReader:
             if not isinstance(phrase, str):
                 self.fail(f"labels: patient {name} needs a phrase (a string)")
             self.add("patient_label", name_term(name), clingo.String(phrase))
-
-
-def translate_file(path: Path, world: Mapping[str, bool] | None = None) -> tuple[str, str]:
-    """A HERA file as (its kind, ``situation`` or ``cam``, and its ASP facts);
-    warnings go to standard error.  ``world``: values of a causal agency
-    model's background variables and events, over those of its file."""
-    import sys
-
-    from ethasp.planning.terms import read_text
-
-    data = load_data(path, read_text(path))
-    kind = kind_of(data, str(path))
-    if kind == CAM:
-        from ethasp.planning.readers.cam import translate_data as translate_cam
-
-        if world:
-            data = dict(data, world={**(data.get("world") or {}), **world})
-        text, warnings = translate_cam(data, str(path))
-    else:
-        from ethasp.planning.readers.situation import read_situation
-
-        text, warnings = read_situation(data, str(path))
-    for line in warnings:
-        print(line, file=sys.stderr)
-    return kind, text
