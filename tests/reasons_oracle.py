@@ -60,6 +60,40 @@ def evaluate(formula: Formula, assignment: dict[str, bool]) -> bool:
 _VALUATION = re.compile(r"^(good|bad|neutral)\((.*)\)$")
 _CAUSED = re.compile(r"^caused\((.*),(true|false)\)$")
 _GEQ = re.compile(r"^geq\((\w+),(\w+)\)$")
+_INTENDED = re.compile(r"^intended\((.*),(true|false)\)$")
+_CAUSES = re.compile(r"^causes\(fact\((\w+),(true|false)\),fact\((\w+),(true|false)\)\)$")
+_COMPARE = re.compile(r"^ucompare\((gt|geq|eq),(num\(-?\d+\)|u\(\w+\)),(num\(-?\d+\)|u\(\w+\))\)$")
+_OTHER = {"true": "false", "false": "true"}
+
+
+def _compare_consistent(compare: dict[tuple[str, str, str], bool]) -> bool:
+    """HERA's theory of comparisons: X > X fails, X >= X and X = X hold, and
+    X > Y excludes Y > X, Y >= X, X = Y and Y = X."""
+    for (op, x, y), value in compare.items():
+        if x == y and value == (op == "gt"):
+            return False
+        if op == "gt" and value:
+            against = [("gt", y, x), ("geq", y, x), ("eq", x, y), ("eq", y, x)]
+            if any(compare.get(key) and key != (op, x, y) for key in against):
+                return False
+    return True
+
+
+def _causes_consistent(causes: dict[tuple[tuple, tuple], bool]) -> bool:
+    """HERA's theory of Causes between facts p, q (-p the other fact of p's
+    variable): not Causes(p,-p); not both Causes(p,q) and Causes(q,p) (p !=
+    q), Causes(p,q) and Causes(p,-q), Causes(p,q) and Causes(-p,q)."""
+    for (p, q), value in causes.items():
+        if not value:
+            continue
+        other_p, other_q = (p[0], _OTHER[p[1]]), (q[0], _OTHER[q[1]])
+        if q == other_p:
+            return False
+        if p != q and causes.get((q, p)):
+            return False
+        if causes.get((p, other_q)) or causes.get((other_p, q)):
+            return False
+    return True
 
 
 def consistent(assignment: dict[str, bool]) -> bool:
@@ -67,8 +101,18 @@ def consistent(assignment: dict[str, bool]) -> bool:
     valuations: dict[str, dict[str, bool]] = {}
     caused: dict[str, dict[str, bool]] = {}
     geq: dict[tuple[str, str], bool] = {}
+    intended: dict[str, dict[str, bool]] = {}
+    causes: dict[tuple[tuple, tuple], bool] = {}
+    compare: dict[tuple[str, str, str], bool] = {}
     for atom, value in assignment.items():
-        if match := _VALUATION.match(atom):
+        if match := _INTENDED.match(atom):
+            intended.setdefault(match.group(1), {})[match.group(2)] = value
+        elif match := _CAUSES.match(atom):
+            p, q = (match.group(1), match.group(2)), (match.group(3), match.group(4))
+            causes[(p, q)] = value
+        elif match := _COMPARE.match(atom):
+            compare[(match.group(1), match.group(2), match.group(3))] = value
+        elif match := _VALUATION.match(atom):
             valuations.setdefault(match.group(2), {})[match.group(1)] = value
         elif match := _CAUSED.match(atom):
             caused.setdefault(match.group(1), {})[match.group(2)] = value
@@ -79,9 +123,11 @@ def consistent(assignment: dict[str, bool]) -> bool:
             return False
         if len(kinds) == 3 and not any(kinds.values()):
             return False
-    for values in caused.values():
+    for values in [*caused.values(), *intended.values()]:
         if values.get("true") and values.get("false"):
             return False
+    if not (_compare_consistent(compare) and _causes_consistent(causes)):
+        return False
     for (c, d), value in geq.items():
         if c == d and not value:
             return False
@@ -138,6 +184,26 @@ def necessary_reasons(formula: Formula, actual: dict[str, bool]) -> set[frozense
             if all(chosen & reason for reason in reasons):
                 hitting.append(chosen)
     return _minimal(hitting) if reasons else set()
+
+
+def inus_reasons(formula: Formula, actual: dict[str, bool]) -> set[frozenset]:
+    """HERA's INUS reasons (ethics.explanations.generate_inus_reasons): its
+    necessary reasons, the actual literals C cap A of each prime implicate C
+    of the actual value (the literals that a prime implicant of the other
+    value flips), that are part of a sufficient reason."""
+    atoms = atoms_of(formula)
+    target = evaluate(formula, actual)
+    models = assignments(atoms)
+    flipping = []
+    for values in itertools.product([None, False, True], repeat=len(atoms)):
+        term = {a: v for a, v in zip(atoms, values, strict=True) if v is not None}
+        agreeing = [m for m in models if all(m[a] == v for a, v in term.items())]
+        if agreeing and all(evaluate(formula, m) != target for m in agreeing):
+            flipping.append(frozenset(term.items()))
+    primes = _minimal(flipping)
+    necessary = {frozenset((a, actual[a]) for a, v in prime if v != actual[a]) for prime in primes}
+    sufficient = sufficient_reasons(formula, actual)
+    return {n for n in necessary if any(n <= s for s in sufficient)}
 
 
 # -- ASP facts ----------------------------------------------------------------------

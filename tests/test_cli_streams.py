@@ -110,7 +110,8 @@ def test_help_shows_real_defaults_and_what_models_may_be():
     judge = " ".join(ethasp("judge", "--help").stdout.split())
     assert "(default 10; 0: no explanations)" in judge and "DEFAULT_LIMIT" not in judge
     serve = " ".join(ethasp("serve", "--help").stdout.split())
-    assert "HERA situation (.yaml, .json)" in serve and "--log-requests" in serve
+    assert "HERA situation or causal agency model (.yaml, .json)" in serve
+    assert "--log-requests" in serve
     plan = " ".join(ethasp("plan", "--help").stdout.split())
     assert "--reasons-limit N with --principle" in plan
     assert "- reads an ASP model from standard input" in plan

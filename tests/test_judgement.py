@@ -89,11 +89,13 @@ def test_json_report_of_pull():
         "proof",
         "sufficient_reasons",
         "necessary_reasons",
+        "inus_reasons",
         "chosen_reason",
         "explanation",
         "reasons_truncated",
         "necessary_reasons_truncated",
         "sufficient_reasons_truncated",
+        "inus_reasons_truncated",
     }
 
 

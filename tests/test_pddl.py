@@ -434,7 +434,7 @@ def _without_plan(data):
 
 
 _PDDL_FACT = re.compile(r"\(not \(([a-z][-a-z0-9]*)\)\)|\(([a-z][-a-z0-9]*)\)")
-_REASONS = ("sufficient_reasons", "necessary_reasons", "chosen_reason")
+_REASONS = ("sufficient_reasons", "necessary_reasons", "inus_reasons", "chosen_reason")
 
 
 def _asp_reasons(data):

@@ -3,7 +3,8 @@
 Random formulas of L over a few atoms, a random actual situation respecting
 the background theory; the encodings must find exactly the sufficient
 reasons (prime implicants of the actual value that hold) and the necessary
-reasons (their minimal hitting sets) of tests/reasons_oracle.py, and the
+reasons (their minimal hitting sets) and the INUS reasons (HERA's necessary
+reasons within a sufficient reason) of tests/reasons_oracle.py, and the
 relevance optimum must be a necessary reason of least cost.
 """
 
@@ -14,6 +15,7 @@ from reasons_oracle import (
     assignments,
     atoms_of,
     evaluate,
+    inus_reasons,
     necessary_reasons,
     sufficient_reasons,
     to_asp,
@@ -36,17 +38,34 @@ POOL = [
     "geq(d,e)",
     "geq(c,e)",
 ]
+# The atoms of causal agency models, with their own links of the theory.
+CAM_POOL = [
+    "intended(v,true)",
+    "intended(v,false)",
+    "causes(fact(v,true),fact(w,true))",
+    "causes(fact(w,true),fact(v,true))",
+    "causes(fact(v,true),fact(w,false))",
+    "causes(fact(v,true),fact(v,false))",
+    "ucompare(gt,num(0),u(c))",
+    "ucompare(gt,u(c),num(0))",
+    "ucompare(geq,u(c),u(c))",
+]
 
-atoms = st.sampled_from(POOL)
-formulas = st.recursive(
-    atoms,
-    lambda children: st.one_of(
-        st.tuples(st.just("neg"), children),
-        st.tuples(st.sampled_from(["and", "or", "imp"]), children, children),
-        st.tuples(st.sampled_from(["all", "any"]), st.lists(children, max_size=3)),
-    ),
-    max_leaves=6,
-)
+
+def formulas_of(pool: list[str]):
+    return st.recursive(
+        st.sampled_from(pool),
+        lambda children: st.one_of(
+            st.tuples(st.just("neg"), children),
+            st.tuples(st.sampled_from(["and", "or", "imp"]), children, children),
+            st.tuples(st.sampled_from(["all", "any"]), st.lists(children, max_size=3)),
+        ),
+        max_leaves=6,
+    )
+
+
+formulas = formulas_of(POOL + CAM_POOL)
+plan_formulas = formulas_of(POOL)
 
 
 def situation(formula, pick: int) -> dict[str, bool]:
@@ -97,6 +116,22 @@ def test_necessary_reasons_are_the_minimal_hitting_sets(formula, pick):
     assert reasons(["reasons/necessary.lp"], program(formula, actual)) == expected
 
 
+@settings(max_examples=120, deadline=None)
+@given(formulas.filter(interesting), st.integers(0, 10**6))
+def test_inus_reasons_are_herAs_necessary_reasons_within_a_sufficient_one(formula, pick):
+    actual = situation(formula, pick)
+    sufficient = sufficient_reasons(formula, actual)
+    members = [
+        f"sufficient_member({number},{atom})."
+        for number, reason in enumerate(sorted(sufficient, key=sorted), 1)
+        for atom, _ in reason
+    ]
+    text = program(formula, actual) + "\n" + "\n".join(members)
+    files = ["reasons/shape.lp", "reasons/evaluate_copies.lp", "reasons/inus.lp"]
+    found = reasons(files, text, ("0", "--project=show")) if members else set()
+    assert found == inus_reasons(formula, actual)
+
+
 WEIGHTS = {
     "action(a)": st.integers(-2, 2),
     "fact(v,true)": st.integers(-2, 2),
@@ -124,7 +159,7 @@ def cost(reason: frozenset, weight: dict[str, int], worth: dict[str, int]) -> tu
 
 @settings(max_examples=80, deadline=None)
 @given(
-    formulas.filter(interesting),
+    plan_formulas.filter(interesting),
     st.integers(0, 10**6),
     st.fixed_dictionaries(WEIGHTS),
     st.lists(st.integers(-3, 3), min_size=3, max_size=3),

@@ -396,9 +396,11 @@ def test_reasons_are_truncated_only_when_more_exist(principle, limit, truncated)
     ).stdout
     assert ("limit reached" in text) is truncated
     if principle == "do-no-harm" and limit == 1:
-        # two necessary reasons, one sufficient: only the first kind is cut
+        # two necessary reasons, one sufficient, two INUS reasons (the
+        # necessary ones): the first and the last kinds are cut
         assert result.necessary_truncated and not result.sufficient_truncated
-        assert text.count("(limit reached; more may exist)") == 1
+        assert result.inus_truncated
+        assert text.count("(limit reached; more may exist)") == 2
 
 
 # (About half the drawn models have no plan; 20 of the others.)

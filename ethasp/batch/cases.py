@@ -76,6 +76,7 @@ class Case:
     principles: tuple[str, ...] | None = None
     questions: tuple[str, ...] | None = None
     problem: str | None = None
+    kind: str = "plan"  # "cam": a causal agency model's choice (see choices())
 
     def __post_init__(self):
         if not self.name:
@@ -109,6 +110,29 @@ class Inputs:
         for name in self.unreadable:
             digest.update(f"unreadable\0{name}\0".encode())
         return digest.hexdigest()
+
+
+def choices(case: Case) -> list[Case]:
+    """A case of a causal agency model without a plan: one case per action (a
+    batch judges every choice), named ``NAME: ACTION``; with a plan, the case
+    marked as one of a causal agency model; any other case as it is.  A file
+    that cannot be read is left to the case's run, which says why."""
+    from ethasp.planning.readers.hera_data import CAM, is_hera_file, kind_of, load_data, name_term
+
+    models = [Path(name) for name in case.files if is_hera_file(Path(name))]
+    if case.problem is not None or len(models) != 1:
+        return [case]
+    try:
+        data = load_data(models[0], models[0].read_text(encoding="utf-8"))
+        if kind_of(data, str(models[0])) != CAM:
+            return [case]
+        actions = data.get("actions") if "action" not in data else [data["action"]]
+        names = [str(name_term(str(action))) for action in actions]
+    except (InputError, OSError, UnicodeDecodeError, TypeError, AttributeError):
+        return [case]
+    if case.plan is not None or not names:
+        return [replace(case, kind="cam")]
+    return [replace(case, name=f"{case.name}: {name}", plan=name, kind="cam") for name in names]
 
 
 def read_inputs(case: Case) -> Inputs:

@@ -16,7 +16,7 @@ from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from ethasp.batch.cases import Case, discover, read_inputs
+from ethasp.batch.cases import Case, choices, discover, read_inputs
 from ethasp.batch.output import Output, line_hash
 from ethasp.batch.pool import LocalPool, default_workers
 from ethasp.batch.task import ASK, CASE, TASKS, Key, Settings, Work, version
@@ -73,8 +73,9 @@ class Batch:
         self._closed = False
         present = output.present if output is not None else {}
         self.planned: list[_Planned] = []
-        for case in cases:
-            self.planned.append(self._plan(case, present))
+        for given in cases:
+            for case in choices(given):  # a causal agency model: each of its actions
+                self.planned.append(self._plan(case, present))
         self.skipped = sum(1 for item in self.planned if not item.missing)
         self.lines_before = sum(
             1 for item in self.planned for digest in item.hashes.values() if digest in present
@@ -89,7 +90,7 @@ class Batch:
         settings = self.settings
         names = case.principles if case.principles is not None else settings.principles
         try:
-            principles = [p.name for p in select_principles(names)]
+            principles = [p.name for p in select_principles(names, case.kind)]
         except InputError as error:
             case = Case(
                 case.files,
@@ -195,6 +196,18 @@ class Batch:
             self.output.close()
 
 
+def _known(name: str) -> str:
+    """A principle or group name known for plans or for causal agency models
+    (each case checks it for its own kind); else the InputError for plans."""
+    from ethasp.principles.principle import CAM, PLAN, select_principles
+
+    try:
+        select_principles([name], PLAN)
+    except InputError:
+        select_principles([name], CAM)  # defined for causal agency models only
+    return name.strip().lower()
+
+
 def batch(
     cases: Iterable[Case | str | os.PathLike | Sequence[str]],
     principles: Sequence[str] | None = None,
@@ -250,14 +263,13 @@ def batch(
         raise InputError("the time limit must be 0 seconds or more")
     if reasons_limit is not None and reasons_limit < 0:
         raise InputError("the reasons limit must be at least 0")
-    from ethasp.principles.principle import select_principles
     from ethasp.questions.question import Question
 
-    names = (
-        None if principles is None else tuple(p.name for p in select_principles(list(principles)))
-    )
+    # Names are kept as given: a group (hera) names different principles for
+    # plans and for causal agency models, and each case selects its own.
+    names = None if principles is None else tuple(_known(name) for name in principles)
     if under is not None:
-        under = select_principles([under])[0].name
+        under = _known(under)
     for question in questions:
         Question.parse(question)
     if questions and task not in (None, ASK):

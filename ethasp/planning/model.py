@@ -14,7 +14,7 @@ from __future__ import annotations
 import hashlib
 import threading
 from collections import OrderedDict
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -43,7 +43,8 @@ class Source:
     path: Path | None = None
     generated: bool = False  # written by ethasp (a translation), not by a user
     kind: str = "asp"  # asp, pddl (a PDDL translation), situation (a HERA
-    # situation) or hmodel (a restriction's, of facts)
+    # situation), cam (a HERA causal agency model) or hmodel (a restriction's,
+    # of facts)
     facts: tuple[clingo.Symbol, ...] = ()  # ground facts, added without parsing
 
 
@@ -178,24 +179,34 @@ class Model:
         allow_scripts: bool = False,
         check: bool = True,
         texts: Sequence[tuple[str, str]] = (),
+        world: Mapping[str, bool] | None = None,
     ) -> Model:
         """Load a model from ASP files, or a PDDL domain and problem plus ASP files.
 
         Files ending in ``.pddl`` are translated into rules (see
         :mod:`ethasp.planning.readers.pddl`); the model then shows actions in PDDL form.
-        HERA situations (``.yaml``, ``.yml``, ``.json``) are translated into
-        facts (see :mod:`ethasp.planning.readers.situation`).  ``texts`` are more ASP
+        HERA's files (``.yaml``, ``.yml``, ``.json``) are situations or causal
+        agency models, told apart by their content, and translated into facts
+        (see :mod:`ethasp.planning.readers.situation` and
+        :mod:`ethasp.planning.readers.cam`).  ``texts`` are more ASP
         sources given as (name, text), e.g. ``("<stdin>", text)`` read from
         standard input; messages name them by that name.  A path that does not
         exist names a bundled model (``"trolley"``, ``"hera/trolley.yaml"``; the
         naming rule: :func:`ethasp.resources.bundled_model`).
         """
-        from ethasp.planning.readers.situation import situation_paths, translate
+        from ethasp.planning.readers.hera import translate_file
+        from ethasp.planning.readers.situation import situation_paths
 
         sources, naming = [], Naming()
         situations, files = situation_paths(model_path(path) for path in paths)
         for path in situations:
-            sources.append(Source(str(path), translate(path), generated=True, kind="situation"))
+            kind, text = translate_file(path, world)
+            sources.append(Source(str(path), text, generated=True, kind=kind))
+        if world and not any(source.kind == "cam" for source in sources):
+            raise InputError(
+                "a world (--world) gives the background variables and events of a causal "
+                "agency model, and the model is none"
+            )
         if any(path.suffix.lower() == ".pddl" for path in files):
             from ethasp.planning.readers.pddl import split_paths, translate_files
 
@@ -255,6 +266,23 @@ class Model:
         """Is this a HERA situation (a translation, perhaps with ASP files)?
         Its plans are judged even where they miss the goal, as HERA does."""
         return any(source.kind == "situation" for source in self.sources)
+
+    @property
+    def is_cam(self) -> bool:
+        """Is this a causal agency model (HERA's CAM, perhaps with ASP files)?
+        Its choices are its actions, one at a time (a plan of one step), judged
+        by the encodings of ``encodings/cam/`` (:mod:`ethasp.principles.causal`)."""
+        return any(source.kind == "cam" for source in self.sources)
+
+    def require_planning(self, what: str) -> None:
+        """Raise InputError if the model is a causal agency model: ``what``
+        (plan search, validation, ...) applies to planning models."""
+        if self.is_cam:
+            names = ", ".join(source.name for source in self.sources if source.kind == "cam")
+            raise InputError(
+                f"{names} is a causal agency model: its choices are its actions, one at a "
+                f"time (ethasp judge, query, ask); {what} applies to planning models"
+            )
 
     def _parse(self, source: Source) -> None:
         """Parse a source: syntax, #script blocks, and the model's namespace

@@ -807,6 +807,7 @@ def find_plan(
     principle, :func:`ethasp.principles.restriction.plan_with_principles`
     finds a shortest permissible action sequence instead).
     """
+    model.require_planning("plan search without a principle")
     if not model.planner.get("goal", 2):
         raise InputError(
             "the model has no goal, so plan search has nothing to reach (with "

@@ -140,6 +140,7 @@ def creative_alternatives(model: Model) -> frozenset:
 def validate(model: Model, plan: Plan) -> Validation:
     """Validate a plan (its trace, computed once per plan by the model's
     planner); raise InputError if it names unknown actions."""
+    model.require_planning("validating a plan")
     answer = model.planner.trace(plan)
     validation = read_validation(plan, answer.select(TRACE_ATOMS), model)
     if model.planner.has_costs:

@@ -12,10 +12,14 @@ The syntax (documented in docs/formulas.md)::
                   | "Goal(" fact ")" | "Finally(" fact ")" | "ButFor(" fact ")"
                   | "Instrumental(" fact ")" | "Avoidable(" fact ")"
                   | "Means(" patient ")" | "Means2(" patient ")" | "End(" patient ")"
+                  | "AffectsPos(" fact "," patient ")" | "AffectsNeg(" fact "," patient ")"
+                  | "I(" fact ")" | "Causes(" cause "," effect ")" | "Do(" facts "," effect ")"
                   | uterm ( ">" | ">=" | "=" | "<" | "<=" ) uterm
     uterm       ::= uprimary { ( "+" | "-" ) uprimary }
     uprimary    ::= "U(" facts ")" | integer | "-" uprimary
     facts       ::= fact { "&" fact } | "()"
+    cause       ::= fact { "|" fact }
+    effect      ::= fact { "&" fact } | fact { "|" fact }
     element     ::= action | fact
     fact        ::= variable | "-" variable
 
@@ -28,7 +32,10 @@ operator names are case-insensitive.
 The operators after GEq are HERA's (see ``encodings/judgement/language.lp``);
 a comparison of utility terms is ``ucompare(O,X,Y)`` with O ``gt``, ``geq``
 or ``eq`` (``<`` and ``<=`` swap the sides), X and Y built of ``u(C)``,
-``num(N)``, ``add/2``, ``sub/2``, ``minus/1``.
+``num(N)``, ``add/2``, ``sub/2``, ``minus/1``.  I, Causes and Do are defined
+for causal agency models only (``encodings/cam/language.lp``), Avoidable for
+plans only; in a causal agency model every action is also a variable, and
+``Bad(pull)`` is about the fact that pull is done.
 
 A parsed formula is the ASP term that ``encodings/judgement/language.lp`` evaluates
 (``bad(action(pull))``, ``caused(five_will_die,false)``, ``neg/1``, ``and/2``,
@@ -81,6 +88,11 @@ ATOMS = {
     "means2": "Means2",
     "end": "End",
     "ucompare": "U",
+    "affects_pos": "AffectsPos",
+    "affects_neg": "AffectsNeg",
+    "intended": "I",
+    "causes": "Causes",
+    "do": "Do",
 }
 # HERA's operators on facts and on patients, by the name users write (lower case).
 FACT_OPERATORS = {
@@ -91,6 +103,10 @@ FACT_OPERATORS = {
     "avoidable": "avoidable",
 }
 PATIENT_OPERATORS = {"means": "means", "means2": "means2", "end": "end"}
+AFFECTS_OPERATORS = {"affectspos": "affects_pos", "affectsneg": "affects_neg"}
+# The operators defined for one kind of model only.
+CAM_ONLY = {"i": "intended", "causes": "causes", "do": "do"}
+PLAN_ONLY = {"avoidable"}
 COMPARISONS = {
     ">=": ("geq", False),
     "<=": ("geq", True),
@@ -102,7 +118,7 @@ _SHOWN = {"gt": ">", "geq": ">=", "eq": "="}
 
 _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_']*")
 _PDDL_NOT = re.compile(r"\(\s*not\s+(\(.*\))\s*\)", re.IGNORECASE | re.DOTALL)
-_STOP = {",", "&", ")"}
+_STOP = {",", "&", "|", ")"}
 
 
 # -- the model's elements -------------------------------------------------------
@@ -110,11 +126,14 @@ _STOP = {",", "&", ")"}
 
 @dataclass(frozen=True)
 class Elements:
-    """The names a formula can use: the model's actions and variables."""
+    """The names a formula can use: the model's actions and variables (a
+    causal agency model's actions are variables), and whether the model is a
+    causal agency model (``cam``)."""
 
     actions: frozenset[clingo.Symbol]
     variables: frozenset[clingo.Symbol]
     patients: frozenset[clingo.Symbol] = frozenset()
+    cam: bool = False
 
     @classmethod
     def of_model(cls, model) -> Elements:
@@ -124,6 +143,7 @@ class Elements:
             frozenset(a.arguments[0] for a in planner.get("action", 1)),
             frozenset(v.arguments[0] for v in planner.get("variable", 1)),
             frozenset(p.arguments[0] for p in planner.get("patient", 1)),
+            model.is_cam,
         )
 
 
@@ -277,8 +297,8 @@ class _Parser:
     def not_a_formula(self) -> NoReturn:
         self.fail(
             f"expected a formula (Good, Bad, Neutral, Caused, GEq, Goal, Finally, "
-            f"ButFor, Instrumental, Avoidable, Means, Means2, End, U, not, true, "
-            f"false or '('), found {self.found()}"
+            f"ButFor, Instrumental, Avoidable, Means, Means2, End, AffectsPos, "
+            f"AffectsNeg, I, Causes, Do, U, not, true, false or '('), found {self.found()}"
         )
 
     def atom(self) -> clingo.Symbol:
@@ -297,6 +317,24 @@ class _Parser:
             return self.comparison()
         if word is None or key is None:
             self.not_a_formula()
+        if (
+            key in CAM_ONLY
+            and not self.elements.cam
+            and self.text.startswith("(", self.pos + len(word))
+        ):
+            self.fail(f"{word} is defined for causal agency models only")
+        if key in PLAN_ONLY and self.elements.cam:
+            self.fail(f"{word} is defined for plans only, not for causal agency models")
+        if key in CAM_ONLY and self.elements.cam:
+            return self.cam_atom(word, key)
+        if key in AFFECTS_OPERATORS:
+            self.accept(word)
+            self.expect("(")
+            fact = self.element(allow_action=False, operator=word)
+            self.expect(",")
+            patient = self.patient(word)
+            self.expect(")")
+            return Function(AFFECTS_OPERATORS[key], [*fact.arguments, patient])
         if key in FACT_OPERATORS or key in PATIENT_OPERATORS:
             self.accept(word)
             self.expect("(")
@@ -307,7 +345,16 @@ class _Parser:
                 term = Function(FACT_OPERATORS[key], list(fact.arguments))
             self.expect(")")
             return term
-        if key not in ATOMS or key in ("ucompare", "goal_fact", "but_for"):
+        if key not in ATOMS or key in (
+            "ucompare",
+            "goal_fact",
+            "but_for",
+            "intended",
+            "affects_pos",
+            "affects_neg",
+            "causes",
+            "do",
+        ):
             self.not_a_formula()
         self.accept(word)
         self.expect("(")
@@ -323,6 +370,52 @@ class _Parser:
             variable, value = element.arguments
             return Function("caused", [variable, value])
         return Function(key, [element])
+
+    def cam_atom(self, word: str, key: str) -> clingo.Symbol:
+        """I(fact), Causes(cause, effect), Do(facts, effect)."""
+        self.accept(word)
+        self.expect("(")
+        if key == "i":
+            fact = self.element(allow_action=False, operator=word)
+            self.expect(")")
+            return Function("intended", list(fact.arguments))
+        if key == "causes":
+            first = self.facts_joined(word, ("|",))
+        else:
+            first = self.facts_joined(word, ("&",), always_named=True)
+        self.expect(",")
+        second = self.facts_joined(word, ("&", "|"))
+        self.expect(")")
+        if key == "do":
+            return Function("do", [first.arguments[0], second])
+        return Function("causes", [first, second])
+
+    def facts_joined(
+        self, operator: str, joints: tuple[str, ...], always_named: bool = False
+    ) -> clingo.Symbol:
+        """A fact, or facts joined by one of ``joints`` ("&": ``all_facts(c(N))``,
+        "|": ``any_facts(c(N))``, their members in ``conjunctions``)."""
+        members: list[tuple[clingo.Symbol, str]] = []
+        joint = None
+        while True:
+            fact = self.element(allow_action=False, operator=operator)
+            variable, value = fact.arguments
+            members.append((variable, value.name))
+            self.skip()
+            found = next((j for j in ("&", "|") if self.text.startswith(j, self.pos)), None)
+            if found is None:
+                break
+            if found not in joints or (joint is not None and found != joint):
+                allowed = " or ".join(f"'{j}'" for j in joints)
+                self.fail(f"{operator} joins these facts with {allowed} only, not '{found}'")
+            joint = found
+            self.pos += 1
+        if len(members) == 1 and not always_named:
+            variable, value = members[0]
+            return Function("fact", [variable, Function(value)])
+        name = Function("c", [clingo.Number(len(self.conjunctions) + 1)])
+        self.conjunctions[name] = members
+        return Function("any_facts" if joint == "|" else "all_facts", [name])
 
     # -- comparisons of utilities ------------------------------------------------------
 
@@ -551,6 +644,22 @@ def _facts_text(side, conj: _Lookup) -> str:
     return " & ".join(facts) if facts else "()"
 
 
+def _patient_text(patient: clingo.Symbol, conj: _Lookup) -> str:
+    return conj.naming.name(patient) if conj.naming is not None else str(patient)
+
+
+def _facts_term_text(term: clingo.Symbol, conj: _Lookup) -> str:
+    """A fact (``fact(V,B)``) or facts joined (``all_facts(C)``: "&",
+    ``any_facts(C)``: "|"), as text."""
+    if term.name == "fact" and len(term.arguments) == 2:
+        return format_fact(term.arguments[0], term.arguments[1], conj.naming)
+    if term.name in ("all_facts", "any_facts") and len(term.arguments) == 1:
+        joint = " & " if term.name == "all_facts" else " | "
+        facts = [format_fact(v, b, conj.naming) for v, b in conj(term.arguments[0])]
+        return joint.join(facts) if facts else "()"
+    raise ValueError(f"not facts of L: {term}")
+
+
 def _utility_text(term: clingo.Symbol, conj: _Lookup) -> str:
     """A utility term as text (no recursion: the left spine is walked)."""
     parts: list[str] = []
@@ -594,8 +703,16 @@ def _atom_text(term: clingo.Symbol, conj: _Lookup) -> str:
     ):
         return f"{ATOMS[name]}({format_fact(args[0], args[1], conj.naming)})"
     if name in ("means", "means2", "end") and len(args) == 1:
-        patient = conj.naming.name(args[0]) if conj.naming is not None else str(args[0])
-        return f"{ATOMS[name]}({patient})"
+        return f"{ATOMS[name]}({_patient_text(args[0], conj)})"
+    if name == "intended" and len(args) == 2:
+        return f"I({format_fact(args[0], args[1], conj.naming)})"
+    if name in ("affects_pos", "affects_neg") and len(args) == 3:
+        fact = format_fact(args[0], args[1], conj.naming)
+        return f"{ATOMS[name]}({fact}, {_patient_text(args[2], conj)})"
+    if name == "causes" and len(args) == 2:
+        return f"Causes({_facts_term_text(args[0], conj)}, {_facts_term_text(args[1], conj)})"
+    if name == "do" and len(args) == 2:
+        return f"Do({_facts_text(args[0], conj)}, {_facts_term_text(args[1], conj)})"
     if name == "ucompare" and len(args) == 3 and args[0].name in _SHOWN:
         return (
             f"{_utility_text(args[1], conj)} {_SHOWN[args[0].name]} {_utility_text(args[2], conj)}"

@@ -29,6 +29,10 @@ first, the brave consequences of ``encodings/judgement/counterfactual.lp``
 given whether a plan reaches the goal (plan search: ``proven`` when it found
 one or proved that none exists, else ``bounded``).  A HERA situation's plan
 is judged even where it misses its goal, as HERA does.
+
+In a causal agency model (HERA's CAM) a plan is one action, the agent's
+choice; its evaluation is the one program of :mod:`ethasp.principles.causal`,
+which computes every world its principles read: every verdict is ``proven``.
 """
 
 from __future__ import annotations
@@ -62,6 +66,7 @@ from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
 from ethasp.planning.search import DEFAULT_MAX_HORIZON, FOUND, NONE, find_plan
 from ethasp.planning.validation import TRACE_ATOMS, Validation, read_validation, validate
+from ethasp.principles import causal
 from ethasp.principles.formula import Elements, parse_formula
 from ethasp.principles.principle import (
     COUNTERFACTUALS,
@@ -145,7 +150,10 @@ class JudgementReport:
     """A plan, its final state (literals ``v`` / ``-v``) and utility, and its
     judgements; ``goal_reached`` is False for a HERA situation's plan that
     misses its goal (judged all the same, as HERA does); ``cost``: the plan's
-    cost, in a model with action costs."""
+    cost, in a model with action costs.  For a choice in a causal agency model
+    the plan is the action, the final state its world, the utility that of its
+    consequences, and ``caused`` the facts of consequences that the action
+    causes."""
 
     plan: Plan
     final_state: list[str]
@@ -153,6 +161,7 @@ class JudgementReport:
     judgements: list[Judgement] = field(default_factory=list)
     goal_reached: bool = True
     cost: int | None = None
+    caused: list[str] | None = None
 
     def to_json(self) -> dict:
         data = {
@@ -164,6 +173,8 @@ class JudgementReport:
         }
         if not self.goal_reached:
             data["goal_reached"] = False
+        if self.caused is not None:
+            data["caused"] = self.caused
         return data
 
 
@@ -191,6 +202,16 @@ def require_plan(model: Model, validation: Validation) -> None:
 
 
 _require_plan = require_plan
+
+
+def check_plan(model: Model, plan: Plan) -> None:
+    """Raise InputError unless the plan can be judged in the model: a plan of
+    a planning model (:func:`require_plan`), or one action of a causal agency
+    model."""
+    if model.is_cam:
+        causal.chosen_action(model, plan)
+    else:
+        require_plan(model, validate(model, plan))
 
 
 @dataclass
@@ -285,6 +306,11 @@ def evaluation(
 def _evaluation(
     model: Model, plan: Plan, principles: Iterable[Principle], budget: Budget, max_horizon: int
 ) -> tuple[Answer, Inputs]:
+    if model.is_cam:
+        encodings = [p.encoding for p in principles]
+        return causal.evaluation(model, plan, encodings), Inputs(
+            proof="every world the principle reads was computed"
+        )
     chosen = [
         p for p in list(select_principles(DEFAULT)) + list(principles) if not p.reads_alternatives
     ]
@@ -310,7 +336,10 @@ def trace_facts(model: Model, plan: Plan) -> list[clingo.Symbol]:
 
 
 def final_utility(model: Model, plan: Plan) -> int:
-    """u(s_n) of a plan's final state (``utility_of_final/1`` of judge.lp)."""
+    """u(s_n) of a plan's final state (``utility_of_final/1`` of judge.lp); of
+    a choice in a causal agency model, the utility of its consequences."""
+    if model.is_cam:
+        return causal.world(model, causal.evaluation(model, plan))[1]
     answer = unify([UtilityOfFinal], model.planner.trace(plan).get("utility_of_final", 1))
     return next(iter(answer.query(UtilityOfFinal).all())).utility
 
@@ -402,6 +431,8 @@ def judge(
     explanations.)
     """
     budget = budget or Budget(time_limit)
+    if model.is_cam:
+        return _judge_choice(model, plan, principles)
     chosen = select_principles(principles)
     if any(principle.needs for principle in chosen):
         _require_plan(model, validate(model, plan))  # before searching for inputs
@@ -471,9 +502,35 @@ def judge(
     )
 
 
+def _verdicts(answer: Answer) -> dict[str, bool]:
+    return {
+        str(atom.name.symbol): atom.value == "true"
+        for atom in unify([Verdict], answer.get("verdict", 2)).query(Verdict).all()
+    }
+
+
+def _judge_choice(model: Model, plan: Plan, principles: Iterable[str] | None) -> JudgementReport:
+    """Judge the choice of an action in a causal agency model (one program)."""
+    chosen = select_principles(principles, causal.CAM)
+    answer = causal.evaluation(model, plan, [p.encoding for p in chosen])
+    world, utility, caused = causal.world(model, answer)
+    verdicts = _verdicts(answer)
+    proof = "every world the principle reads was computed"
+    judgements = [
+        Judgement(p.name, verdicts[p.asp_name], PROVEN, proof, p.asp_name) for p in chosen
+    ]
+    return JudgementReport(plan, world, utility, judgements, caused=caused)
+
+
 def query(model: Model, plan: Plan, formula: str) -> QueryResult:
-    """Evaluate a formula of L (text, see :mod:`ethasp.principles.formula`) for a plan."""
+    """Evaluate a formula of L (text, see :mod:`ethasp.principles.formula`) for a
+    plan, or for the choice of an action in a causal agency model."""
     parsed = parse_formula(formula, Elements.of_model(model))
+    if model.is_cam:
+        answer = causal.evaluation(
+            model, plan, facts=[fact.raw for fact in parsed.facts(QUERY_NAME)]
+        )
+        return QueryResult(plan, str(parsed), _verdicts(answer).get("query", False))
     _require_plan(model, validate(model, plan))
     inputs = _inputs(model, plan, formula_needs(parsed.term), Budget(), DEFAULT_MAX_HORIZON)
     if inputs.status != PROVEN:

@@ -44,7 +44,14 @@ from ethasp.planning.search import (
     shortest,
 )
 from ethasp.principles.hmodel import Restriction, compiled, hmodel, impossible
-from ethasp.principles.principle import GROUPS, Principle, available_principles, select_principles
+from ethasp.principles.principle import (
+    CAM,
+    GROUPS,
+    PLAN,
+    Principle,
+    available_principles,
+    select_principles,
+)
 from ethasp.resources import ENCODINGS
 
 RESTRICTIONS = "restrictions"
@@ -73,26 +80,33 @@ def chosen_principles(names: Sequence[str]) -> list[Principle]:
 
 
 def restricts(principle: Principle) -> bool:
-    """Can the principle restrict plan search (``encodings/restrictions/NAME.lp``)?"""
+    """Can the principle restrict plan search (``encodings/restrictions/NAME.lp``)?
+    Every principle for causal agency models can: their choices are few, and
+    each is judged."""
+    if principle.kind == CAM:
+        return True
     return (ENCODINGS / RESTRICTIONS / f"{principle.asp_name}.lp").is_file()
 
 
-def restricting_principles() -> list[str]:
+def restricting_principles(kind: str = PLAN) -> list[str]:
     """The names of the principles that can restrict plan search (make HPlans
     and contrast plans), in the order of :func:`available_principles`."""
-    return [principle.name for principle in available_principles() if restricts(principle)]
+    return [principle.name for principle in available_principles(kind) if restricts(principle)]
 
 
-def one_restricting_principle(name: str, what: str = "contrast plans are made under one of") -> str:
+def one_restricting_principle(
+    name: str, what: str = "contrast plans are made under one of", kind: str = PLAN
+) -> str:
     """The one principle a name names, which must restrict plan search: a group
     (``paper``, ``hera``, ``all``) or a principle without a restriction
     encoding is refused with one line naming those that can (``what`` comes
-    before their list)."""
-    known = ", ".join(restricting_principles())
+    before their list).  ``kind`` is the kind of model (``cam``: a causal
+    agency model)."""
+    known = ", ".join(restricting_principles(kind))
     key = name.strip().lower()
     if key == "all" or key in GROUPS:
         raise InputError(f"principle {name!r} names a group, but {what}: {known}")
-    principle = select_principles([name])[0]
+    principle = select_principles([name], kind)[0]
     if not restricts(principle):
         raise InputError(
             f"principle {principle.name} cannot restrict plan search (it judges "
@@ -204,6 +218,45 @@ def restriction_for(
     return restriction, best
 
 
+def _choices(
+    model: Model,
+    principles: Sequence[str],
+    all_plans: bool,
+    constraints: Sequence[Constraint],
+) -> HPlanResult:
+    """The choices of a causal agency model permissible under the principles
+    and meeting the constraints: each action is judged, in the model's order
+    (:mod:`ethasp.principles.causal`); the first one found, or all with
+    ``all_plans``.  Proven either way."""
+    from ethasp.principles import causal
+    from ethasp.principles.judgement import judge
+
+    names = [principle.name for principle in select_principles(principles, CAM)]
+    terms = [constraint.term for constraint in constraints]
+    found = []
+    for action in causal.actions(model):
+        plan = Plan((action,))
+        if terms and not set(terms) <= causal.met_constraints(model, plan, terms):
+            continue
+        if names and not all(j.permissible for j in judge(model, plan, names).judgements):
+            continue
+        found.append(plan)
+    under = f" permissible under {' and '.join(names)}" if names else ""
+    meeting = " meeting the question" if terms else ""
+    if not found:
+        what = f"no action{meeting}{under}" if (names or terms) else "no action"
+        return HPlanResult(NONE, names, None, 1, f"{what}: every action was judged")
+    return HPlanResult(
+        FOUND,
+        names,
+        found[0],
+        1,
+        f"the first action of the model{meeting}{under} (every action was judged)",
+        found if all_plans else [],
+        utility=_final_utility(model, found[0]),
+    )
+
+
 def _final_utility(model: Model, plan: Plan) -> int:
     """The utility of the plan's final state (its trace)."""
     from ethasp.principles.judgement import final_utility
@@ -236,6 +289,8 @@ def plan_with_principles(
     all the same, so it is permissible by construction.  ``max_horizon``
     defaults to 64, or 256 with ``satisficing``.
     """
+    if model.is_cam:
+        return _choices(model, principles, all_plans, constraints)
     if satisficing and all_plans:
         raise InputError("all shortest plans cannot be listed by an any-plan search (satisficing)")
     if max_horizon is None:

@@ -32,8 +32,10 @@ from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan, parse_action, steps
 from ethasp.planning.search import BOUNDED, DEFAULT_MAX_HORIZON, FOUND, NONE
 from ethasp.planning.validation import static_failures, validate
-from ethasp.principles.judgement import Judgement
-from ethasp.principles.principle import GROUPS, available_principles, select_principles
+from ethasp.principles import causal
+from ethasp.principles.causal import model_kind
+from ethasp.principles.judgement import Judgement, check_plan
+from ethasp.principles.principle import GROUPS, PLAN, available_principles, select_principles
 from ethasp.principles.restriction import (
     HPlanResult,
     one_restricting_principle,
@@ -58,6 +60,7 @@ GIVEN = (
 # Constraint terms about the plan's actions only (no states needed to check them).
 ACTION_TERMS = ("used", "unused", "before", "at", "not_at", "within", "not_within", "at_most")
 DEFAULT_PRINCIPLE = "deontology"
+DEFAULT_CAM_PRINCIPLE = "hera-deontology"  # the same concept, for causal agency models
 
 
 @dataclass(frozen=True)
@@ -87,9 +90,41 @@ def _unknown_action(model: Model, question: Question, term: clingo.Symbol, also:
     return f"question '{question}': unknown action {model.naming.action(term)}{also}"
 
 
+def _resolve_choice(model: Model, question: Question) -> Resolved:
+    """Resolve the names of a question about a choice in a causal agency model:
+    a choice is one action, so a question asks why A, why not B, why A rather
+    than B, or why (not) F of its world; an action's name is read as the
+    action unless the question says ``fact``."""
+    if question.kind not in ("why", "why-not", "rather-than") or (
+        question.at is not None or question.within is not None
+    ):
+        raise InputError(
+            f"question '{question}': a choice in a causal agency model is one action; "
+            "ask why A, why not B, why A rather than B, or why (not) F"
+        )
+    actions = causal.actions(model)
+    subject = parse_action(question.action) if question.action is not None else None
+    other = parse_action(question.other) if question.other is not None else None
+    fact = question.what == "fact" or (question.what is None and subject not in actions)
+    names = ", ".join(map(model.naming.action, actions))
+    if fact and not _is_variable(model, subject):
+        raise InputError(f"question '{question}': unknown action or variable {subject}")
+    for term in (subject, other) if not fact else (other,):
+        if term is not None and term not in actions:
+            raise InputError(
+                f"question '{question}': unknown action {model.naming.action(term)} "
+                f"(the actions: {names})"
+            )
+    return Resolved(
+        question, fact, question.contrasts(subject, other, fact), question.presupposes(subject)
+    )
+
+
 def resolve(model: Model, question: Question) -> Resolved:
     """Resolve the names of a question: an action or a state variable (one line
     for a name that is both, unless the question says which, or neither)."""
+    if model.is_cam:
+        return _resolve_choice(model, question)
     if question.kind == "cheaper":
         raise InputError(
             f"question '{question}': its contrast is the cost of the plan asked about "
@@ -138,6 +173,8 @@ def _met(model: Model, plan: Plan, terms: Sequence[clingo.Symbol]) -> set[clingo
     """The constraint terms that the plan meets (questions.lp run on the plan:
     its actions only, or its states too (questions/given.lp) when a term is
     about facts)."""
+    if model.is_cam:
+        return causal.met_constraints(model, plan, terms)
     name = clingo.Function("q")
     symbols = [clingo.Function("contrast", [name, term]) for term in terms]
     if all(term.name in ACTION_TERMS for term in terms):
@@ -625,17 +662,29 @@ def original_plan(
     return result.plan
 
 
-def one_principle(name: str) -> str:
+def one_principle(name: str, kind: str = PLAN) -> str:
     """The one principle a name names (a plan is judged under one): a group
-    (``paper``, ``hera``, ``all``) is refused with one line."""
+    (``paper``, ``hera``, ``all``) is refused with one line.  ``kind`` is the
+    kind of model (``cam``: a causal agency model)."""
     key = name.strip().lower()
     if key == "all" or key in GROUPS:
-        known = ", ".join(p.name for p in available_principles())
+        known = ", ".join(p.name for p in available_principles(kind))
         raise InputError(
             f"principle {name!r} names a group; a plan asked about is judged "
             f"under one principle: {known}"
         )
-    return select_principles([name])[0].name
+    return select_principles([name], kind)[0].name
+
+
+def _constraints(model: Model, terms: Sequence[clingo.Symbol], before: int) -> list[Constraint]:
+    """The constraints of a question's terms: grounded for plan search in a
+    planning model (:meth:`ethasp.planning.driver.planner.Planner.question`),
+    numbered after the ``before`` ones in a causal agency model, whose
+    choices are each checked."""
+    if not model.is_cam:
+        return model.planner.question(terms)
+    name = clingo.Function("q", [clingo.Number(before + 1)])
+    return [Constraint(name, term) for term in terms]
 
 
 def answer_questions(
@@ -658,22 +707,21 @@ def answer_questions(
     shortest.  ``conflicting``: a subset of ``previous`` that no plan meets
     (proven before): then no search is needed, and none is made."""
     budget = budget or Budget(time_limit)
-    principle = one_principle(principle)
-    under = one_restricting_principle(under)
-    validation = validate(model, plan)
-    if not validation.valid:
-        raise InputError(f"not a plan: {validation.message(model.naming)}")
+    kind = model_kind(model)
+    principle = one_principle(principle, kind)
+    under = one_restricting_principle(under, kind=kind)
+    check_plan(model, plan)
     new: list[Constraint] = []
     beyond = ""
     for question in questions:
         asked = check_question(model, question, plan)
         terms = [constraint.term for constraint in asked]
-        why = beyond_horizon(question, terms, max_horizon)
+        why = beyond_horizon(question, terms, max_horizon) if not model.is_cam else ""
         if why:
             beyond = beyond or why
             new += asked  # not registered: nothing is grounded for it
         else:
-            new += model.planner.question(terms)
+            new += _constraints(model, terms, len(previous) + len(new))
     constraints = list(dict.fromkeys(list(previous) + new))
     original = _judge_side(model, plan, principle, max_horizon, budget, reasons_limit)
     if beyond:
@@ -756,8 +804,11 @@ def ask(
     if not questions:
         raise InputError("no question given")
     budget = budget or Budget(time_limit)
-    one_principle(principle)
-    one_restricting_principle(under or principle)
+    kind = model_kind(model)
+    if model.is_cam and principle == DEFAULT_PRINCIPLE:
+        principle = DEFAULT_CAM_PRINCIPLE
+    one_principle(principle, kind)
+    one_restricting_principle(under or principle, kind=kind)
     if plan is None:
         plan = model.own_plan()
     if plan is None:

@@ -26,6 +26,7 @@ from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan, parse_action
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
 from ethasp.planning.terms import read_text
+from ethasp.principles.causal import model_kind
 from ethasp.principles.judgement import JudgementReport
 from ethasp.principles.restriction import one_restricting_principle
 from ethasp.questions.contrast import (
@@ -102,6 +103,7 @@ class Dialogue:
         principle = one_restricting_principle(
             principle,
             "a dialogue starts under the principle that its contrast plans must satisfy, one of",
+            model_kind(model),
         )
         if plan is None:
             plan = model.own_plan()
@@ -213,7 +215,7 @@ class Dialogue:
         """The principle the next contrast plans must satisfy: one principle
         that can restrict plan search (a group, or a principle that can only
         judge, is refused with one line naming those that can)."""
-        self.under = one_restricting_principle(name)
+        self.under = one_restricting_principle(name, kind=model_kind(self.model))
         return self.under
 
     def explain_step(self, step: int):
@@ -290,7 +292,7 @@ class Dialogue:
             plan = Plan(tuple(parse_action(action) for action in data["plan"]))
             dialogue = cls(
                 model,
-                one_principle(data["principle"]),
+                one_principle(data["principle"], model_kind(model)),
                 plan,
                 data["principle"],
                 [],

@@ -537,6 +537,7 @@ def explain_steps(model: Model, plan: Plan) -> StepsExplanation:
     """The causal explanation of a plan, step by step (one clingo call on its
     trace); InputError if it is not a plan or has more than
     :data:`MAX_STEPS` steps."""
+    model.require_planning("explaining a plan step by step")
     if len(plan) > MAX_STEPS:
         raise InputError(
             f"the plan has {len(plan)} steps; step-by-step explanations are made "

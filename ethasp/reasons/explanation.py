@@ -51,13 +51,15 @@ class Labels:
 class Explanation:
     """Why a plan is (im)permissible under one principle.
 
-    ``sufficient_reasons`` and ``necessary_reasons`` are lists of reasons, each
-    a list of literals in the formula syntax (``Bad(a2)``, ``not
-    Caused(five_will_die)``); at most ``limit`` of each are computed, and
-    ``truncated`` says that the limit cut an enumeration short (more reasons
-    may exist; ``necessary_truncated`` and ``sufficient_truncated`` say it per
-    kind).  ``chosen_reason`` is the most relevant necessary reason (empty
-    when the verdict holds whatever the atoms' values), ``text`` its words.
+    ``sufficient_reasons``, ``necessary_reasons`` and ``inus_reasons`` are
+    lists of reasons, each a list of literals in the formula syntax
+    (``Bad(a2)``, ``not Caused(five_will_die)``); at most ``limit`` of each
+    are computed, and ``truncated`` says that the limit cut an enumeration
+    short (more reasons may exist; ``necessary_truncated``,
+    ``sufficient_truncated`` and ``inus_truncated`` say it per kind: INUS
+    reasons are those of the sufficient reasons enumerated).
+    ``chosen_reason`` is the most relevant necessary reason (empty when the
+    verdict holds whatever the atoms' values), ``text`` its words.
     ``alternative`` is the state compared with (utilitarianism), as literals
     ``v`` / ``-v``.  ``literals`` holds what the words say as :class:`Literal`
     objects, with ``comparisons`` and ``labels``, for building other texts
@@ -67,7 +69,8 @@ class Explanation:
     ``spoken_reason`` their texts.  ``actual`` holds every atom of the
     principle's formula with its value for the plan (what the plan makes
     true or false of it), for telling which of a reason's literals another
-    plan shares.
+    plan shares; ``conjunctions`` the members of the conjunctions its
+    literals name.
     """
 
     principle: str
@@ -81,11 +84,14 @@ class Explanation:
     alternative: list[str] | None = None
     necessary_truncated: bool = False
     sufficient_truncated: bool = False
+    inus_reasons: list[list[str]] = field(default_factory=list)
+    inus_truncated: bool = False
     literals: list[Literal] = field(default_factory=list)
     spoken_reason: list[str] = field(default_factory=list)
     actual: frozenset[Literal] = frozenset()
     comparisons: dict[clingo.Symbol, Comparison] = field(default_factory=dict)
     labels: Labels = field(default_factory=Labels)
+    conjunctions: dict[clingo.Symbol, list[tuple[clingo.Symbol, str]]] = field(default_factory=dict)
 
     def to_json(self) -> dict:
         data = {
@@ -93,9 +99,11 @@ class Explanation:
             "necessary_reasons": self.necessary_reasons,
             "chosen_reason": self.chosen_reason,
             "explanation": self.text,
+            "inus_reasons": self.inus_reasons,
             "reasons_truncated": self.truncated,
             "necessary_reasons_truncated": self.necessary_truncated,
             "sufficient_reasons_truncated": self.sufficient_truncated,
+            "inus_reasons_truncated": self.inus_truncated,
         }
         if self.alternative is not None:
             data["compared_state"] = self.alternative

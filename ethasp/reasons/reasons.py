@@ -45,13 +45,13 @@ from ethasp.planning.engines.best_state import ReachableState, best_reachable, u
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
-from ethasp.planning.validation import validate
+from ethasp.principles.causal import model_kind
 from ethasp.principles.formula import format_literal
 from ethasp.principles.judgement import (
     JudgementReport,
+    check_plan,
     evaluate,
     evaluation,
-    require_plan,
 )
 from ethasp.principles.judgement import judge as judge_verdicts
 from ethasp.principles.principle import Principle, select_principles
@@ -74,6 +74,13 @@ from ethasp.vocabulary import (
 REASONS = ("reasons/literals.lp", "reasons/theory.lp", "reasons/evaluate.lp")
 NECESSARY = (*REASONS, "reasons/necessary.lp", "reasons/relevance.lp")
 SUFFICIENT = (*REASONS, "reasons/shape.lp", "reasons/sufficient.lp", "reasons/comparison.lp")
+INUS = (
+    "reasons/literals.lp",
+    "reasons/theory.lp",
+    "reasons/shape.lp",
+    "reasons/evaluate_copies.lp",
+    "reasons/inus.lp",
+)
 # Core-guided optimisation for the relevant reason: the relevance criteria count
 # literals, and each violated conjunct is a core; model-guided optimisation
 # stalls on large ones.  Domain heuristics make enumerations subset-minimal.
@@ -136,6 +143,30 @@ def _enumerate(ctl: clingo.Control, limit: int) -> tuple[list[list[clingo.Symbol
     with ctl.solve(yield_=True) as handle:
         for answer in handle:
             found.append(list(answer.symbols(shown=True)))
+    return found[:limit], len(found) <= limit
+
+
+def _inus(
+    model: Model, program: str, sufficient: list[list[clingo.Symbol]], limit: int
+) -> tuple[list[list[Literal]], bool]:
+    """Up to ``limit`` INUS reasons (``reasons/inus.lp``, one answer set each,
+    projected on their literals) of the given sufficient reasons, and whether
+    they are all there are."""
+    members = "".join(
+        f"sufficient_member({number},{literal.atom}).\n"
+        for number, reason in enumerate(sufficient, 1)
+        for literal in _literals(reason)
+    )
+    if not members:
+        return [], True
+    ctl = model.planner.program(INUS, program + members, ("--project=show",), model=False)
+    config = solve_configuration(ctl)
+    config.models = str(limit + 1)
+    found: list[list[Literal]] = []
+    with ctl.solve(yield_=True) as handle:
+        for answer in handle:
+            found.append(_literals(answer.symbols(shown=True)))
+    found.sort(key=lambda reason: (len(reason), [(str(lit.atom), lit.value) for lit in reason]))
     return found[:limit], len(found) <= limit
 
 
@@ -234,8 +265,12 @@ def explain(
     if limit < 1:
         raise InputError("the reasons limit must be at least 1")
     budget = budget or Budget(time_limit)
-    chosen = principle if isinstance(principle, Principle) else select_principles([principle])[0]
-    require_plan(model, validate(model, plan))
+    chosen = (
+        principle
+        if isinstance(principle, Principle)
+        else select_principles([principle], model_kind(model))[0]
+    )
+    check_plan(model, plan)
     key = (
         "explain",
         plan,
@@ -274,6 +309,8 @@ def explain(
     sufficient, sufficient_done = _enumerate(sufficient_ctl, max(limit, 2))
     if len(sufficient) > limit:
         sufficient, sufficient_done = sufficient[:limit], False
+    inus, inus_done = _inus(model, program, sufficient, limit)
+    inus_done = inus_done and sufficient_done
     words = sufficient[0] if sufficient else []
     # The words say a reason whole when it is the only sufficient reason and its
     # literals are all of one kind ("none of his 8 actions is inherently bad"):
@@ -313,15 +350,18 @@ def explain(
         necessary_reasons=[texts(_literals(s)) for s in necessary],
         chosen_reason=texts(literals),
         text="",
-        truncated=not (necessary_done and sufficient_done),
+        truncated=not (necessary_done and sufficient_done and inus_done),
         necessary_truncated=not necessary_done,
         sufficient_truncated=not sufficient_done,
+        inus_reasons=[texts(reason) for reason in inus],
+        inus_truncated=not inus_done,
         alternative=compared,
         literals=spoken,
         spoken_reason=texts(spoken),
         actual=actual,
         comparisons=_comparisons(words),
         labels=_labels_of(model),
+        conjunctions=conj,
     )
     explanation.text = non_contrastive(explanation)
     memo[key] = explanation
@@ -347,7 +387,7 @@ def judge(
     """
     budget = budget or Budget(time_limit)
     report = judge_verdicts(model, plan, principles, max_horizon, budget=budget, best=best)
-    chosen = select_principles(principles)
+    chosen = select_principles(principles, model_kind(model))
     for principle, judgement in zip(chosen, report.judgements, strict=True):
         if reasons_limit:
             # An impermissible utilitarian plan is explained against the better

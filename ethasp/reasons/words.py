@@ -43,12 +43,15 @@ form for PDDL models (``action (move kitchen hall)``, ``the fact (not
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 
 import clingo
 
 from ethasp.planning.plan import Plan
 from ethasp.reasons.explanation import Comparison, Explanation, Labels, Literal
+
+# The members of conjunctions by name: (variable, value) pairs.
+Conjunctions = Mapping[clingo.Symbol, Sequence[tuple[clingo.Symbol, object]]]
 
 DEFAULT_AGENT = "the agent"
 DEFAULT_POSSESSIVE = "its"
@@ -167,21 +170,67 @@ def _element_phrase(labels: Labels, element: clingo.Symbol) -> tuple[str, bool]:
     return fact_phrase(labels, variable, value.name == "true"), False
 
 
+def _facts_words(labels: Labels, term: clingo.Symbol, conjunctions: Conjunctions) -> str:
+    """A fact, or facts joined (``all_facts/1``: "and", ``any_facts/1``: "or")."""
+    if term.name == "fact":
+        return fact_phrase(labels, term.arguments[0], term.arguments[1].name == "true")
+    members = conjunctions.get(term.arguments[0], [])
+    phrases = [fact_phrase(labels, v, _true(b)) for v, b in members]
+    return join(phrases, "and" if term.name == "all_facts" else "or") or "nothing"
+
+
+def _true(value) -> bool:
+    return value is True or str(value) == "true"
+
+
+def _intervention_words(labels: Labels, name: clingo.Symbol, conjunctions: Conjunctions) -> str:
+    """The condition of an intervention: "if the man chose to pull the lever"
+    (a choice of a causal agency model: ``choose(b)``), else "with X brought about"."""
+    if name.name == "choose" and len(name.arguments) == 1:
+        return f"if {agent(labels)} chose to {action_phrase(labels, name.arguments[0])}"
+    members = conjunctions.get(name, [])
+    facts = join([fact_phrase(labels, v, _true(b)) for v, b in members]) or "nothing"
+    return f"with {facts} brought about"
+
+
 def literal_clause(
     literal: Literal,
     labels: Labels,
     comparisons: dict[clingo.Symbol, Comparison] | None = None,
     pronoun: bool = False,
     actions: int = 1,
+    conjunctions: Conjunctions | None = None,
 ) -> str:
     """The words of one literal, e.g. "pulling a lever is not inherently bad".
 
     ``pronoun`` uses the possessive pronoun ("his action") instead of the
     agent's name ("the man's action"); ``actions`` is the plan's length
-    ("action" or "actions").
+    ("action" or "actions"); ``conjunctions`` the members of the conjunctions
+    that Causes and Do atoms name.
     """
     atom, value = literal.atom, literal.value
     negation = "" if value else "not "
+    conjunctions = conjunctions or {}
+    if atom.name == "intended":
+        fact = fact_phrase(labels, atom.arguments[0], atom.arguments[1].name == "true")
+        return f"{fact} is {negation}one of {possessive(labels, pronoun)} intentions"
+    if atom.name in ("affects_pos", "affects_neg"):
+        fact = fact_phrase(labels, atom.arguments[0], atom.arguments[1].name == "true")
+        patient = labels.patients.get(atom.arguments[2]) or _term_words(atom.arguments[2], labels)
+        verb = "affects" if value else "does not affect"
+        way = "positively" if atom.name == "affects_pos" else "negatively"
+        return f"{fact} {verb} {patient} {way}"
+    if atom.name == "causes":
+        cause = _facts_words(labels, atom.arguments[0], conjunctions)
+        effect = _facts_words(labels, atom.arguments[1], conjunctions)
+        return f"{cause} {'causes' if value else 'does not cause'} {effect}"
+    if atom.name == "do":
+        effect = _facts_words(labels, atom.arguments[1], conjunctions)
+        condition = _intervention_words(labels, atom.arguments[0], conjunctions)
+        would = "would" if value else "would not"
+        if condition.startswith("if "):
+            return f"{effect} {would} hold {condition}"
+        return f"{condition}, {effect} {would} hold"
     if atom.name in VALUATIONS:
         subject, is_action = _element_phrase(labels, atom.arguments[0])
         degree = "inherently " if is_action and atom.name != "neutral" else ""
@@ -203,7 +252,8 @@ def literal_clause(
     if atom.name == "ucompare":
         operator, left, right = atom.arguments
         relation = _RELATIONS[operator.name][0 if value else 1]
-        return f"{_utility_words(left, labels)} {relation} {_utility_words(right, labels)}"
+        left_words = _utility_words(left, labels, conjunctions)
+        return f"{left_words} {relation} {_utility_words(right, labels, conjunctions)}"
     if atom.name == "geq":
         comparison = (comparisons or {}).get(atom)
         if comparison is None:
@@ -258,17 +308,22 @@ _RELATIONS = {
 }
 
 
-def _utility_words(term: clingo.Symbol, labels: Labels) -> str:
+def _utility_words(
+    term: clingo.Symbol, labels: Labels, conjunctions: Conjunctions | None = None
+) -> str:
     """A utility term in words (no recursion: the left spine is walked)."""
     parts: list[str] = []
     while term.name in ("add", "sub") and len(term.arguments) == 2:
         word = "plus" if term.name == "add" else "minus"
-        parts.append(f"{word} {_utility_primary_words(term.arguments[1])}")
+        parts.append(f"{word} {_utility_primary_words(term.arguments[1], labels, conjunctions)}")
         term = term.arguments[0]
-    return " ".join([_utility_primary_words(term), *list(reversed(parts))])
+    first = _utility_primary_words(term, labels, conjunctions)
+    return " ".join([first, *list(reversed(parts))])
 
 
-def _utility_primary_words(term: clingo.Symbol) -> str:
+def _utility_primary_words(
+    term: clingo.Symbol, labels: Labels, conjunctions: Conjunctions | None = None
+) -> str:
     signs = 0
     while term.name == "minus" and len(term.arguments) == 1:
         signs += 1
@@ -281,6 +336,11 @@ def _utility_primary_words(term: clingo.Symbol) -> str:
             text = "the utility of the final state"
         elif name.name == "alternative_final" and len(name.arguments) == 1:
             text = f"the utility of alternative {name.arguments[0]}'s final state"
+        elif name.name == "consequences":
+            text = "the utility of the consequences"
+        elif conjunctions and name in conjunctions:
+            facts = [fact_phrase(labels, v, _true(b)) for v, b in conjunctions[name]]
+            text = f"the utility of {join(facts) or 'nothing'}"
         else:
             text = f"the utility of {name}"
     return "minus " * signs + text
@@ -342,6 +402,7 @@ def reason_clause(
     pronoun: bool = False,
     actions: int = 1,
     plan: Plan | None = None,
+    conjunctions: Conjunctions | None = None,
 ) -> str:
     """The words of a reason: its literals' clauses joined by "and"; literals
     of one group share a clause ("neither pulling a lever nor pushing a man is
@@ -361,9 +422,13 @@ def reason_clause(
     clauses = []
     for item in order:
         if isinstance(item, Literal):
-            clauses.append(literal_clause(item, labels, comparisons, pronoun, actions))
+            clauses.append(
+                literal_clause(item, labels, comparisons, pronoun, actions, conjunctions)
+            )
         elif len(groups[item]) == 1:
-            clauses.append(literal_clause(groups[item][0], labels, comparisons, pronoun, actions))
+            clauses.append(
+                literal_clause(groups[item][0], labels, comparisons, pronoun, actions, conjunctions)
+            )
         else:
             clauses.append(_group_clause(item, groups[item], labels, pronoun, actions, plan))
     return join(clauses)
@@ -378,6 +443,7 @@ def explanation_clause(explanation: Explanation, pronoun: bool = False) -> str:
         pronoun,
         len(explanation.plan),
         explanation.plan,
+        explanation.conjunctions,
     )
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 
 from ethasp.errors import InputError
-from ethasp.interfaces.cli.judgements import explanation_text, judgement_text
+from ethasp.interfaces.cli.judgements import choices_table, explanation_text, judgement_text
 from ethasp.interfaces.cli.models import load_model, model_options
 from ethasp.interfaces.cli.options import (
     budget,
@@ -19,7 +19,7 @@ from ethasp.interfaces.cli.options import (
     planner_option,
     reasons_option,
 )
-from ethasp.interfaces.cli.output import checkpoint, emit, svg_option, write_picture
+from ethasp.interfaces.cli.output import checkpoint, emit, no_picture, svg_option, write_picture
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
 
 
@@ -30,7 +30,10 @@ def add_parser(commands) -> None:
         description="Judge a plan under ethical principles (default: the paper's three, "
         "deontology, do-no-harm and utilitarianism). Status: proven, or bounded "
         "(utilitarianism compared the final state only with the states searched; "
-        "avoid-avoidable-harm did not learn whether the goal is reachable).",
+        "avoid-avoidable-harm did not learn whether the goal is reachable). In a "
+        "causal agency model, --plan ACTION judges the choice of ACTION (default: "
+        "HERA's principles for such models); without --plan, a table gives every "
+        "action under every principle.",
     )
     inherit(judging, model_options())
     inherit(judging, plan_options(required=False))
@@ -42,8 +45,11 @@ def add_parser(commands) -> None:
         "deontology, do-no-harm, utilitarianism; HERA's hera-deontology, "
         "goal-deontology, avoid-any-harm, avoid-avoidable-harm, "
         "hera-do-no-harm, do-no-instrumental-harm, kantian-humanity, "
-        "kantian-humanity-2, double-effect, hera-utilitarianism; or a "
-        "group: paper, hera, all",
+        "kantian-humanity-2, double-effect, hera-utilitarianism; for causal "
+        "agency models also intention-deontology, "
+        "do-no-instrumental-harm-without-intentions, minimize-harm, "
+        "minimax-harm, pareto, discourse, universality; or a group: paper, "
+        "hera, all",
     )
     judging.add_argument(
         "--max-horizon",
@@ -75,6 +81,8 @@ def run(args: argparse.Namespace) -> int:
     default_reasons_limit(args)
     if args.reasons_limit < 0:
         raise InputError("--reasons-limit must be at least 0")
+    if model.is_cam and args.plan is None and args.plan_file is None:
+        return run_table(args, model)
     plan = given_plan(args, model)
     limits = budget(args)
     if args.reasons_limit:
@@ -102,4 +110,28 @@ def run(args: argparse.Namespace) -> int:
     lines = [*explanation_text(report), judgement_text(report, model)]
     write_picture(args, model, lambda pictures: pictures.report(report))
     emit(args, report.to_json(), "\n".join(lines))
+    return 0
+
+
+def run_table(args: argparse.Namespace, model) -> int:
+    """Every action of a causal agency model judged under every principle asked."""
+    from ethasp.planning.plan import Plan
+    from ethasp.principles.causal import actions
+    from ethasp.reasons.reasons import judge
+
+    reports = [
+        judge(
+            model,
+            Plan((action,)),
+            args.principle,
+            reasons_limit=args.reasons_limit if args.json else 0,
+        )
+        for action in actions(model)
+    ]
+    no_picture(args)
+    emit(
+        args,
+        {"choices": [report.to_json() for report in reports]},
+        choices_table(reports, model),
+    )
     return 0

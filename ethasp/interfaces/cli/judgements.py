@@ -27,10 +27,18 @@ def state_text(model: Model, literals: list[str]) -> str:
 def judgement_text(report: JudgementReport, model: Model) -> str:
     naming = model.naming
     cost = f" (cost {report.cost})" if report.cost is not None else ""
-    lines = [
-        f"plan: {naming.actions(report.plan)}{cost}" if len(report.plan) else "plan: (empty)",
-        f"final state: {state_text(model, report.final_state)} (utility {report.utility})",
-    ]
+    if model.is_cam:  # a choice: its action, its world, what the action causes
+        lines = [
+            f"action: {naming.actions(report.plan)}",
+            f"world: {naming.facts(report.final_state)} (utility of the consequences "
+            f"{report.utility})",
+            f"caused: {naming.facts(report.caused or []) or 'nothing'}",
+        ]
+    else:
+        lines = [
+            f"plan: {naming.actions(report.plan)}{cost}" if len(report.plan) else "plan: (empty)",
+            f"final state: {state_text(model, report.final_state)} (utility {report.utility})",
+        ]
     for judgement in report.judgements:
         verdict = "permissible" if judgement.permissible else "impermissible"
         if judgement.status == "bounded":
@@ -88,6 +96,7 @@ def explanation_text(report: JudgementReport) -> list[str]:
         for kind, reasons, truncated in (
             ("necessary", explanation.necessary_reasons, explanation.necessary_truncated),
             ("sufficient", explanation.sufficient_reasons, explanation.sufficient_truncated),
+            ("INUS", explanation.inus_reasons, explanation.inus_truncated),
         ):
             kind_lines, cut = reasons_lines(kind, reasons, truncated, width)
             lines += kind_lines
@@ -95,3 +104,24 @@ def explanation_text(report: JudgementReport) -> list[str]:
     if shortened:
         lines.append("(long reasons are shortened here; --json prints them whole)")
     return lines
+
+
+def choices_table(reports: list[JudgementReport], model: Model) -> str:
+    """Every action of a causal agency model under every principle: a row per
+    principle, a column per action (+ permissible, - impermissible)."""
+    actions = [model.naming.actions(report.plan) for report in reports]
+    principles = [judgement.principle for judgement in reports[0].judgements] if reports else []
+    width = max([len("principle"), *map(len, principles)])
+    columns = [max(len(action), 1) for action in actions]
+    head = "  ".join(
+        ["principle".ljust(width)] + [a.ljust(c) for a, c in zip(actions, columns, strict=True)]
+    )
+    lines = [head.rstrip()]
+    for index, principle in enumerate(principles):
+        cells = [
+            ("+" if report.judgements[index].permissible else "-").ljust(column)
+            for report, column in zip(reports, columns, strict=True)
+        ]
+        lines.append("  ".join([principle.ljust(width), *cells]).rstrip())
+    lines.append("(+ permissible, - impermissible; every verdict proven)")
+    return "\n".join(lines)

@@ -65,10 +65,13 @@ def load_model(args: argparse.Namespace, check: bool = True) -> Model:
     Without ``check`` the model is read and parsed only, not grounded (a
     worker process checks it: :meth:`Model.check`)."""
     names = list(args.model)
+    world = parse_world(getattr(args, "world", None) or [])
     if names.count(STDIN) > 1:
         raise InputError("standard input (-) can be given only once as a model file")
     if STDIN not in names:
-        model = Model.load(model_paths(names), allow_scripts=args.allow_scripts, check=check)
+        model = Model.load(
+            model_paths(names), allow_scripts=args.allow_scripts, check=check, world=world
+        )
     else:
         names.remove(STDIN)
         model = Model.load(
@@ -76,9 +79,27 @@ def load_model(args: argparse.Namespace, check: bool = True) -> Model:
             allow_scripts=args.allow_scripts,
             check=check,
             texts=[(STDIN_NAME, read_stdin_model())],
+            world=world,
         )
     model.planning_system = getattr(args, "planner", None) or model.planning_system
     return model
+
+
+def parse_world(items: Sequence[str]) -> dict[str, bool]:
+    """The values of ``--world NAME=VALUE,...`` (VALUE true, false, 1 or 0)."""
+    world: dict[str, bool] = {}
+    for item in items:
+        for part in item.split(","):
+            if not part.strip():
+                continue
+            name, equals, value = part.partition("=")
+            value = value.strip().lower()
+            if not equals or not name.strip() or value not in ("true", "false", "1", "0"):
+                raise InputError(
+                    f"--world: {part.strip()!r} is not NAME=VALUE with VALUE true or false"
+                )
+            world[name.strip()] = value in ("true", "1")
+    return world
 
 
 def model_files(args: argparse.Namespace, resolve: bool = False) -> list[str]:
@@ -91,8 +112,8 @@ def model_files(args: argparse.Namespace, resolve: bool = False) -> list[str]:
 
 MODEL_FILES_HELP = (
     "model files (ASP), or a PDDL domain and problem (.pddl) with ASP "
-    "annotation files, or a HERA situation (.yaml, .json), or the name of a "
-    "bundled model (trolley, hera/trolley.yaml)"
+    "annotation files, or a HERA situation or causal agency model (.yaml, "
+    ".json), or the name of a bundled model (trolley, hera/trolley.yaml)"
 )
 MODEL_HELP = MODEL_FILES_HELP + "; - reads an ASP model from standard input"
 
@@ -109,5 +130,12 @@ def model_options(stdin: bool = True) -> argparse.ArgumentParser:
         "--allow-scripts",
         action="store_true",
         help="run #script blocks in model files (refused by default)",
+    )
+    parser.add_argument(
+        "--world",
+        action="append",
+        metavar="NAME=VALUE,...",
+        help="the values (true or false) of background variables and events of a "
+        "causal agency model, over those of its file (default: false)",
     )
     return parser

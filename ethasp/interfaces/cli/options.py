@@ -157,6 +157,10 @@ def given_plan(args: argparse.Namespace, model: Model | None = None) -> Plan:
     if args.plan is not None:
         return Plan.parse(args.plan)
     own = model.own_plan() if model is not None else None
+    if own is None and model is not None and model.is_cam:
+        raise InputError(
+            "no action given: use --plan ACTION to choose one of the causal agency model's actions"
+        )
     if own is None:
         raise InputError(
             "no plan given: use --plan or --plan-file (the model comes with no plan of its own)"

@@ -87,6 +87,14 @@ def run(args: argparse.Namespace) -> int:
     model = load_model(args)
     if args.principle:
         return run_permissible(args, model)
+    if model.is_cam:  # every action is a choice of its own
+        from ethasp.principles.restriction import plan_with_principles
+
+        result = plan_with_principles(model, [], all_plans=True)
+        no_picture(args)
+        choices = ", ".join(model.naming.actions(plan) for plan in result.plans)
+        emit(args, result.to_json(), f"choices of one action each: {choices}")
+        return 0
     if args.all and args.satisficing:
         raise InputError("--all lists all shortest plans; it cannot go with --satisficing")
     result = find_plan(

@@ -34,6 +34,8 @@ def run(args: argparse.Namespace) -> int:
     from ethasp.planning.validation import validate
 
     model = load_model(args)
+    if model.is_cam:
+        return run_choice(args, model)
     validation = validate(model, given_plan(args, model))
     if validation.valid:
         cost = f", cost {validation.cost}" if validation.cost is not None else ""
@@ -45,3 +47,19 @@ def run(args: argparse.Namespace) -> int:
         text = f"not a plan: {validation.message(model.naming)}"
     emit(args, validation.to_json(), text)
     return 0 if validation.valid else 2
+
+
+def run_choice(args: argparse.Namespace, model) -> int:
+    """A causal agency model: is the plan one of its actions, and its world."""
+    from ethasp.principles import causal
+
+    plan = given_plan(args, model)
+    causal.chosen_action(model, plan)  # one line and exit code 2 if not
+    world, utility, caused = causal.world(model, causal.evaluation(model, plan))
+    text = (
+        f"valid choice: {model.naming.actions(plan)}; world: {model.naming.facts(world)} "
+        f"(utility of the consequences {utility})"
+    )
+    data = {"plan": plan.to_list(), "valid": True, "final_state": world, "caused": caused}
+    emit(args, data, text)
+    return 0

@@ -23,6 +23,7 @@ from ethasp.planning.model import Model, kept
 from ethasp.planning.plan import Plan
 from ethasp.planning.timeline import Timeline, Valuation
 from ethasp.planning.validation import validate
+from ethasp.principles.causal import actions
 from ethasp.principles.judgement import JudgementReport
 from ethasp.questions.dialogue import Dialogue
 from ethasp.questions.question import Question
@@ -57,11 +58,13 @@ class Glance:
     model's elements for the page and its pictures, its own plan (a HERA
     situation's), if any, and whether the empty plan is a plan (the goal
     holds at the start: only then may a plan of one step be asked why not
-    in 0 steps)."""
+    in 0 steps); for a causal agency model, its actions to choose from
+    (``choices``: term and name, in the order of its file)."""
 
     valuation: Valuation
     own_plan: Plan | None
     empty_plan_is_plan: bool = False
+    choices: list[dict] | None = None
 
 
 @dataclass
@@ -72,7 +75,7 @@ class Shown:
 
     dialogue: Dialogue
     report: JudgementReport
-    explained: StepsExplanation
+    explained: StepsExplanation | None  # None for a causal agency model's choice
     timelines: dict[PlanKey, Timeline] = field(default_factory=dict)
     note: str = ""
 
@@ -123,8 +126,11 @@ def glance(model: Model) -> Glance:
     model = kept(model)
     if not model.checked:
         model.check()
-    empty = validate(model, Plan(())).valid
-    return Glance(_pictures_of(model).valuation, model.own_plan(), empty)
+    valuation = _pictures_of(model).valuation
+    if model.is_cam:
+        choices = [{"term": str(a), "shown": model.naming.action(a)} for a in actions(model)]
+        return Glance(valuation, model.own_plan(), False, choices)
+    return Glance(valuation, model.own_plan(), validate(model, Plan(())).valid)
 
 
 def _report(dialogue: Dialogue) -> JudgementReport:
@@ -159,6 +165,8 @@ def _report(dialogue: Dialogue) -> JudgementReport:
 def shown(dialogue: Dialogue, have: frozenset[PlanKey] = frozenset(), note: str = "") -> Shown:
     """What the page shows of the dialogue; the timelines of the plans in
     ``have`` (which the server keeps already) are left out."""
+    if dialogue.model.is_cam:  # a choice: no timelines, no steps to explain
+        return Shown(dialogue, _report(dialogue), None, {}, note)
     pictures = _pictures_of(dialogue.model)
     timelines = {}
     for plan in plans_of(dialogue):

@@ -8,6 +8,7 @@ from pathlib import Path
 from ethasp.interfaces.version import package_version
 from ethasp.interfaces.web.workspace import Session, Workspace
 from ethasp.planning.plan import Plan
+from ethasp.principles.causal import model_kind
 from ethasp.principles.principle import available_principles
 from ethasp.principles.restriction import restricting_principles
 from ethasp.questions.dialogue import Step
@@ -28,7 +29,11 @@ def model_json(workspace: Workspace) -> dict:
         "\n".join([str(Path(p).resolve()) for p in workspace.files] + texts).encode()
     ).hexdigest()[:16]
     limits = workspace.limits
-    principles = available_principles()
+    model = workspace.model
+    kind = model_kind(model)
+    principles = available_principles(kind)
+    # A causal agency model's plans are its actions, chosen one at a time.
+    choices = workspace.glance.choices
     return {
         "name": " ".join(names) or "model",
         "files": names,
@@ -36,7 +41,8 @@ def model_json(workspace: Workspace) -> dict:
         "version": package_version(),
         "principle": workspace.principle,
         "principles": [p.name for p in principles],
-        "restricting": restricting_principles(),
+        "restricting": restricting_principles(kind),
+        "choices": choices,
         "model": workspace.pictures.valuation.to_json(workspace.model.naming),
         "limits": {"question": limits.question, "plan": limits.plan, "questions": limits.questions},
         "options": {

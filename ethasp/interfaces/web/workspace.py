@@ -36,6 +36,7 @@ from ethasp.interfaces.web.workers import Workers
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
+from ethasp.principles.causal import model_kind
 from ethasp.principles.restriction import one_restricting_principle
 from ethasp.questions.dialogue import Dialogue
 from ethasp.questions.question import Question, step_question
@@ -147,10 +148,13 @@ class Workspace:
     ):
         self.model = model
         self.files = list(files)
+        if model.is_cam and principle == "deontology":
+            principle = "hera-deontology"  # the same concept, for causal agency models
         self.principle = one_restricting_principle(
             principle,
             "the page starts dialogues under the principle that their contrast "
             "plans must satisfy, one of",
+            model_kind(model),
         )
         self.options = options
         self.limits = limits
@@ -263,6 +267,7 @@ class Workspace:
         chosen = one_restricting_principle(
             name,
             "a dialogue starts under the principle that its contrast plans must satisfy, one of",
+            model_kind(self.model),
         )
         plan_text = self.limits.check("plan", plan_text or "", self.limits.plan)
         plan = Plan.parse(plan_text) if plan_text.strip() else None

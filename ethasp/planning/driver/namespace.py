@@ -355,7 +355,10 @@ class Owner:
 
 
 def _encoding_files() -> list[Path]:
-    return sorted(ENCODINGS.rglob("*.lp"))
+    """The encodings, those of planning/ first: a predicate that another
+    encoding also defines (holds/2 of cam/questions.lp, a choice's world as a
+    plan's state) is named after the planning encoding that defines it."""
+    return sorted(ENCODINGS.rglob("*.lp"), key=lambda path: (path.parent.name != "planning", path))
 
 
 @cache

@@ -85,8 +85,6 @@ plan that is not an action of the situation (HERA drops it from the plan).
 from __future__ import annotations
 
 import itertools
-import json
-import re
 import sys
 from collections.abc import Iterable
 from dataclasses import dataclass, field
@@ -95,12 +93,18 @@ from typing import Any
 
 import clingo
 
-from ethasp.errors import InputError
-from ethasp.planning.terms import INT_MAX, INT_MIN, read_text
+from ethasp.planning.readers.hera_data import (
+    SUFFIXES,
+    DataReader,
+    hera_name,
+    is_hera_file,
+    load_data,
+    name_term,
+)
+from ethasp.planning.terms import read_text
 
-SUFFIXES = (".yaml", ".yml", ".json")
+__all__ = ["SUFFIXES", "hera_name", "name_term", "situation_paths", "translate", "translate_data"]
 
-_CONSTANT = re.compile(r"[a-z][A-Za-z0-9_']*")
 # Copies of one conditional effect that override conditions may need; beyond,
 # the situation is refused.
 MAX_COPIES = 10_000
@@ -111,65 +115,22 @@ Literal = tuple[str, bool]
 
 
 def is_situation(path: Path) -> bool:
-    """Is the file a HERA situation (by its suffix)?"""
-    return path.suffix.lower() in SUFFIXES
-
-
-def name_term(name: str) -> clingo.Symbol:
-    """The ASP term of a HERA name: a constant if it is one, else a string."""
-    if _CONSTANT.fullmatch(name) and name != "not":
-        return clingo.Function(name)
-    return clingo.String(name)
-
-
-def hera_name(term: clingo.Symbol) -> str:
-    """The HERA name of a term made by :func:`name_term`."""
-    return term.string if term.type == clingo.SymbolType.String else str(term)
+    """Is the file one of HERA's (by its suffix): a situation or a causal agency model?"""
+    return is_hera_file(path)
 
 
 @dataclass
-class _Reader:
+class _Reader(DataReader):
     """Checks a situation's data and collects the facts of its model."""
 
-    where: str
-    facts: list[clingo.Symbol] = field(default_factory=list)
     variables: dict[str, bool] = field(default_factory=dict)
     patients: set[str] = field(default_factory=set)
-    warnings: list[str] = field(default_factory=list)
     # Variables that initialState leaves out: where each is first named, and
     # where the fact "v is false" is read (see the module docstring).
     undefined: dict[str, str] = field(default_factory=dict)
     read_false: dict[str, list[str]] = field(default_factory=dict)
 
-    def warn(self, message: str) -> None:
-        self.warnings.append(f"{self.where}: warning: {message}")
-
     # -- checking -------------------------------------------------------------------
-
-    def fail(self, message: str):
-        raise InputError(f"{self.where}: {message}")
-
-    def name(self, value: Any, what: str) -> str:
-        if isinstance(value, bool) or not isinstance(value, (str, int)):
-            self.fail(f"{what} must be a name, not {value!r}")
-        text = str(value)
-        if not text or any(ord(char) < 32 or ord(char) == 127 for char in text):
-            self.fail(f"{what} must be a non-empty name without control characters: {text!r}")
-        return text
-
-    def mapping(self, value: Any, what: str) -> dict:
-        if value is None:
-            return {}
-        if not isinstance(value, dict):
-            self.fail(f"{what} must be a mapping, not {type(value).__name__}")
-        return value
-
-    def sequence(self, value: Any, what: str) -> list:
-        if value is None:
-            return []
-        if not isinstance(value, list):
-            self.fail(f"{what} must be a list, not {type(value).__name__}")
-        return value
 
     def partial(
         self, value: Any, what: str, known: bool = True, reads: bool = True
@@ -217,28 +178,6 @@ class _Reader:
                 f"matches facts of one variable only), not {value!r}"
             )
         return literals[0]
-
-    def integer(self, value: Any, what: str) -> int:
-        if isinstance(value, float) and value.is_integer():
-            value = int(value)
-        if isinstance(value, bool) or not isinstance(value, int):
-            self.fail(f"{what} must be an integer, not {value!r}")
-        if not INT_MIN <= value <= INT_MAX:
-            self.fail(f"{what} is outside clingo's 32-bit integers: {value}")
-        return value
-
-    def add(self, name: str, *arguments) -> None:
-        terms = [
-            argument
-            if isinstance(argument, clingo.Symbol)
-            else clingo.Number(argument)
-            if isinstance(argument, int) and not isinstance(argument, bool)
-            else clingo.Function("true" if argument else "false")
-            if isinstance(argument, bool)
-            else argument
-            for argument in arguments
-        ]
-        self.facts.append(clingo.Function(name, terms))
 
     # -- the parts of a situation -------------------------------------------------------
 
@@ -515,74 +454,32 @@ class _Reader:
 
     def labels(self, value: Any, actions: set[str]) -> None:
         labels = self.mapping(value, "labels")
-        if "agent" in labels:
-            agent = labels["agent"]
-            if not (
-                isinstance(agent, list)
-                and len(agent) == 2
-                and all(isinstance(part, str) for part in agent)
-            ):
-                self.fail("labels: agent must be [name, possessive], e.g. [the robot, its]")
-            self.add("agent_label", clingo.String(agent[0]), clingo.String(agent[1]))
-        for name, words in self.mapping(labels.get("actions"), "labels of actions").items():
-            name = self.name(name, "an action in labels")
-            if name not in actions:
-                self.fail(f"labels: {name} is not an action of the situation")
-            if not (
-                isinstance(words, list)
-                and len(words) == 2
-                and all(isinstance(part, str) for part in words)
-            ):
-                self.fail(f"labels: action {name} needs [phrase, gerund]")
-            self.add(
-                "action_label", name_term(name), clingo.String(words[0]), clingo.String(words[1])
-            )
+        self.agent_label(labels)
+        self.action_labels(labels, actions, "situation")
         for index, entry in enumerate(self.sequence(labels.get("facts"), "labels of facts"), 1):
             entry = self.mapping(entry, f"fact label {index}")
             variable, truth = self.fact(entry.get("fact"), f"fact label {index}")
             if not isinstance(entry.get("label"), str):
                 self.fail(f"fact label {index} needs a label (a string)")
             self.add("fact_label", name_term(variable), truth, clingo.String(entry["label"]))
-        patients = self.mapping(value, "labels").get("patients")
-        for name, phrase in self.mapping(patients, "labels of patients").items():
-            name = self.name(name, "a patient in labels")
-            if name not in self.patients:
-                self.fail(f"labels: {name} is not a patient of the situation (in affects)")
-            if not isinstance(phrase, str):
-                self.fail(f"labels: patient {name} needs a phrase (a string)")
-            self.add("patient_label", name_term(name), clingo.String(phrase))
-
-
-def _load(path: Path, text: str) -> Any:
-    if path.suffix.lower() == ".json":
-        try:
-            return json.loads(text)
-        except json.JSONDecodeError as error:
-            raise InputError(f"{path}:{error.lineno}: not JSON: {error.msg}") from None
-        except RecursionError:
-            raise InputError(f"{path}: nested too deeply to read") from None
-    import yaml
-
-    try:
-        return yaml.safe_load(text)
-    except yaml.MarkedYAMLError as error:
-        mark = error.problem_mark
-        line = f":{mark.line + 1}" if mark is not None else ""
-        raise InputError(f"{path}{line}: not YAML: {error.problem}") from None
-    except (yaml.YAMLError, RecursionError) as error:
-        raise InputError(
-            f"{path}: not YAML: {str(error).splitlines()[0] if str(error) else 'nested too deeply'}"
-        ) from None
+        self.patient_labels(labels, self.patients, "situation (in affects)")
 
 
 def translate(path: Path) -> str:
     """The ASP facts of a situation file (one line with the problem if it cannot be mapped)."""
     text = read_text(path)
     reader = _Reader(str(path))
-    reader.read(_load(path, text))
+    reader.read(load_data(path, text))
     for line in reader.warnings:
         print(line, file=sys.stderr)
     return "".join(f"{fact}.\n" for fact in reader.facts)
+
+
+def read_situation(data: Any, where: str) -> tuple[str, list[str]]:
+    """The ASP facts of a situation given as data, and its warnings."""
+    reader = _Reader(where)
+    reader.read(data)
+    return reader.text(), reader.warnings
 
 
 def translate_data(data: Any, where: str = "<situation>") -> str:

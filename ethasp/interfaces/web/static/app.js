@@ -230,6 +230,29 @@ function renderModel() {
   $("under").disabled = !state || !state.dialogue;
   $("question").maxLength = model.limits.question;
   $("start-plan").maxLength = model.limits.plan;
+  if (model.choices) renderChoices(box);
+}
+
+function renderChoices(box) {
+  // A causal agency model: its plans are its actions, one chosen at a time.
+  // The first plan is chosen from a list; there are no timelines to draw and
+  // no steps to explain.
+  const list = el("datalist", { id: "choices" });
+  for (const choice of model.choices) list.append(el("option", { value: choice.term, text: choice.shown }));
+  box.append(list);
+  $("start-plan").setAttribute("list", "choices");
+  $("start-plan").placeholder = "the action chosen (empty: the first permissible under the principle)";
+  $("current-heading").textContent = "Current choice";
+  const table = el("table", { class: "glance", id: "model-choices" },
+    el("tr", {}, el("th", { text: "action" })));
+  for (const choice of model.choices) {
+    table.append(el("tr", {}, el("td", {}, el("button", {
+      class: "chip", type: "button", "data-term": choice.term, title: `ask about ${choice.shown}`,
+      onclick: () => choose(choice.term, choice.shown) }, choice.shown))));
+  }
+  box.prepend(collapsible(`Choices (${model.choices.length})`, table, model.choices.length));
+  for (const id of ["explain-plan", "shorter", "current-picture", "answer-picture"]) $(id).hidden = true;
+  for (const button of document.querySelectorAll(".zoom")) button.parentElement.hidden = true;
 }
 
 function verdictNode(side) {
@@ -407,7 +430,7 @@ function renderCurrent() {
   $("cheaper").hidden = !current.cost;
   // "Why not in N-1 steps?": for a plan of one step only when the empty plan is a plan.
   const shorter = steps >= 2 || (steps === 1 && current.empty_plan_is_plan);
-  $("shorter").hidden = !shorter;
+  $("shorter").hidden = !shorter || Boolean(model.choices);
   $("shorter").textContent = shorter ? `Why not in ${steps - 1} ${steps - 1 === 1 ? "step" : "steps"}?` : "";
   $("question").placeholder = suggestion();
   $("current-words").textContent = current.plan_words || "";
