@@ -77,7 +77,7 @@ def test_an_unknown_shell_is_one_line():
         (["ethasp", "plan", "trolley", "--principle", "do"], ["do-no-harm"]),
         (["ethasp", "ask", "trolley", "--under", "util"], ["utilitarianism"]),
         (["ethasp", "judge", "trolley", "--principle", "pa"], ["paper"]),
-        (["ethasp", "judge", "troll"], ["trolley"]),
+        (["ethasp", "judge", "troll"], ["trolley", "trolley-alarm"]),
         (["ethasp", "judge", "hera/"], ["hera/robot-and-frank.yaml", "hera/trolley.yaml"]),
         (["ethasp", "judge", "asp/foot"], ["asp/footbridge.lp"]),
         (["ethasp", "completion", ""], ["bash", "zsh"]),

@@ -19,7 +19,16 @@ import ethasp.planning.search as search_module
 from ethasp import Model, Plan, find_plan, judge
 from ethasp.planning import engines
 from ethasp.planning.budget import Budget
-from ethasp.planning.engines import best_state, explicit, greedy, reachability, sas
+from ethasp.planning.engines import (
+    best_state,
+    cheapest,
+    cost_layers,
+    downward,
+    explicit,
+    greedy,
+    reachability,
+    sas,
+)
 from ethasp.planning.engines.layers import Atoms, Layers, search_model
 from ethasp.planning.engines.task import Task
 
@@ -84,7 +93,11 @@ ENTRIES = {
     "layers": [_layers],
     "greedy": [_greedy, _greedy_search],
     "best_state": [_best_state, _better_state],
-    "downward": [lambda planner: sas.task(search_model(Atoms(planner)))],
+    "downward": [lambda planner: downward.compiled(search_model(Atoms(planner)))],
+    "cheapest": [
+        lambda planner: cheapest.Cheapest(cheapest.CostAtoms(planner), Budget(None)).start().stop()
+    ],
+    "cost_layers": [lambda planner: cost_layers.CostLayers(search_model(Atoms(planner)), {})],
 }
 
 UNHANDLED = [
@@ -111,11 +124,14 @@ def test_the_contract_says_what_each_engine_handles():
     # Greedy search knows no events: the planner gives such models the layers.
     assert {engines.CONDITIONAL_EFFECTS, engines.DERIVED_VARIABLES} == greedy.FEATURES
     assert "Conditional effects and derived\n  variables; no exogenous events" in engines.__doc__
-    for name in ("explicit", "layers", "best_state"):
+    for name in ("explicit", "layers", "best_state", "cheapest"):
         assert module(name).FEATURES == engines.ALL_FEATURES, name
     assert set(UNHANDLED) == {
         ("reachability", engines.EVENTS),
         ("greedy", engines.EVENTS),
+        ("cost_layers", engines.EVENTS),
+        ("downward", engines.EVENTS),
+        ("downward", engines.DERIVED_VARIABLES),
     }
 
 
@@ -170,7 +186,7 @@ def test_features_of_a_model_whose_rules_give_them():
 @pytest.mark.parametrize(("extra", "why"), [(EVENT, "exogenous events"), (DERIVED, "derived")])
 def test_the_planners_task_refuses_what_it_does_not_write(extra, why):
     from ethasp.planning.budget import Budget
-    from ethasp.planning.engines import downward, sas
+    from ethasp.planning.engines import downward
     from ethasp.planning.engines.layers import Atoms, search_model
 
     planner = Model.from_string(BASE + extra).planner

@@ -103,7 +103,7 @@ def test_the_memory_of_the_tree_stays_below_the_limit():
         sampler.join()
     assert outcome.status == MEMORY and outcome.limited
     assert outcome.message == "the memory limit of 0.4 GB was reached"
-    assert 0 < outcome.peak <= limit * GB
+    assert 0 <= outcome.peak <= limit * GB  # (0: the limit struck before a reading)
     assert peak[0] <= limit * GB
 
 

@@ -43,6 +43,8 @@ PLANS = {
     "heist": "",
     "rescue": "",
     "lightning": "drop_match",
+    "errand": "drive hand_over",
+    "trolley-alarm": "",
 }
 ACTIONS = {
     "trolley": ["pull", "refrain"],
@@ -50,6 +52,8 @@ ACTIONS = {
     "heist": ["stage_heist", "buy_flowers"],
     "rescue": ["take_key", "break_door"],
     "lightning": ["drop_match", "keep_match"],
+    "errand": ["drive", "cross_lawn"],
+    "trolley-alarm": ["alarm", "pull"],
 }
 PDDL = {path.name: path.read_text() for path in sorted((MODELS / "pddl").glob("*"))}
 PDDL_TASKS = [("trolley", "(pull)"), ("care", ""), ("blocksworld", ""), ("gripper", "")]

@@ -163,7 +163,7 @@ def test_a_question_of_a_dialogue_past_its_time_limit_says_so(tmp_path):
     assert lines[-1] in (
         "no answer: the time limit of 2 s was reached; the work was ended and the "
         "dialogue is as it was\n",
-    ) or lines[-1].startswith("  contrast plan: none (bounded: "), lines
+    ) or lines[-1].startswith("  no contrast plan found (bounded): "), lines
     # (A bounded answer keeps its question: it is taken back first.)
     undo = "undo\n" if "bounded" in lines[-1] else ""
     process.stdin.write(f"{undo}why pull rather than refrain\nquit\n")

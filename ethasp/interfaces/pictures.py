@@ -163,10 +163,13 @@ class Pictures:
             f"{role}: {self._actions(side.plan)} \u2014 {side.principle}: {verdict(side.judgement)}"
         )
 
-    def repair(self, answer: Answer, words: bool = True) -> str | None:
+    def repair(
+        self, answer: Answer, words: bool = True, repaired: Timeline | None = None
+    ) -> str | None:
         """An answer whose principle was dropped: the cheapest repair's plan,
         in the repaired model, aligned with the plan asked about (None without
-        a repair's plan)."""
+        a repair's plan); ``repaired``: that plan's timeline, if drawn already
+        (:func:`repaired_timeline`)."""
         impasse = answer.impasse
         result = impasse.repair if impasse is not None else None
         if result is None or not result.repairs or result.repairs[0].plan is None:
@@ -174,7 +177,7 @@ class Pictures:
         best = result.repairs[0]
         naming = self.model.naming
         changes = "; ".join(change.text(naming) for change in best.changes)
-        repaired = timeline(best.model, best.plan, Valuation.of_model(best.model))
+        repaired = repaired or repaired_timeline(answer)
         verdicts = ", ".join(f"{j.principle}: {verdict(j)}" for j in best.judgements)
         notes = [impasse.text] if words and impasse is not None else []
         return contrast_svg(
@@ -219,3 +222,14 @@ class Pictures:
             ),
             missing=f"none ({answer.status}: {answer.proof})",
         )
+
+
+def repaired_timeline(answer: Answer) -> Timeline | None:
+    """The timeline of the cheapest repair's plan of an answer, in the repaired
+    model (None without one)."""
+    impasse = answer.impasse
+    result = impasse.repair if impasse is not None else None
+    if result is None or not result.repairs or result.repairs[0].plan is None:
+        return None
+    best = result.repairs[0]
+    return timeline(best.model, best.plan, Valuation.of_model(best.model))

@@ -134,7 +134,7 @@ def _describe(problem: clingo.Symbol) -> str:
         )
     if name == "not_a_goal":
         return f"{args[0]} names a fact that is no goal fact"
-    if name == "bad_cost":
+    if name == "bad_change_cost":
         return f"the cost must be an integer from 1 to 1000000, one per change, in {args[0]}"
     if name == "override_without_condition":
         return f"{args[0]} names a condition that no cpre/4 has"

@@ -416,7 +416,7 @@ def _external(
     from ethasp.planning.engines.layers import Atoms, search_model
 
     try:
-        task = sas.task(search_model(Atoms(planner)))
+        task = downward.compiled(search_model(Atoms(planner)))
     except sas.NotCompiled as why:
         systems.warn(f"{why}: clingo searches instead")
         return None

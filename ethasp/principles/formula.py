@@ -411,8 +411,8 @@ class _Parser:
             joint = found
             self.pos += 1
         if len(members) == 1 and not always_named:
-            variable, value = members[0]
-            return Function("fact", [variable, Function(value)])
+            member, truth = members[0]
+            return Function("fact", [member, Function(truth)])
         name = Function("c", [clingo.Number(len(self.conjunctions) + 1)])
         self.conjunctions[name] = members
         return Function("any_facts" if joint == "|" else "all_facts", [name])

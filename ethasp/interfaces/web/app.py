@@ -211,12 +211,12 @@ def create_app(workspace: Workspace, loopback: bool = True) -> Flask:
 
     @app.get("/api/sessions/<key>/better/<principle>.svg")
     def better_picture(key: str, principle: str):
-        dialogue = workspace.session(key).require()
-        report = workspace.report(dialogue.current_plan)
+        kept = shown(key)
+        report = kept.report
         judgement = next((j for j in report.judgements if j.principle == principle), None)
         if judgement is None or judgement.better_plan is None:
             raise Refused(404, f"no better plan under {principle} for the current plan")
-        return _svg(workspace.pictures.better(report, judgement, words=_words()))
+        return _svg(workspace.pictures_of(kept).better(report, judgement, words=_words()))
 
     @app.get("/api/sessions/<key>/explain.svg")
     def explain_picture(key: str):
@@ -233,10 +233,16 @@ def create_app(workspace: Workspace, loopback: bool = True) -> Flask:
 
     @app.get("/api/sessions/<key>/steps/<int:number>/repair.svg")
     def repair_picture(key: str, number: int):
-        dialogue = workspace.session(key).require()
-        if not 1 <= number <= len(dialogue.steps):
+        kept = shown(key)
+        steps = kept.dialogue.steps
+        if not 1 <= number <= len(steps):
             raise Refused(404, f"no question {number} in this dialogue")
-        picture = workspace.pictures.repair(dialogue.steps[number - 1].answer, words=_words())
+        repaired = kept.repairs.get(number)
+        picture = (
+            workspace.pictures_of(kept).repair(steps[number - 1].answer, _words(), repaired)
+            if repaired is not None
+            else None
+        )
         if picture is None:
             raise Refused(404, f"the answer to question {number} has no repaired plan")
         return _svg(picture)

@@ -18,7 +18,7 @@ import threading
 from collections import OrderedDict
 from dataclasses import dataclass, field
 
-from ethasp.interfaces.pictures import Pictures
+from ethasp.interfaces.pictures import Pictures, repaired_timeline
 from ethasp.planning.model import Model, kept
 from ethasp.planning.plan import Plan
 from ethasp.planning.timeline import Timeline, Valuation
@@ -78,6 +78,8 @@ class Shown:
     explained: StepsExplanation | None  # None for a causal agency model's choice
     timelines: dict[PlanKey, Timeline] = field(default_factory=dict)
     note: str = ""
+    # the timelines of the cheapest repairs' plans, by question number
+    repairs: dict[int, Timeline] = field(default_factory=dict)
 
 
 def plan_key(plan: Plan) -> PlanKey:
@@ -93,6 +95,13 @@ def plans_of(dialogue: Dialogue) -> list[Plan]:
         if step.answer.contrast is not None:
             plans.append(step.answer.contrast.plan)
     return plans
+
+
+def drawn_plans(dialogue: Dialogue, report: JudgementReport) -> list[Plan]:
+    """The plans the page may draw (:func:`plans_of`), and the better plans of
+    the current plan's judgements (utilitarianism: a better reachable state)."""
+    better = [j.better_plan for j in report.judgements if j.better_plan is not None]
+    return [*plans_of(dialogue), *better]
 
 
 # -- what a worker keeps ------------------------------------------------------------------
@@ -168,17 +177,24 @@ def shown(dialogue: Dialogue, have: frozenset[PlanKey] = frozenset(), note: str 
     if dialogue.model.is_cam:  # a choice: no timelines, no steps to explain
         return Shown(dialogue, _report(dialogue), None, {}, note)
     pictures = _pictures_of(dialogue.model)
+    report = _report(dialogue)
     timelines = {}
-    for plan in plans_of(dialogue):
+    for plan in drawn_plans(dialogue, report):
         key = plan_key(plan)
         if key not in have and key not in timelines:
             timelines[key] = pictures.timeline(plan)
+    repairs = {}
+    for number, step in enumerate(dialogue.steps, 1):
+        repaired = repaired_timeline(step.answer)
+        if repaired is not None:
+            repairs[number] = repaired
     return Shown(
         dialogue,
-        _report(dialogue),
+        report,
         explain_steps(dialogue.model, dialogue.current_plan),
         timelines,
         note,
+        repairs,
     )
 
 

@@ -123,7 +123,7 @@ class Session:
         """A move's result replaces the dialogue; the timelines kept before
         are kept where the dialogue still draws their plans.  Its note."""
         timelines = {**(self.shown.timelines if self.shown else {}), **shown.timelines}
-        needed = {moves.plan_key(plan) for plan in moves.plans_of(shown.dialogue)}
+        needed = {moves.plan_key(plan) for plan in moves.drawn_plans(shown.dialogue, shown.report)}
         shown.timelines = {key: timelines[key] for key in timelines if key in needed}
         self.shown = shown
         return shown.note

@@ -127,9 +127,6 @@ class BestReachable:
     def facts(self) -> list[tuple[clingo.Symbol, str]]:
         return [(v, "true" if b else "false") for v, b in self.found.facts] if self.found else []
 
-    def alternative_facts(self) -> list:
-        return self.found.asp_facts() if self.found else []
-
     @property
     def plan(self) -> Plan | None:
         """A plan that reaches the state (its witness)."""
@@ -597,7 +594,7 @@ def _planner_search(planner, ground, at_least: int, budget: Budget, goal: bool, 
     from ethasp.planning.engines import downward, sas
 
     try:
-        task = sas.task(ground, goal=goal, at_least=at_least)
+        task = downward.compiled(ground, goal=goal, at_least=at_least)
     except sas.NotCompiled as why:
         systems.warn(f"{why}: clingo searches instead")
         return "failed", str(why)

@@ -164,6 +164,11 @@ class Cheapest(Layers):
     exact layers are run (:class:`ethasp.planning.engines.layers.Layers`: a
     child process on Linux, else a thread), over :class:`CostAtoms`."""
 
+    NAME = "uniform-cost search"
+
+    def features(self) -> frozenset[str]:
+        return FEATURES
+
     def _work(self, publish) -> None:
         atoms = self._atoms() if callable(self._atoms) else self._atoms
         assert isinstance(atoms, CostAtoms)

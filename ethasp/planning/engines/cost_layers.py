@@ -32,7 +32,12 @@ from collections.abc import Iterator
 import clingo
 
 from ethasp.planning.budget import Budget
-from ethasp.planning.engines import CONDITIONAL_EFFECTS, DERIVED_VARIABLES
+from ethasp.planning.engines import (
+    CONDITIONAL_EFFECTS,
+    DERIVED_VARIABLES,
+    model_features,
+    require,
+)
 from ethasp.planning.engines.reachability import (
     DEFAULT_NODE_LIMIT,
     GroundModel,
@@ -54,6 +59,7 @@ class CostLayers(Reachability):
         costs: dict[clingo.Symbol, int],
         node_limit: int = DEFAULT_NODE_LIMIT,
     ):
+        require("cost layers", FEATURES, model_features(model))
         super().__init__(model, node_limit)
         self.costs = {action.name: costs.get(action.name, 0) for action in model.actions}
         by_cost: dict[int, list] = {}

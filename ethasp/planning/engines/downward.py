@@ -45,7 +45,7 @@ from pathlib import Path
 
 from ethasp.execution import spawner
 from ethasp.planning.budget import Budget
-from ethasp.planning.engines import sas
+from ethasp.planning.engines import model_features, sas
 
 # The model features this engine handles (ethasp.planning.engines).
 FEATURES = sas.FEATURES
@@ -59,6 +59,17 @@ SOLVED = "Solution found."
 UNSOLVABLE = "Task is provably unsolvable."
 
 PLAN, NO_PLAN, STOPPED, FAILED = "plan", "unsolvable", "stopped", "failed"
+
+
+def compiled(model, goal: bool = True, at_least: int | None = None) -> sas.Task:
+    """The task this engine searches for a search model (see :func:`ethasp.
+    planning.engines.sas.task`); :class:`~ethasp.planning.engines.sas.
+    NotCompiled` (an :class:`~ethasp.planning.engines.Unhandled`) where the
+    model has a feature the engine does not handle (``FEATURES``)."""
+    missing = sorted(model_features(model) - FEATURES)
+    if missing:
+        raise sas.NotCompiled(f"Fast Downward's task does not model {' or '.join(missing)}")
+    return sas.task(model, goal, at_least)
 
 
 def executable() -> Path | None:
