@@ -56,7 +56,7 @@ def test_every_instance_is_read():
 @pytest.mark.parametrize("domain,problem", sorted(LEAST_COST))
 def test_cheapest_plans_cost_what_fast_downward_proves_least(domain, problem):
     model = Model.load(files(domain, problem))
-    result = find_plan(model, time_limit=300)
+    result = find_plan(model, time_limit=120)
     assert result.status == "found", result
     assert result.cost == LEAST_COST[(domain, problem)], result
     check = validate(model, result.plan)

@@ -31,7 +31,9 @@ Two searches race, and the first proof ends the search:
 
 The answer is the same on every run, whichever search proves what first:
 the plan reported is the least of the cheapest plans of the fewest steps
-(:func:`_least_cheapest`), the proof one text ("no plan costs less than
+(:func:`_least_cheapest`, where the solver finds it within a fixed number of
+conflicts; else the plan of uniform-cost search, whose turns make it the same
+on every run), the proof one text ("no plan costs less than
 C"), and at the maximal horizon without a proof the search waits for
 uniform-cost search to decide.  A search cut short by the maximal horizon or
 a limit says ``bounded``, with the cheapest plan found so far, if any, and
@@ -66,6 +68,9 @@ from ethasp.planning.search_base import (
 # Least plans are found by the solver's heuristic only where its levels fit in
 # clingo's numbers (steps times usable actions), as in ethasp.planning.search.
 LEAST_LEVELS = 2**30
+# Conflicts within which the solver finds the least of the cheapest plans
+# (beyond them, uniform-cost search's plan is reported).
+LEAST_CONFLICTS = 20_000
 
 # Whether uniform-cost search runs beside the solver (tests turn it off to
 # test the solver's proofs alone).
@@ -186,26 +191,29 @@ def _arithmetic(cost: int, length: int, least: int) -> bool:
 
 def _least_cheapest(
     planner: Planner, setting: Setting, budget: Budget, cost: int, witness: Plan
-) -> Plan:
+) -> Plan | None:
     """The least plan (step by step, by the actions' terms, as
     :func:`ethasp.planning.search.shortest` reports shortest plans) of the
     cheapest plans of the fewest steps, ``witness`` one of them: the optimum
     of ``planning/cost.lp`` and ``planning/lexicographic.lp`` at that horizon,
     under the bound ``cost``, so that the plan does not depend on which
-    search proved what first.  Where the budget stops that first, the witness
-    (a cheapest plan all the same)."""
+    search proved what first.  The empty plan is its own least.  None where
+    the solver needs more than :data:`LEAST_CONFLICTS` conflicts for it (the
+    same effort on every run) or the budget stops it first."""
     length = len(witness)
-    usable = len(planner.search_atoms("usable", 1))
-    if length == 0 or (length + 1) * max(1, usable) >= LEAST_LEVELS:
+    if length == 0:
         return witness
+    usable = len(planner.search_atoms("usable", 1))
+    if (length + 1) * max(1, usable) >= LEAST_LEVELS:
+        return None
     try:
         planner.use_least(budget)
     except GroundingStopped:
-        return witness
+        return None
     least = replace(setting, least=True, satisficing=False, canonical=False, max_cost=cost)
-    outcome = planner.solve(length, least, budget)
+    outcome = planner.solve(length, least, budget, conflicts=LEAST_CONFLICTS)
     if not outcome.satisfiable:
-        return witness
+        return None
     return plans_of([outcome.symbols])[0]
 
 
@@ -249,11 +257,42 @@ class _Search:
 
     def least(self, witness: Plan, cost: int) -> SearchResult:
         """The answer for a proven least cost and a cheapest plan of the fewest
-        steps (``witness``)."""
+        steps (``witness``): the least such plan, or where finding it takes
+        more than the solver's share, uniform-cost search's plan (which its
+        turns make the same on every run); a limit reached before either is
+        known ends the search ``bounded`` with the witness."""
         plan = _least_cheapest(self.planner, self.setting, self.budget, cost, witness)
+        if plan is None:
+            plan = self.engine_plan()
+        if plan is None:
+            return SearchResult(
+                BOUNDED,
+                plan=witness,
+                horizon=len(witness),
+                cost=cost,
+                optimal=False,
+                proof=f"no plan costs less than {cost}, but which cheapest plan to report "
+                f"was not settled ({self.budget.why_stopped() or 'uniform-cost search stopped'})",
+            )
         return SearchResult(
             FOUND, plan=plan, horizon=len(plan), proof=f"no plan costs less than {cost}", cost=cost
         )
+
+    def engine_plan(self) -> Plan | None:
+        """Uniform-cost search's cheapest plan, waited for within the budget
+        (None where the engine does not read plans here, stops, or the budget
+        ends first)."""
+        engine = self.engine
+        while engine.engine is not None and engine.read_plan and not self.budget.expired():
+            status = engine.status
+            proposed = engine.plan()
+            if proposed is not None:
+                return checked(self.planner, proposed, "uniform-cost search")
+            if status is not None and (status.complete or status.stopped):
+                return None
+            engine.engine.news.wait(0.05)
+            engine.engine.news.clear()
+        return None
 
     def cut(self, why: str) -> SearchResult:
         """Bounded: the cheapest plan so far (if any) is not proven cheapest."""
