@@ -71,7 +71,9 @@ class Pictures:
             self._valuation = Valuation.of_model(self.model)
         return self._valuation
 
-    def timeline(self, plan: Plan) -> Timeline:
+    def timeline(self, plan: Plan, reach_goal: bool = True) -> Timeline:
+        """The timeline of a plan (kept); ``reach_goal``: see
+        :func:`ethasp.planning.timeline.timeline`."""
         key = tuple(plan.to_list())
         with self._lock:
             if key in self._timelines:
@@ -79,7 +81,7 @@ class Pictures:
                 return self._timelines[key]
         if self._given:
             raise LookupError(f"no timeline of the plan {' '.join(key) or '(empty)'}")
-        drawn = timeline(self.model, plan, self.valuation)
+        drawn = timeline(self.model, plan, self.valuation, reach_goal)
         with self._lock:
             self._timelines[key] = drawn
             while len(self._timelines) > CACHED:
@@ -118,7 +120,7 @@ class Pictures:
             notes.append(judgement.explanation.text)
         return contrast_svg(
             self.timeline(report.plan),
-            self.timeline(better),
+            self.timeline(better, reach_goal=False),
             self.model.naming,
             title=f"{principle}: a better reachable state, and a plan that reaches it",
             notes=notes,

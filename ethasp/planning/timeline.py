@@ -229,16 +229,20 @@ def _facts(atoms, step: int | None = None) -> list[Fact]:
     return sorted((Fact.of(a.variable.symbol, a.value) for a in chosen), key=_order)
 
 
-def timeline(model: Model, plan: Plan, valuation: Valuation | None = None) -> Timeline:
+def timeline(
+    model: Model, plan: Plan, valuation: Valuation | None = None, reach_goal: bool = True
+) -> Timeline:
     """The timeline of a plan (one clingo call); InputError if it is not a plan
-    or has more than :data:`MAX_STEPS` steps."""
+    (without ``reach_goal``: a sequence of actions executable one after the
+    other, such as a better plan of utilitarianism, which reaches a better
+    state and perhaps not the goal) or has more than :data:`MAX_STEPS` steps."""
     if len(plan) > MAX_STEPS:
         raise InputError(
             f"the plan has {len(plan)} steps; pictures are drawn for plans of "
             f"at most {MAX_STEPS} steps"
         )
     valuation = valuation or Valuation.of_model(model)
-    symbols = plan_atoms(model, plan, STEPS)
+    symbols = plan_atoms(model, plan, STEPS, reach_goal=reach_goal)
     atoms = unify(
         [
             Initially,

@@ -149,11 +149,16 @@ def validate(model: Model, plan: Plan) -> Validation:
 
 
 def plan_atoms(
-    model: Model, plan: Plan, encodings, facts: Iterable[clingo.Symbol] = ()
+    model: Model,
+    plan: Plan,
+    encodings,
+    facts: Iterable[clingo.Symbol] = (),
+    reach_goal: bool = True,
 ) -> list[clingo.Symbol]:
     """The shown atoms of programs about a plan (``encodings``, which include
     its trace, ``planning/trace.lp``), given further ``facts``, in one clingo
-    call; InputError if the plan is not a plan of the model."""
+    call; InputError if the plan is not a plan of the model (without
+    ``reach_goal``: if its actions cannot be executed one after the other)."""
     ctl = model.planner.program(encodings, symbols=[*occurrences(plan), *facts])
     symbols: list[clingo.Symbol] = []
     with ctl.solve(yield_=True) as handle:
@@ -161,7 +166,8 @@ def plan_atoms(
             symbols = list(answer.symbols(shown=True))
             break
     validation = read_validation(plan, symbols, model)
-    if not validation.valid:
+    executable = validation.failure_step is None and not validation.static
+    if not validation.valid and (reach_goal or not executable):
         raise InputError(f"not a plan: {validation.message(model.naming)}")
     return symbols
 

@@ -179,10 +179,12 @@ def shown(dialogue: Dialogue, have: frozenset[PlanKey] = frozenset(), note: str 
     pictures = _pictures_of(dialogue.model)
     report = _report(dialogue)
     timelines = {}
+    goal_plans = {plan_key(plan) for plan in plans_of(dialogue)}
     for plan in drawn_plans(dialogue, report):
         key = plan_key(plan)
         if key not in have and key not in timelines:
-            timelines[key] = pictures.timeline(plan)
+            # (a better plan reaches a better state, not always the goal)
+            timelines[key] = pictures.timeline(plan, reach_goal=key in goal_plans)
     repairs = {}
     for number, step in enumerate(dialogue.steps, 1):
         repaired = repaired_timeline(step.answer)
