@@ -20,6 +20,7 @@ choice without consequences under do-no-harm, ...).
 from __future__ import annotations
 
 import json
+import random
 import sys
 import types
 from pathlib import Path
@@ -68,70 +69,111 @@ def _quoted(name: str) -> str:
     return "'" + name.replace("\\", "\\\\").replace("'", "\\'") + "'"
 
 
-@st.composite
-def formulas(draw, names: list[str], depth: int = 0):
+class Choices:
+    """What the generator draws, from hypothesis (``Choices(draw)``, for
+    property tests that shrink) or from a seeded ``random.Random``
+    (``Choices(rng=...)``, for benchmarks)."""
+
+    def __init__(self, draw=None, rng: random.Random | None = None):
+        self.draw, self.rng = draw, rng
+
+    def integer(self, low: int, high: int) -> int:
+        if self.rng is not None:
+            return self.rng.randint(low, high)
+        return self.draw(st.integers(low, high))
+
+    def boolean(self) -> bool:
+        return self.integer(0, 1) == 1 if self.rng is not None else self.draw(st.booleans())
+
+    def pick(self, items):
+        items = list(items)
+        return (
+            items[self.integer(0, len(items) - 1)]
+            if self.rng is not None
+            else self.draw(st.sampled_from(items))
+        )
+
+    def some(self, items, most: int, least: int = 0) -> list:
+        """Distinct items, between ``least`` and ``most`` of them."""
+        items = list(items)
+        if self.rng is not None:
+            return self.rng.sample(items, self.rng.randint(least, min(most, len(items))))
+        return self.draw(
+            st.lists(st.sampled_from(items), unique=True, min_size=least, max_size=most)
+        )
+
+
+def formula(choices: Choices, names: list[str], depth: int = 0) -> str:
     """A HERA formula string over the names."""
-    if depth >= 2 or draw(st.integers(0, 9)) < 4:
-        name = draw(st.sampled_from(names))
-        return _quoted(name) if draw(st.booleans()) else f"Not({_quoted(name)})"
-    connective = draw(st.sampled_from(["And", "Or", "Not", "Impl", "BiImpl"]))
+    if depth >= 2 or choices.integer(0, 9) < 4:
+        name = choices.pick(names)
+        return _quoted(name) if choices.boolean() else f"Not({_quoted(name)})"
+    connective = choices.pick(["And", "Or", "Not", "Impl", "BiImpl"])
     if connective == "Not":
-        return f"Not({draw(formulas(names, depth + 1))})"
-    first, second = draw(formulas(names, depth + 1)), draw(formulas(names, depth + 1))
+        return f"Not({formula(choices, names, depth + 1)})"
+    first, second = formula(choices, names, depth + 1), formula(choices, names, depth + 1)
     return f"{connective}({first}, {second})"
+
+
+def cam(
+    choices: Choices,
+    actions: int,
+    background: int,
+    events: int,
+    consequences: int,
+    spaces: bool = True,
+    utilities: int = 8,
+) -> tuple[dict, dict]:
+    """A causal agency model with these numbers of variables, and its world:
+    ``(data, world)``, the world giving the values of the background variables
+    and events; at most ``utilities`` facts have a utility."""
+    acts = [f"a{i}" for i in range(actions)]
+    given = [f"b{i}" for i in range(background)]
+    happenings = [f"e{i}" for i in range(events)]
+    effects = [f"c {i}" if spaces and i == 1 else f"c{i}" for i in range(consequences)]
+    exogenous = acts + given + happenings
+    mechanisms = {
+        c: formula(choices, exogenous + effects[:index]) for index, c in enumerate(effects)
+    }
+    literals = [literal_text(v, b) for v in exogenous + effects for b in (True, False)]
+    data = {
+        "description": "a random model",
+        "actions": acts,
+        "background": given,
+        "events": happenings,
+        "consequences": effects,
+        "mechanisms": mechanisms,
+        "utilities": {key: choices.integer(-3, 3) for key in choices.some(literals, utilities)},
+    }
+    for key, most in (("intentions", 3), ("goals", 2)):
+        if choices.integer(0, 9) > 0:  # else HERA has none, and fails where it reads them
+            data[key] = {
+                action: choices.some(literals, most) for action in acts if choices.integer(0, 9) > 0
+            }
+    patients = [f"p{i}" for i in range(choices.integer(0, 2))]
+    data["patients"] = patients
+    if patients:
+        data["affects"] = {
+            key: [
+                [choices.pick(patients), choices.pick("+-")] for _ in range(choices.integer(1, 2))
+            ]
+            for key in choices.some(literals, 5)
+        }
+    world = {name: choices.boolean() for name in given + happenings}
+    return data, world
 
 
 @st.composite
 def cams(draw, max_actions: int = 3, max_consequences: int = 4, spaces: bool = True):
-    """A causal agency model and its world: ``(data, world)``, the world
-    giving the values of the background variables and events."""
-    actions = [f"a{i}" for i in range(draw(st.integers(1, max_actions)))]
-    background = [f"b{i}" for i in range(draw(st.integers(0, 2)))]
-    events = [f"e{i}" for i in range(draw(st.integers(0, 1)))]
-    count = draw(st.integers(0 if draw(st.integers(0, 9)) == 0 else 1, max_consequences))
-    consequences = [f"c {i}" if spaces and i == 1 else f"c{i}" for i in range(count)]
-    exogenous = actions + background + events
-    mechanisms = {
-        c: draw(formulas(exogenous + consequences[:index])) for index, c in enumerate(consequences)
-    }
-    variables = exogenous + consequences
-    literals = [literal_text(v, b) for v in variables for b in (True, False)]
-    utilities = {
-        key: draw(st.integers(-3, 3))
-        for key in draw(st.lists(st.sampled_from(literals), unique=True, max_size=8))
-    }
-    data = {
-        "description": "a random model",
-        "actions": actions,
-        "background": background,
-        "events": events,
-        "consequences": consequences,
-        "mechanisms": mechanisms,
-        "utilities": utilities,
-    }
-    for key, most in (("intentions", 3), ("goals", 2)):
-        if draw(st.integers(0, 9)) > 0:  # else HERA has none, and fails where it reads them
-            data[key] = {
-                action: draw(st.lists(st.sampled_from(literals), unique=True, max_size=most))
-                for action in actions
-                if draw(st.integers(0, 9)) > 0
-            }
-    patients = [f"p{i}" for i in range(draw(st.integers(0, 2)))]
-    data["patients"] = patients
-    if patients:
-        affected = draw(st.lists(st.sampled_from(literals), unique=True, max_size=5))
-        data["affects"] = {
-            key: draw(
-                st.lists(
-                    st.tuples(st.sampled_from(patients), st.sampled_from("+-")).map(list),
-                    min_size=1,
-                    max_size=2,
-                )
-            )
-            for key in affected
-        }
-    world = {name: draw(st.booleans()) for name in background + events}
-    return data, world
+    """A causal agency model and its world (:func:`cam`) of random size."""
+    choices = Choices(draw)
+    actions, background, events = (
+        choices.integer(1, max_actions),
+        choices.integer(0, 2),
+        choices.integer(0, 1),
+    )
+    consequences = choices.integer(0 if choices.integer(0, 9) == 0 else 1, max_consequences)
+    return cam(choices, actions, background, events, consequences, spaces)
 
 
 def write(data: dict, path: Path, world: dict | None = None) -> Path:

@@ -338,6 +338,21 @@ def test_universality_needs_consequences_every_patient_prefers(tmp_path):
     assert verdicts(switch, "switch", ["universality"]) == {"universality": False}
 
 
+def test_a_large_model_that_clasp_preprocessed_wrongly():
+    """A random model of 30 variables (background variables, events, every
+    connective) whose evaluations clasp's equivalence preprocessing found
+    unsatisfiable: every action is judged under every principle, and
+    utilitarianism permits exactly the actions whose consequences are worth most."""
+    model = Model.load([Path(__file__).parent / "data" / "cam-large" / "random30.json"])
+    reports = [judge(model, Plan.parse(action), ["hera"]) for action in ("a0", "a1", "a2")]
+    best = max(report.utility for report in reports)
+    for report in reports:
+        assert len(report.judgements) == 15
+        assert all(j.status == "proven" for j in report.judgements)
+        ours = {j.principle: j.permissible for j in report.judgements}
+        assert ours["hera-utilitarianism"] == (report.utility == best)
+
+
 # -- the classic pair -------------------------------------------------------------------
 
 

@@ -40,6 +40,8 @@ def test_the_site_builds_strictly(tmp_path):
     # The generated tables are there.
     principles = (site / "principles" / "index.html").read_text()
     assert "kantian-humanity-2" in principles and "Definition 3 of the paper" in principles
+    cam = (site / "models" / "cam" / "index.html").read_text()
+    assert "KantianHumanityPrincipleReading2" in cam and "HERA 0.22.3" in cam
     assert "ethasp.planning.driver.planner" in (site / "architecture" / "index.html").read_text()
     assert "find_plan" in (site / "api" / "index.html").read_text()
 

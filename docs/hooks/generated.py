@@ -9,6 +9,12 @@ A page line that is one of these placeholders is replaced:
     ``encodings/restrictions/NAME.lp`` (plan generation), or that there is none;
 ``<!-- principles: headers -->``
     the complete header comments of those files, folded;
+``<!-- cam principles: table -->``
+    one row per file of ``encodings/principles/cam/`` (the principles of
+    causal agency models, in the order of ``--principle hera``): the name
+    ``--principle`` takes, HERA's class (the first name ending in
+    ``Principle...`` that the header gives), and the first paragraph of the
+    header;
 ``<!-- encodings: table -->``
     one row per encoding outside ``principles/`` and ``restrictions/``, with the
     first sentence of its header;
@@ -29,6 +35,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 ENCODINGS = ROOT / "encodings"
 PRINCIPLES = ENCODINGS / "principles"
+CAM_PRINCIPLES = PRINCIPLES / "cam"
 RESTRICTIONS = ENCODINGS / "restrictions"
 PACKAGE = ROOT / "ethasp"
 # The paper's three first, in its order, then the others by name.
@@ -154,6 +161,29 @@ def principles_headers() -> str:
     return "\n".join(blocks)
 
 
+HERA_CLASS = re.compile(r"\b[A-Z][A-Za-z]*Principle[A-Za-z0-9]*\b")
+
+
+def cam_principles_table() -> str:
+    rows = [
+        "| `--principle` | HERA's class (`ethics.cam.principles`) "
+        "| permissible iff (`encodings/principles/cam/`) |",
+        "| --- | --- | --- |",
+    ]
+    from ethasp.principles.principle import HERA_CAM  # the order of `--principle hera`
+
+    stems = sorted(path.stem for path in CAM_PRINCIPLES.glob("*.lp"))
+    order = [n.replace("-", "_") for n in HERA_CAM if n.replace("-", "_") in stems]
+    for stem in order + [s for s in stems if s not in order]:
+        path = CAM_PRINCIPLES / f"{stem}.lp"
+        text = summary(path)
+        found = HERA_CLASS.search(" ".join(header(path)))
+        if found is None:
+            raise ValueError(f"{path.relative_to(ROOT)}: the header names no class of HERA's")
+        rows.append(f"| `{path.stem.replace('_', '-')}` | `{found.group(0)}` | {escape(text)} |")
+    return "\n".join(rows)
+
+
 def encodings_table() -> str:
     rows = ["| encoding | what its header says it is |", "| --- | --- |"]
     folders = FOLDERS + sorted(
@@ -206,6 +236,7 @@ PLACEHOLDERS = {
     "<!-- engines: contract -->": engines_contract,
     "<!-- principles: table -->": principles_table,
     "<!-- principles: headers -->": principles_headers,
+    "<!-- cam principles: table -->": cam_principles_table,
     "<!-- encodings: table -->": encodings_table,
     "<!-- modules: table -->": modules_table,
 }

@@ -35,6 +35,12 @@ WORLDS = (
     "cam/causes.lp",
     "cam/alternatives.lp",
 )
+# The worlds of interventions depend on the values of the actions' worlds, so
+# the grounder leaves these programs to the solver (which finds their one
+# answer set).  clasp's equivalence preprocessing (clingo 5.8) wrongly finds
+# some of them unsatisfiable (a random model of 30 variables under
+# hera-utilitarianism); without it they are solved right.
+SOLVING = ("--eq=0",)
 LANGUAGE = (
     *WORLDS,
     "cam/language.lp",
@@ -115,6 +121,7 @@ def evaluation(
             [*LANGUAGE, *sorted(encodings)],
             planner.vocabulary_text(VOCABULARY),
             symbols=[clingo.Function("cam_chosen", [action]), *extra],
+            arguments=SOLVING,
         )
     return memo[key]
 
@@ -138,6 +145,7 @@ def met_constraints(model: Model, plan: Plan, terms: Sequence[clingo.Symbol]) ->
                 clingo.Function("cam_chosen", [action]),
                 *(clingo.Function("contrast", [name, term]) for term in terms),
             ],
+            arguments=SOLVING,
         )
         memo[key] = {atom.arguments[1] for atom in answer.get("met", 3)}
     return memo[key]

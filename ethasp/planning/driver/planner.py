@@ -1188,9 +1188,10 @@ class Planner:
         facts: str = "",
         model: bool = True,
         symbols: Iterable[clingo.Symbol] = (),
+        arguments: Sequence[str] = (),
     ) -> Answer:
         """The first answer set of :meth:`program` (empty if there is none)."""
-        ctl = self.program(encodings, facts, model=model, symbols=symbols)
+        ctl = self.program(encodings, facts, arguments, model=model, symbols=symbols)
         with ctl.solve(yield_=True) as handle:
             for answer in handle:
                 return Answer(list(answer.symbols(shown=True)))
