@@ -56,14 +56,14 @@ def check_against_oracle(seed: int, principle: str, larger: bool = False) -> Non
 
 
 @pytest.mark.slow
-@settings(max_examples=150, deadline=None)
+@settings(max_examples=90, deadline=None)
 @given(SEEDS, st.sampled_from(PAPER))
 def test_conflicts_of_the_papers_principles_agree_with_the_oracle(seed, principle):
     check_against_oracle(seed, principle)
 
 
 @pytest.mark.slow
-@settings(max_examples=100, deadline=None)
+@settings(max_examples=60, deadline=None)
 @given(SEEDS, st.sampled_from(HERA))
 def test_conflicts_of_heras_principles_agree_with_the_oracle(seed, principle):
     check_against_oracle(seed, principle)
@@ -167,7 +167,7 @@ def _plain(symbol):
 
 
 @pytest.mark.slow
-@settings(max_examples=120, deadline=None)
+@settings(max_examples=72, deadline=None)
 @given(SEEDS, st.sampled_from(QUESTION_PRINCIPLES))
 def test_conflicts_of_goals_and_question_constraints_agree_with_the_oracle(seed, principle):
     from question_oracle import shortest_meeting

@@ -53,7 +53,7 @@ def text(formula: tuple) -> str:
 
 
 @pytest.mark.slow
-@settings(max_examples=150, deadline=None)
+@settings(max_examples=90, deadline=None)
 @given(st.integers(min_value=0, max_value=10**9), st.integers(min_value=0, max_value=6))
 def test_verdicts_agree_with_the_definitions(seed, walk):
     spec, plan = model_with_plan(seed, walk)

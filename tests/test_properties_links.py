@@ -39,7 +39,7 @@ def test_strips_links_agree_with_the_definitions(seed, walk):
 
 
 @pytest.mark.slow
-@settings(max_examples=250, deadline=None)
+@settings(max_examples=150, deadline=None)
 @given(SEEDS, st.integers(0, 5))
 def test_strips_links_agree_with_the_definitions_at_scale(seed, walk):
     spec = random_model(seed, max_variables=6, max_actions=6, far_goal=seed % 2 == 0)
@@ -49,7 +49,7 @@ def test_strips_links_agree_with_the_definitions_at_scale(seed, walk):
 
 
 @pytest.mark.slow
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=120, deadline=None)
 @given(SEEDS, st.integers(0, 4))
 def test_links_with_every_feature_agree_with_the_definitions(seed, walk):
     spec = random_model(seed, max_variables=5, max_actions=5, **features(seed))

@@ -66,7 +66,7 @@ def check_against_oracle(seed: int, principle: str) -> None:
 
 
 @pytest.mark.slow
-@settings(max_examples=120, deadline=None)
+@settings(max_examples=72, deadline=None)
 @given(SEEDS, st.sampled_from(PRINCIPLES))
 def test_repairs_agree_with_the_oracle(seed, principle):
     check_against_oracle(seed, principle)

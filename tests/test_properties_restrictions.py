@@ -47,21 +47,21 @@ def check_against_oracle(seed: int, principles: list[str]) -> None:
 
 
 @pytest.mark.slow
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=180, deadline=None)
 @given(SEEDS, st.sampled_from(SINGLE))
 def test_hplans_of_one_principle_agree_with_the_oracle(seed, principles):
     check_against_oracle(seed, principles)
 
 
 @pytest.mark.slow
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=120, deadline=None)
 @given(SEEDS, st.sampled_from([*PAIRS, list(PRINCIPLES)]))
 def test_hplans_of_several_principles_agree_with_the_oracle(seed, principles):
     check_against_oracle(seed, principles)
 
 
 @pytest.mark.slow
-@settings(max_examples=100, deadline=None)
+@settings(max_examples=60, deadline=None)
 @given(SEEDS)
 def test_the_utilitarian_bound_is_the_proven_best_reachable_utility(seed):
     spec = random_model(seed, **features(seed))

@@ -45,7 +45,7 @@ def check(result, spec, principles, horizon) -> None:
         assert result.status == "none" and expected is None, (result, spec)
 
 
-@settings(max_examples=150, deadline=None)
+@settings(max_examples=90, deadline=None)
 @given(SEEDS, HORIZONS, st.sampled_from(PRINCIPLES), st.booleans())
 def test_plans_are_bounded_only_where_the_horizon_cut_the_search(
     seed, horizon, principles, satisficing

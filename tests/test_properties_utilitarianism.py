@@ -127,7 +127,7 @@ def test_utilitarian_hplans_with_other_principles_are_right(seed, principles):
 
 
 @pytest.mark.slow
-@settings(max_examples=40, deadline=None)
+@settings(max_examples=24, deadline=None)
 @given(SEEDS, st.integers(min_value=0, max_value=6))
 def test_the_fallback_without_diagrams_is_right_when_it_claims(seed, walk):
     """With a node limit of 1, exact reachability gives up at once and clingo
