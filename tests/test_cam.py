@@ -480,3 +480,15 @@ def test_batch_plans_a_cam_under_its_own_principles(tmp_path):
     assert run.returncode == 0, run.stdout + run.stderr
     lines = [json.loads(line) for line in output.read_text().splitlines()]
     assert lines and all(line["status"] == "none" for line in lines)
+
+
+def test_equal_direct_harms_make_one_literal():
+    # both bombings kill the children (their only direct harm): one term, one literal
+    run = ethasp(
+        "judge", "cam/bombers.yaml", "--plan", "refrain", "--principle", "minimize-harm", "--json"
+    )
+    assert run.returncode == 0, run.stderr
+    (judgement,) = json.loads(run.stdout)["judgements"]
+    assert judgement["permissible"] is True
+    for kind in ("necessary_reasons", "sufficient_reasons", "inus_reasons"):
+        assert judgement[kind] == [["GEq((), children_die)"]]
