@@ -450,3 +450,45 @@ def test_world_on_the_command_line():
     assert run.stdout.strip() == "false"
     run = ethasp("judge", str(DATA / "footbridge.json"), "--world", "tram_coming=maybe")
     assert run.returncode == 2 and "NAME=VALUE" in run.stderr
+
+
+def test_plan_under_a_group_takes_the_principles_of_a_cam():
+    for group, first in (("hera", "hera-deontology"), ("all", "discourse")):
+        run = ethasp("plan", "cam/bombers.yaml", "--principle", group, "--json")
+        assert run.returncode == 0, run.stderr
+        data = json.loads(run.stdout)
+        assert data["status"] == "none" and len(data["principles"]) == 15
+        assert data["principles"][0] == first
+        # every action was judged, and each is named with the principles against it
+        assert "bomb_factory under " in data["proof"] and "refrain under " in data["proof"]
+    run = ethasp(
+        "plan", "cam/bombers.yaml", "--principle", "hera", "--principle", "kantian-humanity"
+    )
+    assert run.returncode == 0 and "minimal conflicts" not in run.stdout  # a CAM has no goal
+    for name in ("paper", "utilitarianism"):
+        run = ethasp("plan", "cam/bombers.yaml", "--principle", name)
+        assert run.returncode == 2 and len(run.stderr.splitlines()) == 1
+        assert "not defined for causal agency models" in run.stderr
+
+
+def test_batch_plans_a_cam_under_its_own_principles(tmp_path):
+    output = tmp_path / "lines.jsonl"
+    run = ethasp(
+        "batch", "cam/bombers.yaml", "--task", "plan", "--principle", "discourse",
+        "--workers", "1", "--output", str(output), "--quiet",
+    )  # fmt: skip
+    assert run.returncode == 0, run.stdout + run.stderr
+    lines = [json.loads(line) for line in output.read_text().splitlines()]
+    assert lines and all(line["status"] == "none" for line in lines)
+
+
+def test_equal_direct_harms_make_one_literal():
+    # both bombings kill the children (their only direct harm): one term, one literal
+    run = ethasp(
+        "judge", "cam/bombers.yaml", "--plan", "refrain", "--principle", "minimize-harm", "--json"
+    )
+    assert run.returncode == 0, run.stderr
+    (judgement,) = json.loads(run.stdout)["judgements"]
+    assert judgement["permissible"] is True
+    for kind in ("necessary_reasons", "sufficient_reasons", "inus_reasons"):
+        assert judgement[kind] == [["GEq((), children_die)"]]

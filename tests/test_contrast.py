@@ -187,7 +187,29 @@ def test_cli_ask_json():
             "permissible",
             "sufficient_reasons",
             "necessary_reasons",
+            "inus_reasons",
         } <= set(data[side])
+    assert ["Caused(one_will_die)"] in data["contrast"]["inus_reasons"]
+
+
+def test_cli_ask_json_on_a_cam_has_inus_reasons():
+    run = ethasp(
+        "ask",
+        str(MODELS / "cam" / "bombers.yaml"),
+        "--plan",
+        "bomb_factory",
+        "--principle",
+        "double-effect",
+        "--question",
+        "why bomb_factory rather than bomb_school",
+        "--json",
+    )
+    assert run.returncode == 0, run.stderr
+    data = json.loads(run.stdout)
+    assert ["not I(children_die)"] in data["original"]["inus_reasons"]
+    assert data["contrast"]["plan"] == ["bomb_school"] and "inus_reasons" in data["contrast"]
+    # the principle was dropped for the contrast: a CAM has no goal to conflict with
+    assert data["principle_dropped"] is True and "conflicts" not in data
 
 
 def test_cli_ask_errors():

@@ -719,3 +719,20 @@ def test_a_model_with_action_costs_on_the_page():
     step = state(client, key)["steps"][0]
     assert step["own_constraints"] == ["cheaper_than(5)"]
     assert step["answer"]["contrast"]["cost"] == 2
+
+
+def test_inus_reasons_of_a_choice_and_of_the_answers_sides():
+    files = [str(ROOT / "tests" / "data" / "cam" / "switch.json")]
+    client = create_app(workspace_of(Model.load(files), files, "hera-do-no-harm")).test_client()
+    key = start(client, "hera-do-no-harm", "wait")
+    current = state(client, key)["current"]
+    assert current["plan"] == ["wait"]
+    judged = {j["principle"]: j for j in current["judgements"]}
+    assert judged["hera-do-no-harm"]["inus_reasons"] == [["not Caused(main_hit)"]]
+    job = ask(client, key, "why wait rather than switch")
+    assert job["state"] == "done", job
+    answer = state(client, key)["steps"][0]["answer"]
+    assert answer["original"]["inus_reasons"] == [["not Caused(main_hit)"]]
+    assert answer["contrast"]["plan"] == ["switch"]
+    assert answer["contrast"]["inus_reasons"] == [["Bad(side_hit)"], ["Caused(side_hit)"]]
+    assert answer["principle_dropped"] is True and "conflicts" not in answer

@@ -364,6 +364,7 @@ def _judge(
 
 def _plan(model, case: Case, principles: list[str], settings: Settings, budget) -> list[dict]:
     from ethasp.planning.search import FOUND, NONE
+    from ethasp.principles.causal import model_kind
     from ethasp.principles.judgement import final_utility
     from ethasp.principles.principle import select_principles
     from ethasp.principles.restriction import plan_with_principles, restricts
@@ -371,7 +372,7 @@ def _plan(model, case: Case, principles: list[str], settings: Settings, budget) 
     lines = []
     for principle in principles:
         try:
-            if not restricts(select_principles([principle])[0]):
+            if not restricts(select_principles([principle], model_kind(model))[0]):
                 lines.append(_judged(model, case, principle, settings, budget))
                 continue
             result = plan_with_principles(

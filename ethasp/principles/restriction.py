@@ -60,21 +60,24 @@ RESTRICTIONS = "restrictions"
 SEARCH_BOUNDS = ("at_most", "cheaper_than")
 
 
-def chosen_principles(names: Sequence[str]) -> list[Principle]:
-    """The principles named, each once, each with a restriction encoding.
+def chosen_principles(names: Sequence[str], kind: str = PLAN) -> list[Principle]:
+    """The principles named for a kind of model (``plan`` or ``cam``), each
+    once, each able to restrict plan search; a group (``hera``, ``all``)
+    stands for its principles defined for that kind.
 
     A principle ``NAME`` (``encodings/principles/NAME.lp``) restricts plan
     search with ``encodings/restrictions/NAME.lp``; one without it can judge
-    plans but not generate them.
+    plans but not generate them.  Every principle for causal agency models
+    restricts their choices.
     """
-    chosen = select_principles(names)
+    chosen = select_principles(names, kind)
     for principle in chosen:
         if not restricts(principle):
             raise InputError(
                 f"principle {principle.name} has no restriction encoding "
                 f"({RESTRICTIONS}/{principle.asp_name}.lp): it can judge plans "
                 "but not generate them (plans are generated under "
-                f"{', '.join(restricting_principles())})"
+                f"{', '.join(restricting_principles(kind))})"
             )
     return chosen
 
@@ -231,21 +234,25 @@ def _choices(
     from ethasp.principles import causal
     from ethasp.principles.judgement import judge
 
-    names = [principle.name for principle in select_principles(principles, CAM)]
+    names = [principle.name for principle in chosen_principles(principles, CAM)]
     terms = [constraint.term for constraint in constraints]
-    found = []
+    found, refused = [], []
     for action in causal.actions(model):
         plan = Plan((action,))
         if terms and not set(terms) <= causal.met_constraints(model, plan, terms):
             continue
-        if names and not all(j.permissible for j in judge(model, plan, names).judgements):
+        judgements = judge(model, plan, names).judgements if names else []
+        forbidding = [j.principle for j in judgements if not j.permissible]
+        if forbidding:
+            refused.append(f"{model.naming.actions(plan)} under {' and '.join(forbidding)}")
             continue
         found.append(plan)
     under = f" permissible under {' and '.join(names)}" if names else ""
     meeting = " meeting the question" if terms else ""
     if not found:
         what = f"no action{meeting}{under}" if (names or terms) else "no action"
-        return HPlanResult(NONE, names, None, 1, f"{what}: every action was judged")
+        why = f" (impermissible: {'; '.join(refused)})" if refused else ""
+        return HPlanResult(NONE, names, None, 1, f"{what}: every action was judged{why}")
     return HPlanResult(
         FOUND,
         names,

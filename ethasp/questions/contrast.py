@@ -500,6 +500,8 @@ class Side:
             "status": self.judgement.status,
             "sufficient_reasons": explanation.sufficient_reasons if explanation else [],
             "necessary_reasons": explanation.necessary_reasons if explanation else [],
+            "inus_reasons": explanation.inus_reasons if explanation else [],
+            "reasons_truncated": explanation.truncated if explanation else False,
             "chosen_reason": explanation.chosen_reason if explanation else [],
             "explanation": explanation.text if explanation else "",
         }
@@ -752,7 +754,9 @@ def answer_questions(
         original, contrast, search.conflict, search.result.status, under, search.impermissible
     )
     stuck = None
-    if search.principle_dropped and not budget.expired():
+    # A causal agency model has no goal and no steps: every action was judged,
+    # and the contrast's judgement says why the principle forbids it.
+    if search.principle_dropped and not model.is_cam and not budget.expired():
         stuck = impasse(model, under, constraints, max_horizon, budget, reasons_limit)
     return Answer(
         list(questions),

@@ -203,7 +203,7 @@ def run_permissible(args: argparse.Namespace, model: Model) -> int:
     elif result.status == "none":
         lines = [f"no permissible plan exists: {result.proof}"]
         default_reasons_limit(args)
-        if args.reasons_limit:
+        if args.reasons_limit and not model.is_cam:  # a CAM has no goal to conflict with
             lines += conflict_lines(args, model, result.principles, data, limits)
     elif result.plan is not None and result.best is None:
         # A model with action costs: the cheapest permissible plan found, not

@@ -324,6 +324,7 @@ function reasonsOf(side, highlight, text) {
     el("p", {}, el("span", { class: "muted", text: "Chosen reason: " }), literals(side.chosen_reason, highlight)),
     reasonsBlock("Necessary", side.necessary_reasons || [], side.chosen_reason),
     reasonsBlock("Sufficient", side.sufficient_reasons || [], null),
+    reasonsBlock("INUS", side.inus_reasons || [], null),
     side.reasons_truncated ? el("p", { class: "proof", text: "Reason limit reached; more reasons may exist." }) : null,
   ];
 }
