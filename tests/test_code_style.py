@@ -119,3 +119,18 @@ def test_the_hypothesis_profile_is_loaded():
         text=True,
     )
     assert probe.stdout.split() == ["ci", "True"], probe.stderr
+
+
+def test_every_package_is_installed():
+    """Every package of ethasp is listed in pyproject.toml, so that a wheel (not
+    only a checkout or an editable install) has it."""
+    import tomllib
+
+    listed = set(
+        tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]["packages"]
+    )
+    found = {
+        ".".join(path.parent.relative_to(ROOT).parts)
+        for path in (ROOT / "ethasp").rglob("__init__.py")
+    }
+    assert found <= listed, sorted(found - listed)
