@@ -156,11 +156,13 @@ def cheapest(
     )
     try:
         search = _Search(planner, setting, budget, max_horizon, start, task, engine, longest)
+        search.all_plans = all_plans  # the least is the first of them all
         result = search.run(below)
     finally:
         engine.stop()
     if all_plans and result.status == FOUND and result.plan is not None:
         result.plans = _all_cheapest(planner, setting, budget, result)
+        result.plan = result.plans[0]
     return result
 
 
@@ -241,6 +243,7 @@ class _Search:
         self.planner, self.setting, self.budget = planner, setting, budget
         self.max_horizon = min(max_horizon, longest) if longest is not None else max_horizon
         self.horizon, self.task, self.engine, self.longest = start, task, engine, longest
+        self.all_plans = False
         self.plan: Plan | None = None
         self.cost = 0
         self.limit: int | None = None
@@ -261,6 +264,14 @@ class _Search:
         more than the solver's share, uniform-cost search's plan (which its
         turns make the same on every run); a limit reached before either is
         known ends the search ``bounded`` with the witness."""
+        if self.all_plans:  # every cheapest plan is listed, the least first
+            return SearchResult(
+                FOUND,
+                plan=witness,
+                horizon=len(witness),
+                proof=f"no plan costs less than {cost}",
+                cost=cost,
+            )
         plan = _least_cheapest(self.planner, self.setting, self.budget, cost, witness)
         if plan is None:
             plan = self.engine_plan()
