@@ -125,6 +125,19 @@ def test_with_actions_of_cost_0_the_loop_free_threshold_proves_it(solver_alone):
     assert result.proof == "no plan costs less than 1"
 
 
+def test_all_cheapest_plans_where_every_action_costs_0():
+    """Every action costs 0: the cost's level of optimisation is kept all the
+    same, so that the bound on the cost (0) does not fall on the steps (before,
+    listing the plans of cost 0 found none but the one found first)."""
+    model = Model.from_string(
+        "variable(v). action(a;b). eff(a,v,true). eff(b,v,true). goal(v,true). "
+        "cost(a,0). cost(b,0)."
+    )
+    result = find_plan(model, all_plans=True)
+    assert result.status == "found" and result.cost == 0
+    assert result.plans == [Plan.parse("a"), Plan.parse("b")]
+
+
 def test_a_horizon_too_small_to_prove_is_bounded_with_the_plan_found(solver_alone):
     dear = Model.from_string(TOWN + "cost(walk1,2). cost(walk2,2). cost(walk3,2).")
     result = find_plan(dear, max_horizon=1)

@@ -113,6 +113,10 @@ UTILITY_SWITCH = clingo.Function("require", [clingo.Function("utility")])
 # higher priority than the utility's), switched on for the searches for
 # cheapest plans; grounded for models with action costs only.
 COST_ENCODING = "planning/cost.lp"
+# What the first level of optimisation of planning/cost.lp carries beyond a
+# plan's cost (a constant 1, so that the level exists where every action
+# grounded costs 0): a bound on the cost is given plus this.
+COST_LEVEL_OFFSET = 1
 COST_SWITCH = clingo.Function("require", [clingo.Function("cost")])
 GOAL_ENCODING = "planning/goal.lp"
 # The h^2 mutexes are redundant constraints: they speed up hard horizons, but
@@ -1008,6 +1012,8 @@ class Planner:
         except GroundingStopped:
             return Outcome(None)
         config = solve_configuration(self.ctl)
+        if bound is not None:
+            bound += COST_LEVEL_OFFSET
         if optimize:
             config.opt_mode = "opt" if bound is None else f"opt,{bound}"
         else:
