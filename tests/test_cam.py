@@ -270,8 +270,16 @@ def test_planning_commands_refuse_a_cam_in_one_line(tmp_path):
     from ethasp.planning.search import find_plan
     from ethasp.planning.validation import validate
 
+    from ethasp.principles.conflict import goal_conflicts
+    from ethasp.principles.repair import repair
+
     model = load(SWITCH, tmp_path)
-    for call in (lambda: find_plan(model), lambda: validate(model, Plan.parse("switch"))):
+    for call in (
+        lambda: find_plan(model),
+        lambda: validate(model, Plan.parse("switch")),
+        lambda: repair(model, ["double-effect"]),  # a CAM has no goal and no changes
+        lambda: goal_conflicts(model, ["double-effect"]),
+    ):
         with pytest.raises(InputError, match="is a causal agency model"):
             call()
 

@@ -278,6 +278,7 @@ def goal_conflicts(
     the question ``constraints``, which count like goal facts) under the
     principles: at most ``limit`` of each (0: none computed).  ``budget`` (or
     else ``time_limit``) bounds the searches."""
+    model.require_planning("the conflicts of a goal")
     budget = budget or Budget(time_limit)
     horizon = DEFAULT_MAX_HORIZON if max_horizon is None else max_horizon
     chosen = chosen_principles(principles)

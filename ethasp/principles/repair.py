@@ -274,6 +274,7 @@ def repair(
     principles (see the module docstring): at most ``limit`` of them, each with
     a plan (with ``plan``: the one that keeps the most of it); ``constraints``
     (of questions) are kept."""
+    model.require_planning("repairing a model")
     budget = budget or Budget(time_limit)
     horizon = DEFAULT_MAX_HORIZON if max_horizon is None else max_horizon
     chosen = chosen_principles(principles)
