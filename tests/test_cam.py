@@ -388,6 +388,24 @@ def test_inus_reasons_are_cut_by_the_limit(tmp_path):
     assert len(explanation.inus_reasons) == 1 and explanation.inus_truncated
 
 
+def test_the_search_for_inus_reasons_is_cut_by_its_conflicts(monkeypatch):
+    """The saturation over a formula that is not read-once may take minutes
+    for a few INUS reasons more (the bombers' do-no-instrumental-harm-
+    without-intentions took over 30 s for 10): its search stops after a fixed
+    number of conflicts, and the list says that more may exist."""
+    import ethasp.reasons.reasons as reasons
+
+    model = Model.load(["cam/bombers.yaml"])
+    plan = Plan.parse("bomb_factory")
+    principle = "do-no-instrumental-harm-without-intentions"
+    full = explain(model, plan, principle, limit=10)
+    assert full.inus_reasons and full.inus_truncated  # cut by the conflicts, not by 10
+    assert len(full.inus_reasons) < 10
+    monkeypatch.setattr(reasons, "INUS_CONFLICTS", 1)
+    cut = explain(Model.load(["cam/bombers.yaml"]), plan, principle, limit=10)
+    assert cut.inus_truncated and len(cut.inus_reasons) <= len(full.inus_reasons)
+
+
 def test_inus_reasons_of_plans_too():
     model = Model.load([ROOT / "asp" / "trolley.lp"])
     explanation = explain(model, Plan.parse("refrain"), "do-no-harm")

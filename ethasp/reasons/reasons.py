@@ -146,12 +146,19 @@ def _enumerate(ctl: clingo.Control, limit: int) -> tuple[list[list[clingo.Symbol
     return found[:limit], len(found) <= limit
 
 
+# The conflicts within which INUS reasons are searched (the same effort on
+# every run): beyond them the list is cut short (more may exist).  The
+# saturation of inus.lp over formulas that are not read-once can take
+# minutes for a few reasons more.
+INUS_CONFLICTS = 20_000
+
+
 def _inus(
     model: Model, program: str, sufficient: list[list[clingo.Symbol]], limit: int
 ) -> tuple[list[list[Literal]], bool]:
     """Up to ``limit`` INUS reasons (``reasons/inus.lp``, one answer set each,
     projected on their literals) of the given sufficient reasons, and whether
-    they are all there are."""
+    they are all there are (not where :data:`INUS_CONFLICTS` ran out first)."""
     members = "".join(
         f"sufficient_member({number},{literal.atom}).\n"
         for number, reason in enumerate(sufficient, 1)
@@ -162,12 +169,15 @@ def _inus(
     ctl = model.planner.program(INUS, program + members, ("--project=show",), model=False)
     config = solve_configuration(ctl)
     config.models = str(limit + 1)
+    config.solve_limit = str(INUS_CONFLICTS)
     found: list[list[Literal]] = []
     with ctl.solve(yield_=True) as handle:
         for answer in handle:
             found.append(_literals(answer.symbols(shown=True)))
+        exhausted = handle.get().exhausted
     found.sort(key=lambda reason: (len(reason), [(str(lit.atom), lit.value) for lit in reason]))
-    return found[:limit], len(found) <= limit
+    # (Past the conflicts, the search stops: more may exist.)
+    return found[:limit], len(found) <= limit and exhausted
 
 
 def _optimum(ctl: clingo.Control) -> list[clingo.Symbol] | None:
