@@ -269,7 +269,6 @@ def test_principles_are_defined_per_kind_of_model(tmp_path):
 def test_planning_commands_refuse_a_cam_in_one_line(tmp_path):
     from ethasp.planning.search import find_plan
     from ethasp.planning.validation import validate
-
     from ethasp.principles.conflict import goal_conflicts
     from ethasp.principles.repair import repair
 
