@@ -40,7 +40,7 @@ from collections.abc import Iterator
 import clingo
 
 from ethasp.planning.budget import Budget
-from ethasp.planning.engines import ALL_FEATURES
+from ethasp.planning.engines import ALL_FEATURES, handles, model_features
 from ethasp.planning.engines.explicit import Events
 from ethasp.planning.engines.layers import Atoms, Layers, _import_diagrams, search_model
 from ethasp.planning.engines.task import Task, path
@@ -177,9 +177,12 @@ class Cheapest(Layers):
         searches = [
             cheapest_plan(task, Events(self.model.events, task.index), atoms.costs, self._budget)
         ]
-        if not self.model.events:
-            # Symbolic layers too (they know no events), in turns with the
-            # explicit search: each does well where the other does badly.
+        from ethasp.planning.engines import cost_layers
+
+        if handles(cost_layers.FEATURES, model_features(self.model)):
+            # Symbolic layers too where they model the task (no events), in
+            # turns with the explicit search: each does well where the other
+            # does badly.
             from ethasp.planning.engines.cost_layers import CostLayers
 
             _import_diagrams()
