@@ -25,14 +25,11 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
-import subprocess
 import sys
-import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from fast_downward import fast_downward_driver, run_fast_downward
+from fast_downward import ethasp_plan, fast_downward_driver, run_fast_downward
 
 ROOT = Path(__file__).resolve().parent.parent
 DATA = ROOT / "tests" / "data" / "ipc-costs"
@@ -67,21 +64,7 @@ def instances(folder: Path, problems: list[str]) -> list[Instance]:
 
 
 def run_ethasp(instance: Instance, time_limit: float) -> Run:
-    env = {**os.environ, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
-    command = [
-        sys.executable,
-        "-m",
-        "ethasp.interfaces.cli",
-        "plan",
-        str(instance.domain),
-        str(instance.problem),
-        "--json",
-        "--time-limit",
-        str(time_limit),
-    ]
-    start = time.perf_counter()
-    done = subprocess.run(command, capture_output=True, text=True, env=env, cwd=ROOT)
-    seconds = time.perf_counter() - start
+    done, seconds = ethasp_plan(instance.domain, instance.problem, time_limit)
     if done.returncode != 0:
         return Run(None, seconds, done.stderr.strip().splitlines()[-1][:40] if done.stderr else "")
     data = json.loads(done.stdout)

@@ -1,9 +1,11 @@
 """Fast Downward for the benchmarks: its driver script, from the PyPI package
-``up-fast-downward`` (a benchmark extra, never a dependency of ethasp)."""
+``up-fast-downward`` (a benchmark extra, never a dependency of ethasp), and
+the commands the benchmarks run beside it (``ethasp plan`` of a task)."""
 
 from __future__ import annotations
 
 import importlib.util
+import os
 import re
 import subprocess
 import sys
@@ -11,6 +13,46 @@ import tempfile
 import time
 from dataclasses import dataclass
 from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def fast_downward_command(
+    driver: Path, domain: Path, problem: Path, plan_file: Path, search: str
+) -> list[str]:
+    """Fast Downward's driver on a task, writing its plan to ``plan_file``."""
+    return [
+        sys.executable,
+        str(driver),
+        "--plan-file",
+        str(plan_file),
+        str(domain),
+        str(problem),
+        "--search",
+        search,
+    ]
+
+
+def ethasp_plan(
+    domain: Path, problem: Path, time_limit: float
+) -> tuple[subprocess.CompletedProcess, float]:
+    """``ethasp plan DOMAIN PROBLEM --json`` of this checkout, as a whole
+    process timed from outside: the process and its seconds."""
+    env = {**os.environ, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
+    command = [
+        sys.executable,
+        "-m",
+        "ethasp.interfaces.cli",
+        "plan",
+        str(domain),
+        str(problem),
+        "--json",
+        "--time-limit",
+        str(time_limit),
+    ]
+    start = time.perf_counter()
+    done = subprocess.run(command, capture_output=True, text=True, env=env, cwd=ROOT)
+    return done, time.perf_counter() - start
 
 
 def fast_downward_driver() -> Path | None:
@@ -42,16 +84,7 @@ def run_fast_downward(
     """Fast Downward on a task, as a whole process timed from outside."""
     with tempfile.TemporaryDirectory() as work:
         plan_file = Path(work) / "plan"
-        command = [
-            sys.executable,
-            str(driver),
-            "--plan-file",
-            str(plan_file),
-            str(domain),
-            str(problem),
-            "--search",
-            search,
-        ]
+        command = fast_downward_command(driver, domain, problem, plan_file, search)
         start = time.perf_counter()
         try:
             subprocess.run(command, capture_output=True, text=True, cwd=work, timeout=time_limit)

@@ -53,7 +53,7 @@ import time
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
-from fast_downward import fast_downward_driver
+from fast_downward import fast_downward_command, fast_downward_driver
 
 ROOT = Path(__file__).resolve().parent.parent
 FD_SEARCH = {"fd-opt": "astar(lmcut())", "fd-sat": "lazy_greedy([ff()])"}
@@ -232,16 +232,9 @@ def _fast_downward_outcome(code: int) -> str:
 def run_fast_downward(driver: Path, instance: Instance, search: str, cap: float) -> Run:
     with tempfile.TemporaryDirectory() as work:
         plan_file = Path(work) / "plan"
-        command = [
-            sys.executable,
-            str(driver),
-            "--plan-file",
-            str(plan_file),
-            str(instance.domain),
-            str(instance.problem),
-            "--search",
-            search,
-        ]
+        command = fast_downward_command(
+            driver, instance.domain, instance.problem, plan_file, search
+        )
         done, seconds, cpu = timed(command, cap, Path(work))
         if done is None:
             return Run(None, seconds, "timeout", cpu)

@@ -20,16 +20,13 @@ from __future__ import annotations
 import argparse
 import itertools
 import json
-import os
 import random
-import subprocess
 import sys
 import tempfile
-import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from fast_downward import fast_downward_driver, run_fast_downward
+from fast_downward import ethasp_plan, fast_downward_driver, run_fast_downward
 
 ROOT = Path(__file__).resolve().parent.parent
 PDDL = ROOT / "asp" / "pddl"
@@ -117,21 +114,7 @@ def instances(folder: Path, quick: bool) -> list[Instance]:
 
 
 def run_ethasp(instance: Instance, time_limit: float) -> Run:
-    env = {**os.environ, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
-    command = [
-        sys.executable,
-        "-m",
-        "ethasp.interfaces.cli",
-        "plan",
-        str(instance.domain),
-        str(instance.problem),
-        "--json",
-        "--time-limit",
-        str(time_limit),
-    ]
-    start = time.perf_counter()
-    done = subprocess.run(command, capture_output=True, text=True, env=env, cwd=ROOT)
-    seconds = time.perf_counter() - start
+    done, seconds = ethasp_plan(instance.domain, instance.problem, time_limit)
     if done.returncode != 0:
         return Run(None, seconds, done.stderr.strip())
     data = json.loads(done.stdout)
