@@ -69,6 +69,14 @@ def test_bad_costs_are_one_line(facts, needle):
     assert needle in str(error.value) and "\n" not in str(error.value)
 
 
+@pytest.mark.parametrize("cost", [0, 1, 1000000])
+def test_costs_at_the_bounds_are_accepted(cost):
+    model = Model.from_string(
+        f"variable(a). action(go). eff(go,a,true). goal(a,true). cost(go,{cost})."
+    )
+    assert validate(model, Plan.parse("go")).cost == cost
+
+
 def test_a_plans_cost_is_in_its_trace_and_its_validation():
     model = Model.load([ERRAND])
     assert validate(model, Plan.parse("drive hand_over")).cost == 9
