@@ -35,8 +35,9 @@ from ethasp.planning.engines.task import Task
 ENGINES = [
     name
     for module in pkgutil.iter_modules(engines.__path__)
-    # (task: what explicit and greedy search over; sas: what downward searches)
-    if (name := module.name) not in ("task", "sas")
+    # (task: what explicit and greedy search over; sas: what downward searches;
+    # groups: the mutex groups that sas writes)
+    if (name := module.name) not in ("task", "sas", "groups")
 ]
 
 BASE = "variable(a;b). action(go). eff(go,a,true). goal(a,true).\n"

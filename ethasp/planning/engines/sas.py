@@ -73,12 +73,14 @@ class Task:
         return [self.actions[int(name[1:])] for name in operators if name.startswith("a")]
 
 
-def task(model, goal: bool = True, at_least: int | None = None) -> Task:
+def task(model, goal: bool = True, at_least: int | None = None, grouped: bool = True) -> Task:
     """The SAS+ task of a search model (a :class:`~ethasp.planning.engines.
     reachability.GroundModel`): its goal (``goal``), and a final state worth
     at least its goal utility, or ``at_least`` if given (a search model
-    read with the utilities of facts: ``Atoms(planner, weights=True)``).  NotCompiled where
-    it has events or derived variables, or a count too large."""
+    read with the utilities of facts: ``Atoms(planner, weights=True)``).  With
+    ``grouped``, each proven mutex group of :mod:`~ethasp.planning.engines.groups`
+    that the task can write is one variable (see :class:`_Layout`).  NotCompiled
+    where it has events or derived variables, or a count too large."""
     missing = sorted(model_features(model) - FEATURES)  # read now: tests change FEATURES
     if missing:
         raise NotCompiled(f"Fast Downward's task does not model {' or '.join(missing)}")
@@ -89,16 +91,16 @@ def task(model, goal: bool = True, at_least: int | None = None) -> Task:
         wanted |= {variable for variable, _, _ in counting[0]}
     necessary = _necessary(model, wanted)
     variables = [variable for variable in model.variables if variable in necessary]
-    index = {variable: i for i, variable in enumerate(variables)}
+    layout = _Layout(model, variables, goal, counting, grouped)
     lines = ["begin_version", "3", "end_version", "begin_metric", "0", "end_metric"]
-    count = len(variables) + (2 if counting else 0)
+    count = len(layout.domains) + (2 if counting else 0)
     lines.append(str(count))
-    for i in range(len(variables)):
-        lines += ["begin_variable", f"v{i}", "-1", "2"]
-        lines += [f"Atom v{i}(false)", f"Atom v{i}(true)", "end_variable"]
+    for i, values in enumerate(layout.domains):
+        lines += ["begin_variable", f"v{i}", "-1", str(len(values))]
+        lines += [f"Atom v{i}({value})" for value in values] + ["end_variable"]
     stage = counter = -1
     if counting:
-        stage, counter = len(variables), len(variables) + 1
+        stage, counter = len(layout.domains), len(layout.domains) + 1
         items, need = counting
         lines += ["begin_variable", "stage", "-1", str(len(items) + 2)]
         lines += [f"Atom stage({k})" for k in range(len(items) + 2)] + ["end_variable"]
@@ -106,11 +108,11 @@ def task(model, goal: bool = True, at_least: int | None = None) -> Task:
         lines += [f"Atom counter({k})" for k in range(need + 1)] + ["end_variable"]
     lines.append("0")  # no mutex groups
     lines.append("begin_state")
-    lines += ["1" if variable in model.init else "0" for variable in variables]
+    lines += [str(value) for value in layout.initial(model.init)]
     if counting:
         lines += ["0", "0"]
     lines.append("end_state")
-    goals = [(index[v], int(b)) for v, b in model.goal] if goal else []
+    goals = [layout.fact[literal] for literal in model.goal] if goal else []
     if counting:
         goals += [(stage, len(counting[0]) + 1), (counter, counting[1])]
     lines += ["begin_goal", str(len(goals))]
@@ -118,18 +120,150 @@ def task(model, goal: bool = True, at_least: int | None = None) -> Task:
     operators: list[list[str]] = []
     conditional = False
     for number, action in enumerate(model.actions):
-        if not any(effect.variable in index for effect in action.effects):
+        if not any(effect.variable in layout.where for effect in action.effects):
             continue  # it changes nothing that matters (see _necessary)
-        operator, has_conditions = _operator(f"a{number}", action, index, stage)
+        written = _operator(f"a{number}", action, layout, stage)
+        if written is None:
+            continue  # never applicable (it needs two variables of a group)
+        operator, has_conditions = written
         operators.append(operator)
         conditional = conditional or has_conditions
     if counting:
-        operators += _count(counting, index, stage, counter)
+        operators += _count(counting, layout, stage, counter)
     lines.append(str(len(operators)))
     for operator in operators:
         lines += operator
     lines.append("0")  # no axioms
     return Task("\n".join(lines) + "\n", [action.name for action in model.actions], conditional)
+
+
+class _Layout:
+    """The task's variables: a variable of two values (0 false, 1 true) for
+    each state variable, except the members of a group: one variable for
+    the group, with a value for each member (that member true, the others
+    false) and a last one for none of them.
+
+    A proven group (at most one member true in every reachable state)
+    compiles where each action reads and writes it as a value: a member is
+    read true only (not false, not in an effect's condition, not set by a
+    conditional effect, not false in the goal or the better value of a
+    count; not two members true in the goal), and an action that makes a
+    member false without making another true needs a member true (the group
+    becomes "none" where it needed that member, and stays otherwise: the
+    member was false).  Members that break this leave their group (a part
+    of a proven group is one), until every group compiles; an action that
+    needs two members true is never applicable and is left out."""
+
+    def __init__(self, model, variables: list, goal: bool, counting, grouped: bool):
+        members = _compiled_groups(model, variables, goal, counting) if grouped else []
+        grouped_variables = {v for group in members for v in group}
+        # In the model's order, a group where its first member is (the order
+        # changes no plan or proof, but heuristics break ties by it: LM-cut's
+        # cuts, and so its estimates and the states it expands).
+        position = {variable: i for i, variable in enumerate(variables)}
+        units = [[v] for v in variables if v not in grouped_variables] + members
+        units.sort(key=lambda unit: min(position[v] for v in unit))
+        self.domains: list[list[str]] = []
+        self.where: dict = {}  # state variable -> (task variable, its value when true)
+        self.groups: dict[int, list] = {}  # task variable -> its members
+        for unit in units:
+            number = len(self.domains)
+            if unit[0] not in grouped_variables:
+                self.where[unit[0]] = (number, None)
+                self.domains.append(["false", "true"])
+                continue
+            self.groups[number] = unit
+            for value, variable in enumerate(unit):
+                self.where[variable] = (number, value)
+            self.domains.append([*(f"m{k}" for k in range(len(unit))), "none"])
+        self.fact = _Facts(self)
+
+    def none(self, var: int) -> int:
+        return len(self.groups[var])
+
+    def initial(self, init) -> list[int]:
+        values = []
+        for var in range(len(self.domains)):
+            if var in self.groups:
+                true = [i for i, v in enumerate(self.groups[var]) if v in init]
+                values.append(true[0] if true else self.none(var))
+            else:
+                values.append(0)
+        for variable, (var, value) in self.where.items():
+            if value is None and variable in init:
+                values[var] = 1
+        return values
+
+
+class _Facts:
+    """``layout.fact[(variable, value)]``: the (task variable, value) of a literal."""
+
+    def __init__(self, layout: _Layout):
+        self.layout = layout
+
+    def __getitem__(self, literal) -> tuple[int, int]:
+        variable, truth = literal
+        var, value = self.layout.where[variable]
+        return (var, int(truth)) if value is None else (var, value)
+
+
+def _compiled_groups(model, variables: list, goal: bool, counting) -> list[list]:
+    """The proven groups over ``variables`` that the task writes as
+    variables (see :class:`_Layout`)."""
+    from ethasp.planning.engines.groups import groups
+
+    kept = set(variables)
+    found = [[v for v in group if v in kept] for group in groups(model)]
+    group_of = {v: i for i, group in enumerate(found) for v in group}
+    left: set = set()  # members that leave their group
+
+    def read_false(variable) -> None:
+        if variable in group_of:
+            left.add(variable)
+
+    for action in model.actions:
+        for variable, value in action.pre:
+            if not value:
+                read_false(variable)
+        for effect in action.effects:
+            if effect.condition:
+                read_false(effect.variable)
+                for variable, _ in effect.condition:
+                    read_false(variable)
+    if goal:
+        true_goals: dict[int, list] = {}
+        for variable, value in model.goal:
+            if not value:
+                read_false(variable)
+            elif variable in group_of:
+                true_goals.setdefault(group_of[variable], []).append(variable)
+        for members in true_goals.values():
+            if len(members) > 1:
+                left.update(members)
+    if counting:
+        for variable, better, _ in counting[0]:
+            if not better:
+                read_false(variable)
+    while True:
+        more = set()
+        for action in model.actions:
+            needs = {v for v, b in action.pre if b}
+            adds = {e.variable for e in action.effects if e.value and not e.condition}
+            for effect in action.effects:
+                variable = effect.variable
+                if effect.value or effect.condition or variable in adds or variable in left:
+                    continue
+                if variable not in group_of:
+                    continue
+                group = group_of[variable]
+                siblings = [v for v in found[group] if v not in left]
+                if not any(v in needs for v in siblings) and not any(v in adds for v in siblings):
+                    more.add(variable)
+        if not more - left:
+            break
+        left |= more
+    compiled = [[v for v in group if v not in left] for group in found]
+    return [group for group in compiled if len(group) > 1]
 
 
 def threshold_task(model, at_least: int) -> Task:
@@ -160,27 +294,56 @@ def _necessary(model, wanted: set) -> set:
         necessary |= more
 
 
-def _operator(name: str, action, index: dict, stage: int) -> tuple[list[str], bool]:
+def _operator(name: str, action, layout: _Layout, stage: int) -> tuple[list[str], bool] | None:
     """An action as an operator (its lines; effects on variables left out of
-    ``index`` dropped), and whether it has conditional effects."""
-    pre = {index[v]: int(b) for v, b in action.pre}
-    effects_kept = [effect for effect in action.effects if effect.variable in index]
-    touched = {index[effect.variable] for effect in effects_kept}
-    prevail = sorted((var, value) for var, value in pre.items() if var not in touched)
-    if stage >= 0:
-        prevail.append((stage, 0))
-    effects = []
+    the task dropped), and whether it has conditional effects; None where it
+    needs two members of a group true (it is never applicable)."""
+    where, fact = layout.where, layout.fact
+    pre: dict[int, int] = {}
+    for literal in action.pre:
+        if literal[0] not in where:
+            continue
+        var, value = fact[literal]
+        if var in layout.groups and pre.get(var, value) != value:
+            return None
+        pre[var] = value
+    effects_kept = [effect for effect in action.effects if effect.variable in where]
+    lines_of_effects = []
+    touched = set()
     conditional = False
+    added: dict[int, int] = {}
+    deleted: dict[int, list[int]] = {}
     for effect in effects_kept:  # false before true on each variable (sorted)
-        var = index[effect.variable]
-        conditions = [(index[v], int(b)) for v, b in effect.condition]
+        var, value = fact[(effect.variable, effect.value)]
+        if var in layout.groups:
+            if effect.value:
+                added[var] = value
+            else:
+                deleted.setdefault(var, []).append(where[effect.variable][1])
+            continue
+        conditions = [fact[literal] for literal in effect.condition]
         conditional = conditional or bool(conditions)
         parts = [str(len(conditions))] + [f"{v} {b}" for v, b in conditions]
         parts += [str(var), str(pre.get(var, -1)), str(int(effect.value))]
-        effects.append(" ".join(parts))
+        lines_of_effects.append(" ".join(parts))
+        touched.add(var)
+    for var in sorted(set(added) | set(deleted)):
+        if var in added:
+            post = added[var]
+        elif pre.get(var) in deleted[var]:
+            post = layout.none(var)  # the member it needs becomes false
+        else:
+            continue  # the members it makes false are false already
+        if pre.get(var) == post:
+            continue  # it stays (a prevail condition)
+        lines_of_effects.append(f"0 {var} {pre.get(var, -1)} {post}")
+        touched.add(var)
+    prevail = sorted((var, value) for var, value in pre.items() if var not in touched)
+    if stage >= 0:
+        prevail.append((stage, 0))
     lines = ["begin_operator", name, str(len(prevail))]
     lines += [f"{var} {value}" for var, value in prevail]
-    lines += [str(len(effects)), *effects, "1", "end_operator"]
+    lines += [str(len(lines_of_effects)), *lines_of_effects, "1", "end_operator"]
     return lines, conditional
 
 
@@ -212,7 +375,7 @@ def _counting(model, threshold: int) -> tuple[list[tuple[clingo.Symbol, bool, in
     return items, need
 
 
-def _count(counting, index: dict, stage: int, counter: int) -> list[list[str]]:
+def _count(counting, layout: _Layout, stage: int, counter: int) -> list[list[str]]:
     """The operators of the counting phase (see the module docstring)."""
     items, need = counting
     operators = [
@@ -227,7 +390,7 @@ def _count(counting, index: dict, stage: int, counter: int) -> list[list[str]]:
                     "begin_operator",
                     f"take{k}_{value}",
                     "1",
-                    f"{index[variable]} {int(better)}",
+                    "{} {}".format(*layout.fact[(variable, better)]),
                     "2",
                     move,
                     f"0 {counter} {value} {min(need, value + gain)}",
