@@ -65,39 +65,48 @@ MAX_PARTS = 4
 
 @dataclass(frozen=True)
 class _Action:
-    """What the proof reads of an action."""
+    """What the proof reads of an action (variables by their number)."""
 
-    needs: frozenset  # variables its preconditions need true
-    adds: frozenset  # variables it makes true unconditionally
-    deletes: frozenset  # variables it makes false unconditionally (and not true)
-    may_add: frozenset  # variables a conditional effect may make true
-
-
-def _actions(model) -> list[_Action]:
-    actions = []
-    for action in model.actions:
-        needs = frozenset(v for v, b in action.pre if b)
-        adds = frozenset(e.variable for e in action.effects if e.value and not e.condition)
-        deletes = frozenset(e.variable for e in action.effects if not e.value and not e.condition)
-        may_add = frozenset(e.variable for e in action.effects if e.value and e.condition)
-        actions.append(_Action(needs, adds, deletes - adds, may_add))
-    return actions
+    needs: frozenset[int]  # variables its preconditions need true
+    adds: frozenset[int]  # variables it makes true unconditionally
+    deletes: frozenset[int]  # variables it makes false unconditionally (and not true)
+    may_add: frozenset[int]  # variables a conditional effect may make true
 
 
 class _Prover:
-    """The proof of :func:`at_most_one`, with the actions indexed by the
-    variables they (may) make true."""
+    """The proof of :func:`at_most_one`, over the variables by their number
+    (each symbol is hashed once: clingo's symbols hash slowly), with the
+    actions indexed by the variables they make true."""
 
     def __init__(self, model):
-        self.init = model.init
-        self.adders: dict[clingo.Symbol, list[_Action]] = defaultdict(list)
-        self.conditional: set[clingo.Symbol] = set()
-        for action in _actions(model):
-            for variable in action.adds:
-                self.adders[variable].append(action)
-            self.conditional |= action.may_add
+        self.number: dict[clingo.Symbol, int] = {v: i for i, v in enumerate(model.variables)}
+        self.adders: dict[int, list[_Action]] = defaultdict(list)
+        self.conditional: set[int] = set()
+        for action in model.actions:
+            needs = frozenset(self._number(v) for v, b in action.pre if b)
+            adds, deletes, may_add = set(), set(), set()
+            for effect in action.effects:
+                number = self._number(effect.variable)
+                if effect.condition:
+                    if effect.value:
+                        may_add.add(number)
+                elif effect.value:
+                    adds.add(number)
+                else:
+                    deletes.add(number)
+            moved = _Action(needs, frozenset(adds), frozenset(deletes - adds), frozenset(may_add))
+            for number in adds:
+                self.adders[number].append(moved)
+            self.conditional |= may_add
+        self.init = frozenset(self.number[v] for v in model.init if v in self.number)
 
-    def unbalanced(self, members: frozenset) -> list[_Action] | None:
+    def _number(self, variable: clingo.Symbol) -> int:
+        number = self.number.get(variable)
+        if number is None:  # (not a variable of the search model: a derived one)
+            number = self.number[variable] = len(self.number)
+        return number
+
+    def unbalanced(self, members: frozenset[int]) -> list[_Action] | None:
         """The actions that make a member true without moving the group's
         true variable (None where the group fails otherwise: more than one
         member true initially, a conditional effect that may make one true,
@@ -113,21 +122,13 @@ class _Prover:
                     failing.append(action)
         return failing
 
-    def proves(self, members: frozenset) -> bool:
-        return self.unbalanced(members) == []
-
 
 def at_most_one(model, members) -> bool:
     """Is at most one variable of ``members`` true in every state reachable
     by the actions of the search model ``model`` (see the module docstring)?"""
     require("the proof of mutex groups", FEATURES, model_features(model))
-    return _Prover(model).proves(frozenset(members))
-
-
-def _shape(variable: clingo.Symbol) -> tuple[str, tuple[clingo.Symbol, ...]] | None:
-    if variable.type != clingo.SymbolType.Function or not variable.name:
-        return None
-    return variable.name, tuple(variable.arguments)
+    prover = _Prover(model)
+    return prover.unbalanced(frozenset(prover._number(v) for v in members)) == []
 
 
 def _fixed(arguments: tuple, counted: int | None) -> tuple:
@@ -138,21 +139,22 @@ def groups(model) -> list[list[clingo.Symbol]]:
     """Disjoint proven groups of two or more of the search model's variables,
     largest first, each sorted (see the module docstring)."""
     require("the proof of mutex groups", FEATURES, model_features(model))
-    variables = [v for v in model.variables if _shape(v) is not None]
-    # part -> fixed arguments -> variables
-    index: dict[Part, dict[tuple, set]] = defaultdict(lambda: defaultdict(set))
-    parts_of: dict[clingo.Symbol, list[tuple[Part, tuple]]] = {}
-    for variable in variables:
-        name, arguments = _shape(variable)  # type: ignore[misc]
+    prover = _Prover(model)
+    # part -> fixed arguments (their text) -> variables
+    index: dict[Part, dict[tuple, set[int]]] = defaultdict(lambda: defaultdict(set))
+    parts_of: dict[int, list[tuple[Part, tuple]]] = {}
+    for number, variable in enumerate(model.variables):
+        if variable.type != clingo.SymbolType.Function or not variable.name:
+            continue
+        arguments = tuple(str(argument) for argument in variable.arguments)
         found = []
         for counted in (None, *range(len(arguments))):
-            part = (name, len(arguments), counted)
+            part = (variable.name, len(arguments), counted)
             fixed = _fixed(arguments, counted)
-            index[part][fixed].add(variable)
+            index[part][fixed].add(number)
             found.append((part, fixed))
-        parts_of[variable] = found
-    prover = _Prover(model)
-    proven: set[frozenset] = set()
+        parts_of[number] = found
+    proven: set[frozenset[int]] = set()
     tried: set[tuple[Part, ...]] = set()
     queue: list[tuple[Part, ...]] = sorted(((part,) for part in index), key=str)
     extensions = 0
@@ -163,7 +165,7 @@ def groups(model) -> list[list[clingo.Symbol]]:
         tried.add(candidate)
         keys = set().union(*(index[part].keys() for part in candidate))
         wanted: set[tuple[Part, ...]] = set()
-        for fixed in sorted(keys, key=str):
+        for fixed in sorted(keys):
             members = frozenset().union(*(index[part].get(fixed, ()) for part in candidate))
             failing = prover.unbalanced(members)
             if failing == []:
@@ -182,7 +184,8 @@ def groups(model) -> list[list[clingo.Symbol]]:
             if extended not in tried and extensions < MAX_EXTENSIONS:
                 extensions += 1
                 queue.append(extended)
-    return cover(proven)
+    named = [sorted((model.variables[v] for v in group), key=str) for group in proven]
+    return cover(named)
 
 
 def cover(proven) -> list[list[clingo.Symbol]]:
