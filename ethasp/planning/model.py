@@ -194,14 +194,18 @@ class Model:
         exist names a bundled model (``"trolley"``, ``"hera/trolley.yaml"``; the
         naming rule: :func:`ethasp.resources.bundled_model`).
         """
-        from ethasp.planning.readers.hera import translate_file
-        from ethasp.planning.readers.situation import situation_paths
+        from ethasp.planning.readers.hera_data import is_hera_file
 
         sources, naming = [], Naming()
-        situations, files = situation_paths(model_path(path) for path in paths)
-        for path in situations:
-            kind, text = translate_file(path, world)
-            sources.append(Source(str(path), text, generated=True, kind=kind))
+        resolved = [model_path(path) for path in paths]
+        files = [path for path in resolved if not is_hera_file(path)]
+        situations = [path for path in resolved if is_hera_file(path)]
+        if situations:  # (the readers of HERA's files imported only for them)
+            from ethasp.planning.readers.hera import translate_file
+
+            for path in situations:
+                kind, text = translate_file(path, world)
+                sources.append(Source(str(path), text, generated=True, kind=kind))
         if world and not any(source.kind == "cam" for source in sources):
             raise InputError(
                 "a world (--world) gives the background variables and events of a causal "

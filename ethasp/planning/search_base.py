@@ -137,7 +137,7 @@ def settled_before(
     None.  (InputError for a negative maximal horizon.)"""
     if max_horizon < 0:
         raise InputError("the maximal horizon must be at least 0")
-    if budget.expired() or not planner.prepare(budget):
+    if budget.expired() or not planner.prepare(budget, relaxed=True):
         return SearchResult(BOUNDED, horizon=start, proof=before_search(budget, planner))
     if setting.goal and planner.is_fact("unreachable_goal"):
         return SearchResult(

@@ -15,7 +15,12 @@ Program parts of the control (``t`` a time, ``x`` an input value):
 * ``base``: the model's files, ``planning/model.lp`` and ``planning/check.lp``;
   the model's defects (``error/1``) and its ground vocabulary are read from
   it;
-* ``search``: what the searches need once (``planning/relaxed.lp``);
+* ``relaxed``: relaxed reachability (``planning/relaxed.lp``), grounded
+  first: what an engine beside the solver reads of the searches (the usable
+  actions, the relaxed reachable facts) and the first proofs ("the goal is
+  unreachable"), without the rest of the searches' encodings;
+* ``search``: what the searches need once (the static part of the
+  encodings below);
 * ``step(t)`` and ``check(t)``: the time-indexed rules of
   ``planning/transition.lp``, ``planning/goal.lp`` (switched by
   ``require(goal)``), ``planning/satisficing.lp`` (a decision heuristic,
@@ -97,8 +102,20 @@ SEARCH = "search"
 
 # Parts of the model's own base part and of the searches (relative to encodings/).
 MODEL_ENCODINGS = ("planning/model.lp", "planning/check.lp")
+RELAXED_ENCODING = "planning/relaxed.lp"
+RELAXED = "relaxed"
+# The atoms of relaxed.lp that the searches read (search_atoms, is_fact).
+RELAXED_ATOMS = frozenset(
+    {
+        ("usable", 1),
+        ("reachable", 2),
+        ("unreachable_goal", 0),
+        ("upper_bound", 1),
+        ("best_fact", 2),
+        ("best_value", 2),
+    }
+)
 SEARCH_ENCODINGS = (
-    "planning/relaxed.lp",
     "planning/transition.lp",
     "planning/events.lp",
     "reasons/other_state.lp",
@@ -345,6 +362,7 @@ class Planner:
         self.ctl = model.control(OPTIONS, self.messages)
         self._parts: dict[str, tuple[str, ...]] = {}
         self._searching = False
+        self._relaxed = False  # the part relaxed grounded
         self._mutexes: bool | None = False  # grounded (True), not yet, or never (None)
         self._canonical: bool | None = False  # the same for the canonical order
         self._least = False  # the heuristic of least plans grounded
@@ -383,7 +401,7 @@ class Planner:
     def base_answers(self) -> list[list[clingo.Symbol]]:
         """The shown atoms (``error/1`` of check.lp) of up to two answer sets of
         the model's base part: a model must have exactly one."""
-        if self._searching:
+        if self._searching or self._relaxed:
             raise RuntimeError("the model is checked before any search")
         solve_configuration(self.ctl).models = "2"
         answers: list[list[clingo.Symbol]] = []
@@ -567,8 +585,27 @@ class Planner:
 
     # -- grounding ------------------------------------------------------------------
 
+    def _start_relaxed(self, budget: Budget | None = None) -> None:
+        """Add and ground relaxed reachability (once, before the searches)."""
+        self._settle(budget)
+        if self._relaxed:
+            return
+        try:
+            with clingo.ast.ProgramBuilder(self.ctl) as builder:
+                incremental.add_encoding(
+                    builder,
+                    encoding(RELAXED_ENCODING),
+                    on_message=self.messages,
+                    base_part=RELAXED,
+                )
+        except RuntimeError:
+            self.messages.raise_first("grounding failed")
+        self._relaxed = True  # (noted before: see _start_search)
+        self._ground([(RELAXED, [])], budget)
+
     def _start_search(self, budget: Budget | None = None) -> None:
         """Add and ground the searches' encodings (once, on the first search)."""
+        self._start_relaxed(budget)
         self._settle(budget)
         if self._searching:
             return
@@ -1209,26 +1246,36 @@ class Planner:
         return self._pending is not None and not self._pending[0].is_set()
 
     @_locked
-    def prepare(self, budget: Budget | None = None) -> bool:
+    def prepare(self, budget: Budget | None = None, relaxed: bool = False) -> bool:
         """Ground what every search needs first (relaxed reachability, the
-        searches' static part) under the budget; False if it ran out first
-        (the grounding then completes in the background)."""
+        searches' static part; with ``relaxed``, relaxed reachability only)
+        under the budget; False if it ran out first (the grounding then
+        completes in the background)."""
         try:
-            self._start_search(budget)
+            if relaxed:
+                self._start_relaxed(budget)
+            else:
+                self._start_search(budget)
         except GroundingStopped:
             return False
         return True
+
+    def _start_for(self, name: str, arity: int) -> None:
+        if (name, arity) in RELAXED_ATOMS:
+            self._start_relaxed()
+        else:
+            self._start_search()
 
     @_locked
     def search_atoms(self, name: str, arity: int) -> list[clingo.Symbol]:
         """The ground atoms of a predicate of the searches' static part (e.g.
         ``upper_bound/1`` of planning/relaxed.lp)."""
-        self._start_search()
+        self._start_for(name, arity)
         return sorted(atom.symbol for atom in self.ctl.symbolic_atoms.by_signature(name, arity))
 
     @_locked
     def is_fact(self, name: str) -> bool:
         """Whether a nullary atom is a fact of the grounded searches (e.g. unreachable_goal)."""
-        self._start_search()
+        self._start_for(name, 0)
         atom = self.ctl.symbolic_atoms[clingo.Function(name)]
         return atom is not None and atom.is_fact

@@ -80,10 +80,11 @@ The engines and the features they handle:
   Conditional effects; no exogenous events, no derived variables.
 
 ``sas`` writes what ``downward`` searches (and refuses events and derived
-variables), with the mutex groups that ``groups`` proves on the search model
-as finite-domain variables (it refuses events); ``task`` holds what ``explicit``, ``greedy`` and ``cheapest`` search over: the explicit
-states of the search model (bit masks), its actions and derived variables,
-and the FF heuristic.
+variables), with the mutex groups that ``groups`` proves on the search
+model as finite-domain variables (it refuses events); ``task`` holds what
+``explicit``, ``greedy`` and ``cheapest`` search over: the explicit states
+of the search model (bit masks), its actions and derived variables, and the
+FF heuristic.
 """
 
 from __future__ import annotations

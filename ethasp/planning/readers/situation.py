@@ -86,7 +86,6 @@ from __future__ import annotations
 
 import itertools
 import sys
-from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -97,13 +96,12 @@ from ethasp.planning.readers.hera_data import (
     SUFFIXES,
     DataReader,
     hera_name,
-    is_hera_file,
     load_data,
     name_term,
 )
 from ethasp.planning.terms import read_text
 
-__all__ = ["SUFFIXES", "hera_name", "name_term", "situation_paths", "translate", "translate_data"]
+__all__ = ["SUFFIXES", "hera_name", "name_term", "translate", "translate_data"]
 
 # Copies of one conditional effect that override conditions may need; beyond,
 # the situation is refused.
@@ -112,11 +110,6 @@ MAX_COPIES = 10_000
 MAX_COST = 1_000_000
 
 Literal = tuple[str, bool]
-
-
-def is_situation(path: Path) -> bool:
-    """Is the file one of HERA's (by its suffix): a situation or a causal agency model?"""
-    return is_hera_file(path)
 
 
 @dataclass
@@ -488,9 +481,3 @@ def translate_data(data: Any, where: str = "<situation>") -> str:
     reader = _Reader(where)
     reader.read(data)
     return "".join(f"{fact}.\n" for fact in reader.facts)
-
-
-def situation_paths(paths: Iterable[Path]) -> tuple[list[Path], list[Path]]:
-    """(situation files, other files)."""
-    paths = list(paths)
-    return [p for p in paths if is_situation(p)], [p for p in paths if not is_situation(p)]
