@@ -256,6 +256,14 @@ class _Exact:
             self.layers.news.clear()
         return None
 
+    def least_ready(self, length: int) -> bool:
+        """Have the layers found the least plan of ``length`` steps (see
+        :meth:`least_plan`, which then returns at once)?"""
+        if self.layers is None or not self.read_plan:
+            return False
+        status = self.layers.status
+        return status.plan is not None
+
     def moot(self, horizon: int) -> bool:
         """Is a solve at this horizon made pointless by what another engine
         proved (:meth:`done`), or by a lower bound of the layers beyond it?"""
@@ -369,27 +377,45 @@ def _least(
     witness: Plan,
 ) -> Plan:
     """The least plan of ``length`` steps under the setting, ``length`` being
-    the length of a shortest one and ``witness`` one of them: read off the
-    layers where they know the setting's plans, else the solver's optimum of
-    ``planning/lexicographic.lp`` at that horizon.  Where the budget stops
-    that first, the witness (a shortest plan all the same)."""
+    the length of a shortest one and ``witness`` one of them: the solver's
+    optimum of ``planning/lexicographic.lp`` at that horizon, or read off the
+    layers where they know the setting's plans, whichever comes first (the
+    same plan: both are the least one, so they race for speed only; the
+    layers may take long to reach a horizon the solver settles at once, or the
+    other way round).  Where the budget stops both first, the witness (a
+    shortest plan all the same)."""
     if length == 0:
         return witness
+    if exact.least_ready(length):
+        read = exact.least_plan(length)
+        if read is not None:
+            return _checked(planner, read, "exact reachability")
+    solved = _least_by_solver(
+        planner, setting, budget.until(lambda: exact.least_ready(length)), length
+    )
+    if solved is not None:
+        return solved
     read = exact.least_plan(length)
     if read is not None:
         return _checked(planner, read, "exact reachability")
+    return witness
+
+
+def _least_by_solver(planner: Planner, setting: Setting, budget: Budget, length: int):
+    """The solver's least plan of ``length`` steps (the optimum, proven), or
+    None where it does not fit in clingo's numbers or the budget stops it."""
     usable = len(planner.search_atoms("usable", 1))
     if (length + 1) * max(1, usable) >= LEAST_LEVELS:
-        return witness
+        return None
     planner.threads(1)
     try:
         planner.use_least(budget)
     except GroundingStopped:
-        return witness
+        return None
     least = replace(setting, least=True, satisficing=False, optimize=True)
     outcome = planner.solve(length, least, budget)
     if not outcome.satisfiable:
-        return witness
+        return None
     return plans_of([outcome.symbols])[0]
 
 
