@@ -3,14 +3,16 @@ cancel, with every process below them (ethasp.execution)."""
 
 from __future__ import annotations
 
+import contextlib
 import os
+import subprocess
 import threading
 import time
 
 import execution_work as work
 import pytest
 
-from ethasp.execution import spawner
+from ethasp.execution import limits, spawner
 from ethasp.execution.limits import GB, GRACE, Limits, tree_resident
 from ethasp.execution.worker import (
     CANCELLED,
@@ -161,3 +163,22 @@ def test_symbols_mean_the_same_in_another_process():
         check=True,
     )
     assert read.stdout.decode().strip() == str([str(symbol) for symbol in symbols])
+
+
+def test_the_processes_below_one_are_found_from_their_parents():
+    """The tree of a process read from its threads' children files (where the
+    kernel has them) is the tree read from every process's parent."""
+    tree = subprocess.Popen(["sh", "-c", "sleep 5 & sleep 5 & (sleep 5 & wait) & wait"])
+    try:
+        deadline = time.monotonic() + 5
+        while len(limits.descendants(os.getpid())) < 5 and time.monotonic() < deadline:
+            time.sleep(0.02)
+        below = sorted(limits.descendants(os.getpid()))
+        assert tree.pid in below and len(below) >= 5
+        assert below == sorted(limits._descendants_by_scan(os.getpid()))
+    finally:
+        tree.kill()
+        for pid in limits.descendants(os.getpid()):
+            with contextlib.suppress(OSError):
+                os.kill(pid, 9)
+        tree.wait()
