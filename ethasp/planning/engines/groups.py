@@ -135,15 +135,18 @@ def _fixed(arguments: tuple, counted: int | None) -> tuple:
     return arguments if counted is None else arguments[:counted] + arguments[counted + 1 :]
 
 
-def groups(model) -> list[list[clingo.Symbol]]:
+def groups(model, names=None) -> list[list]:
     """Disjoint proven groups of two or more of the search model's variables,
-    largest first, each sorted (see the module docstring)."""
+    largest first, each sorted (see the module docstring).  ``names``: the
+    variables' symbols where the model's variables are their numbers (the
+    candidates come from the names)."""
     require("the proof of mutex groups", FEATURES, model_features(model))
     prover = _Prover(model)
+    names = list(model.variables) if names is None else list(names)
     # part -> fixed arguments (their text) -> variables
     index: dict[Part, dict[tuple, set[int]]] = defaultdict(lambda: defaultdict(set))
     parts_of: dict[int, list[tuple[Part, tuple]]] = {}
-    for number, variable in enumerate(model.variables):
+    for number, variable in enumerate(names):
         if variable.type != clingo.SymbolType.Function or not variable.name:
             continue
         arguments = tuple(str(argument) for argument in variable.arguments)
@@ -184,24 +187,32 @@ def groups(model) -> list[list[clingo.Symbol]]:
             if extended not in tried and extensions < MAX_EXTENSIONS:
                 extensions += 1
                 queue.append(extended)
-    named = [sorted((model.variables[v] for v in group), key=str) for group in proven]
-    return cover(named)
+    chosen = cover(proven, names)
+    return [[model.variables[v] for v in group] for group in chosen]
 
 
-def cover(proven) -> list[list[clingo.Symbol]]:
-    """Disjoint groups from proven ones: largest first (ties by their text),
-    each without the variables of the groups taken before it, kept while two
-    or more variables remain."""
-    chosen: list[list[clingo.Symbol]] = []
-    taken: set = set()
-    ordered = sorted((sorted(group, key=str) for group in proven), key=lambda g: (-len(g), str(g)))
+def cover(proven, names) -> list[list[int]]:
+    """Disjoint groups from proven ones (of variables by their number; their
+    ``names``): largest first (ties by their text), each without the
+    variables of the groups taken before it, kept while two or more variables
+    remain."""
+
+    def text(v: int) -> str:
+        return str(names[v])
+
+    def key(group: list[int]) -> tuple:
+        return (-len(group), [text(v) for v in group])
+
+    chosen: list[list[int]] = []
+    taken: set[int] = set()
+    ordered = sorted((sorted(group, key=text) for group in proven), key=key)
     while ordered:
         group = ordered.pop(0)
         rest = [v for v in group if v not in taken]
         if len(rest) < len(group):  # shrunk by an earlier group: back in line
             if len(rest) > 1:
                 ordered.append(rest)
-                ordered.sort(key=lambda g: (-len(g), str(g)))
+                ordered.sort(key=key)
             continue
         chosen.append(rest)
         taken.update(rest)

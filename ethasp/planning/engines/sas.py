@@ -38,7 +38,7 @@ Exogenous events and derived variables are not compiled (``FEATURES``).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import clingo
 
@@ -86,12 +86,17 @@ def task(model, goal: bool = True, at_least: int | None = None, grouped: bool = 
         raise NotCompiled(f"Fast Downward's task does not model {' or '.join(missing)}")
     threshold = model.goal_utility if at_least is None else at_least - model.fixed_utility
     counting = _counting(model, threshold) if threshold is not None else None
+    names = model.variables
+    model = _numbered(model)
+    if counting:
+        number = {name: i for i, name in enumerate(names)}
+        counting = ([(number[v], better, gain) for v, better, gain in counting[0]], counting[1])
     wanted = {v for v, _ in model.goal} if goal else set()
     if counting:
         wanted |= {variable for variable, _, _ in counting[0]}
     necessary = _necessary(model, wanted)
     variables = [variable for variable in model.variables if variable in necessary]
-    layout = _Layout(model, variables, goal, counting, grouped)
+    layout = _Layout(model, variables, goal, counting, grouped, names)
     lines = ["begin_version", "3", "end_version", "begin_metric", "0", "end_metric"]
     count = len(layout.domains) + (2 if counting else 0)
     lines.append(str(count))
@@ -137,6 +142,37 @@ def task(model, goal: bool = True, at_least: int | None = None, grouped: bool = 
     return Task("\n".join(lines) + "\n", [action.name for action in model.actions], conditional)
 
 
+def _numbered(model):
+    """The search model over its variables' numbers (positions in
+    ``model.variables``): what the task is written from, without hashing
+    clingo's symbols (slow) at every read."""
+    from ethasp.planning.engines.reachability import Effect, GroundAction
+
+    number = {variable: i for i, variable in enumerate(model.variables)}
+
+    def literals(items) -> tuple:
+        return tuple((number[v], b) for v, b in items)
+
+    actions = [
+        GroundAction(
+            action.name,
+            literals(action.pre),
+            tuple(
+                Effect(number[e.variable], e.value, literals(e.condition)) for e in action.effects
+            ),
+        )
+        for action in model.actions
+    ]
+    return replace(
+        model,
+        variables=list(range(len(model.variables))),
+        actions=actions,
+        init=frozenset(number[v] for v in model.init if v in number),
+        goal=list(literals(model.goal)),
+        weights={(number[v], b): u for (v, b), u in model.weights.items() if v in number},
+    )
+
+
 class _Layout:
     """The task's variables: a variable of two values (0 false, 1 true) for
     each state variable, except the members of a group: one variable for
@@ -154,8 +190,8 @@ class _Layout:
     of a proven group is one), until every group compiles; an action that
     needs two members true is never applicable and is left out."""
 
-    def __init__(self, model, variables: list, goal: bool, counting, grouped: bool):
-        members = _compiled_groups(model, variables, goal, counting) if grouped else []
+    def __init__(self, model, variables: list, goal: bool, counting, grouped: bool, names):
+        members = _compiled_groups(model, variables, goal, counting, names) if grouped else []
         grouped_variables = {v for group in members for v in group}
         # In the model's order, a group where its first member is (the order
         # changes no plan or proof, but heuristics break ties by it: LM-cut's
@@ -207,13 +243,13 @@ class _Facts:
         return (var, int(truth)) if value is None else (var, value)
 
 
-def _compiled_groups(model, variables: list, goal: bool, counting) -> list[list]:
+def _compiled_groups(model, variables: list, goal: bool, counting, names) -> list[list]:
     """The proven groups over ``variables`` that the task writes as
     variables (see :class:`_Layout`)."""
     from ethasp.planning.engines.groups import groups
 
     kept = set(variables)
-    found = [[v for v in group if v in kept] for group in groups(model)]
+    found = [[v for v in group if v in kept] for group in groups(model, names)]
     group_of = {v: i for i, group in enumerate(found) for v in group}
     left: set = set()  # members that leave their group
 
