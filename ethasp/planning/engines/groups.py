@@ -4,8 +4,9 @@ every reachable state, found on the search model and proven there.
 Planners search tasks over finite-domain variables: where at most one of the
 variables ``at(truck,l1)``, ``at(truck,l2)``, ... holds at a time, one
 variable with a value per location (and one for "none of them") replaces
-them all, and a search over it explores fewer states (LM-cut, for one, gives
-higher estimates on it).  Fast Downward's translator finds such groups on
+them all, and a search over it stores and compares smaller states (Fast
+Downward on satellite p7: the same states expanded, in three quarters of the
+time).  Fast Downward's translator finds such groups on
 the lifted PDDL task; here they are found on the ground search model
 (:func:`ethasp.planning.engines.layers.search_model`), so that every model
 gets them, whatever its source, and each group is proven before it is used.
