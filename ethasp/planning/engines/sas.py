@@ -6,9 +6,11 @@ translator).  The ground model of a planner is a grounded task already (the
 search model of :func:`ethasp.planning.engines.layers.search_model`: usable
 actions, the state variables that may change), so it is written here
 directly in that form, without PDDL and without grounding it again: each
-state variable a variable of two values (0 false, 1 true), each usable
-action an operator of cost 1 (so that a cheapest plan is a shortest one),
-its preconditions, effects and conditional effects as they are.  When
+state variable a variable of two values (0 false, 1 true), or with the
+others of its mutex group one variable (:mod:`ethasp.planning.engines.groups`,
+:class:`_Layout`), each usable action an operator of cost 1 (so that a
+cheapest plan is a shortest one), its preconditions, effects and conditional
+effects as they are.  When
 effects that fire together set one variable both ways, true wins (model.lp):
 the operator lists the effects setting false before those setting true on
 each variable, and the planner applies them in order.
