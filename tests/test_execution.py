@@ -169,16 +169,17 @@ def test_the_processes_below_one_are_found_from_their_parents():
     """The tree of a process read from its threads' children files (where the
     kernel has them) is the tree read from every process's parent."""
     tree = subprocess.Popen(["sh", "-c", "sleep 5 & sleep 5 & (sleep 5 & wait) & wait"])
+    below: list[int] = []
     try:
         deadline = time.monotonic() + 5
-        while len(limits.descendants(os.getpid())) < 5 and time.monotonic() < deadline:
+        while len(limits.descendants(tree.pid)) < 4 and time.monotonic() < deadline:
             time.sleep(0.02)
-        below = sorted(limits.descendants(os.getpid()))
-        assert tree.pid in below and len(below) >= 5
-        assert below == sorted(limits._descendants_by_scan(os.getpid()))
+        below = sorted(limits.descendants(tree.pid))
+        assert len(below) == 4, below  # three sleeps and a subshell
+        assert below == sorted(limits._descendants_by_scan(tree.pid))
+        assert tree.pid in limits.descendants(os.getpid())
     finally:
-        tree.kill()
-        for pid in limits.descendants(os.getpid()):
+        for pid in [*below, tree.pid]:  # (this tree only: the test's other children live on)
             with contextlib.suppress(OSError):
                 os.kill(pid, 9)
         tree.wait()

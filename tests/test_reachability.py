@@ -120,6 +120,19 @@ def test_a_budget_stops_the_engine_without_a_claim():
     assert not r.expand(cancelled) and not r.complete and r.stopped
 
 
+def test_a_transition_relation_beyond_the_node_limit_is_not_built():
+    """A relation that grows beyond the node limit while it is built stops the
+    engine before its first layer (some orders of the variables make it grow
+    beyond any use), and the searches go on without it."""
+    spec = random_model(11, max_variables=6, max_actions=6)
+    small = Reachability(ground(spec), node_limit=2)
+    assert small.unbuilt and "diagram nodes" in small.unbuilt
+    assert not small.expand() and small.stopped == small.unbuilt and len(small.layers) == 1
+    assert small.closed() is None and not small.complete
+    full = Reachability(ground(spec))
+    assert not full.unbuilt and full.run()
+
+
 @settings(max_examples=60, deadline=None)
 @given(
     st.integers(min_value=0, max_value=10**9),

@@ -267,6 +267,10 @@ def _backend():
             del sys.modules["networkx"]
 
 
+class _TooLarge(Exception):
+    """A transition relation grew beyond the node limit while it was built."""
+
+
 class Reachability:
     """Breadth-first layers of reachable states, computed symbolically.
 
@@ -295,8 +299,18 @@ class Reachability:
         self._derived: dict = {}
         self._derive()
         self._groups = _clusters(model, self.index)
-        self._images = [self._cluster(group) for group in self._groups]
-        self._merge(MERGE_NODES)
+        # Why the transition relation was not built: more nodes than the limit
+        # (some orders of the variables make a cluster's relation grow beyond
+        # any use; the engine then gives up before its first layer, and the
+        # searches go on without it, as where a layer grows too large).
+        self.unbuilt = ""
+        try:
+            self._images = [self._cluster(group) for group in self._groups]
+        except _TooLarge:
+            self._images = []
+            self.unbuilt = f"more than {node_limit} diagram nodes in the transition relation"
+        else:
+            self._merge(MERGE_NODES)
         init = self._cube([(v, v in model.init) for v in model.variables])
         self.layers = [init]
         self._prefixes: list = []
@@ -448,6 +462,8 @@ class Reachability:
             for i in written:
                 step &= bdd.var(f"y{i}").equiv(after[i]) if i in after else unchanged[i]
             relation |= step
+            if self.nodes() > self.node_limit:
+                raise _TooLarge()
         qvars = [f"x{i}" for i in written]
         rename = {f"y{i}": f"x{i}" for i in written}
         return relation, qvars, rename
@@ -505,6 +521,9 @@ class Reachability:
         """The states one step from ``frontier`` by ``image`` (per cluster), less
         those ``reached``; None (and :attr:`stopped` says why) if the budget or
         the node limit stopped it."""
+        if self.unbuilt:
+            self.stopped = self.unbuilt
+            return None
         if budget is not None and budget.expired():
             self.stopped = budget.why_stopped()
             return None
