@@ -196,6 +196,27 @@ def test_models_the_planner_does_not_model_are_searched_by_clingo(monkeypatch, c
     assert "does not search models with derived variables" in capsys.readouterr().err
 
 
+@installed
+def test_a_task_searched_again_is_answered_without_the_planner(monkeypatch):
+    """The planner searches deterministically: the same task (text and
+    configuration) searched again in the process gets the same answer
+    without another run (utilitarianism's witness and its HModel's plan
+    search write the same task)."""
+    text = "variable(a;b). action(go;on). eff(go,a,true). pre(go,b,true). eff(on,b,true). "
+    planner = forced(text + "goal(a,true).").planner
+    task = downward.compiled(search_model(Atoms(planner)))
+    runs = []
+    spawn = downward.spawner.spawn
+    monkeypatch.setattr(downward.spawner, "spawn", lambda *a, **k: runs.append(1) or spawn(*a, **k))
+    monkeypatch.setattr(downward, "_ANSWERS", {})
+    first = downward.solve(task, Budget(None))
+    second = downward.solve(task, Budget(None))
+    assert first.status == "plan" and task.plan(first.operators) == task.plan(second.operators)
+    assert len(runs) == 1
+    other = downward.compiled(search_model(Atoms(forced(text + "goal(b,true).").planner)))
+    assert downward.solve(other, Budget(None)).status == "plan" and len(runs) == 2
+
+
 # -- processes and limits --------------------------------------------------------------
 
 

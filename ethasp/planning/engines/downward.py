@@ -35,6 +35,7 @@ Like every engine's, a plan it returns is checked by its trace
 from __future__ import annotations
 
 import contextlib
+import hashlib
 import importlib.util
 import os
 import shutil
@@ -103,12 +104,37 @@ class Outcome:
     why: str = ""
 
 
+# The answers of the searches done in this process (a plan, or a proof that
+# there is none) by their task's text and configuration: the planner searches
+# deterministically, so a task searched again (utilitarianism asks for the
+# nearest goal state as good as the best one, and then its HModel's plan
+# search writes the same task) is answered from here.  Bounded.
+_ANSWERS: dict[tuple[str, str], Outcome] = {}
+_ANSWERS_LOCK = threading.Lock()
+ANSWERS_KEPT = 64
+
+
 def solve(task: sas.Task, budget: Budget, optimal: bool = True) -> Outcome:
     """Search the task with Fast Downward, under the budget."""
     config = configuration(task, optimal)
     binary = executable()
     if binary is None:
         return Outcome(FAILED, config, why="Fast Downward is not installed")
+    key = (hashlib.sha256(task.text.encode()).hexdigest(), config)
+    with _ANSWERS_LOCK:
+        if key in _ANSWERS:
+            return _ANSWERS[key]
+    outcome = _search(task, budget, config, binary)
+    if outcome.status in (PLAN, NO_PLAN):
+        with _ANSWERS_LOCK:
+            if len(_ANSWERS) >= ANSWERS_KEPT:
+                del _ANSWERS[next(iter(_ANSWERS))]
+            _ANSWERS[key] = outcome
+    return outcome
+
+
+def _search(task: sas.Task, budget: Budget, config: str, binary: Path) -> Outcome:
+    """One run of the planner on the task (see :func:`solve`)."""
     if budget.expired():
         return Outcome(STOPPED, config)
     folder = tempfile.mkdtemp(prefix="ethasp-downward-")
