@@ -834,3 +834,16 @@ def least_repairs(spec: RandomModel, principle: str) -> tuple[int | None, set]:
             least = cost
             found.add(frozenset(change for change, _ in subset))
     return least, found
+
+
+def assert_shortest(result, spec: RandomModel) -> None:
+    """A plan search's result agrees with the oracle: "none" exactly where no
+    plan exists, else a valid plan of the shortest length, proven shortest."""
+    expected = spec.shortest_plan_length()
+    if expected is None:
+        assert result.status == "none", (result, spec)
+        return
+    assert result.status == "found", (result, spec)
+    plan = [str(action) for action in result.plan]
+    assert spec.is_plan(plan), (plan, spec)
+    assert len(plan) == expected and result.optimal, (plan, expected, spec)

@@ -18,7 +18,7 @@ from pathlib import Path
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from oracle import random_model
+from oracle import assert_shortest, random_model
 
 from ethasp import Model, find_plan
 from ethasp.execution.limits import descendants
@@ -58,14 +58,7 @@ def test_shortest_plans_and_none_agree_with_the_oracle(seed, conditional, far_go
         seed, max_variables=5, max_actions=6, conditional=conditional, far_goal=far_goal
     )
     result = find_plan(forced(spec.to_asp()), max_horizon=HORIZON)
-    expected = spec.shortest_plan_length()
-    if expected is None:
-        assert result.status == "none", (result, spec)
-    else:
-        assert result.status == "found", (result, spec)
-        plan = [str(action) for action in result.plan]
-        assert spec.is_plan(plan), (plan, spec)
-        assert len(plan) == expected and result.optimal
+    assert_shortest(result, spec)
 
 
 @installed

@@ -12,7 +12,7 @@ import random
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from oracle import RandomModel
+from oracle import RandomModel, _add_conditional_effects, _add_derived, assert_shortest
 
 from ethasp import Model, find_plan
 from ethasp.planning import systems
@@ -26,7 +26,7 @@ installed = pytest.mark.skipif(
 )
 
 
-def token_model(seed: int) -> RandomModel:
+def token_model(seed: int, conditional: bool = False, derived: bool = False) -> RandomModel:
     """Tokens ``t0``, ``t1`` at places (``at(tK,pI)``), a holder
     (``held(tK)``) and plain variables; actions that move a token (need it at
     one place, make it false there and true at another), pick it up and put it
@@ -78,7 +78,12 @@ def token_model(seed: int) -> RandomModel:
     goal = {v: rng.random() < 0.8 for v in variables if rng.random() < 0.3}
     if not goal:
         goal = {rng.choice(located): True}
-    return RandomModel(variables, actions, pre, eff, frozenset(init), goal)
+    spec = RandomModel(variables, actions, pre, eff, frozenset(init), goal)
+    if derived:  # derived variables that preconditions and the goal read
+        _add_derived(spec, rng)
+    if conditional:  # conditional effects, which may make a member true
+        _add_conditional_effects(spec, rng)
+    return spec
 
 
 def search_model_of(spec: RandomModel):
@@ -86,9 +91,11 @@ def search_model_of(spec: RandomModel):
 
 
 @settings(max_examples=150, deadline=None)
-@given(SEEDS)
-def test_every_group_holds_one_true_variable_at_most_in_every_reachable_state(seed):
-    spec = token_model(seed)
+@given(SEEDS, st.booleans(), st.booleans())
+def test_every_group_holds_one_true_variable_at_most_in_every_reachable_state(
+    seed, conditional, derived
+):
+    spec = token_model(seed, conditional, derived)
     found = groups.groups(search_model_of(spec))
     members = [{str(v) for v in group} for group in found]
     assert all(len(group) > 1 for group in members)
@@ -189,16 +196,10 @@ def test_groups_refuse_events():
 @installed
 @pytest.mark.slow
 @settings(max_examples=80, deadline=None)
-@given(SEEDS)
-def test_fast_downward_on_groups_agrees_with_the_oracle(seed):
-    spec = token_model(seed)
+@given(SEEDS, st.booleans())
+def test_fast_downward_on_groups_agrees_with_the_oracle(seed, conditional):
+    spec = token_model(seed, conditional)
     model = Model.from_string(spec.to_asp())
     model.planning_system = systems.FAST_DOWNWARD
     result = find_plan(model, max_horizon=40)
-    expected = spec.shortest_plan_length()
-    if expected is None:
-        assert result.status == "none", (result, spec)
-    else:
-        assert result.status == "found", (result, spec)
-        plan = [str(action) for action in result.plan]
-        assert spec.is_plan(plan) and len(plan) == expected, (plan, spec)
+    assert_shortest(result, spec)

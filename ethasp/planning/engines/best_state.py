@@ -571,8 +571,9 @@ def _better_state(planner: Planner, utility: int, budget: Budget, max_horizon: i
 # time) and the model's planning system hands searches to Fast Downward
 # (ethasp.planning.systems), the best reachable utility is an
 # oversubscription question answered by planner calls on the compiled goal
-# "a state worth at least k" (ethasp.planning.engines.sas): the relaxed upper
-# bound first (one call where it is attained), then a bisection between the
+# "a state worth at least k" (ethasp.planning.engines.sas): a goal state at the
+# relaxed upper bound first (A*; where there is one, the answer), then any
+# state at the bound (one call where it is attained), then a bisection between the
 # best utility found and the bound, each call by greedy search (a state worth
 # at least k, or the proof that none is reachable: every state from which the
 # relaxed count could still reach k was searched).  The best state reported
@@ -649,18 +650,18 @@ def _best_by_planner(
         return None
     bound = upper_bound(planner)
     best = _reached(planner, [])
-    # A goal state that attains the bound first: where there is one, this one
-    # search proves the best utility and finds the state the end below would
-    # report (the nearest goal state as good: the same task, so the same
-    # answer), without the searches for a state of each utility before it.
-    kind, found = _planner_search(planner, ground, bound, budget, True, True)
+    low, high = best.utility, bound
+    # A goal state that attains the bound first: where there is one, it proves
+    # the best utility, no state of a lower utility is searched for, and the
+    # search for the nearest goal state as good at the end is this one again
+    # (answered by downward without another run).
+    kind, found = _planner_search(planner, ground, high, budget, True, True)
     if kind == "failed":
         return None
     if kind == "stopped":
-        return BestReachable(BOUNDED, f"{found}; best found {best.utility}, bound {bound}", best)
+        return BestReachable(BOUNDED, f"{found}; best found {low}, bound {high}", best)
     if kind == "state":
-        return BestReachable(PROVEN, UB_PROOF.format(u=bound), found, found.distance)
-    low, high = best.utility, bound
+        best, low = found, high
     target = high  # the bound first: often attained
     while low < high:
         budget.report("best reachable state (Fast Downward)", best=low, bound=high)
