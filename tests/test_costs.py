@@ -154,6 +154,32 @@ def test_a_horizon_too_small_to_prove_is_bounded_with_the_plan_found(solver_alon
     assert "a longer one may" in result.proof
 
 
+@pytest.fixture
+def engine_first(monkeypatch):
+    """Uniform-cost search has ended before the solver starts (the order of
+    the race that a fast engine or a loaded machine gives)."""
+    start = cost_search._Engine.__init__
+
+    def started_and_ended(self, *args, **kwargs):
+        start(self, *args, **kwargs)
+        if self.engine is not None:
+            while self.engine.status.working:
+                self.engine.news.wait(0.05)
+
+    monkeypatch.setattr(cost_search._Engine, "__init__", started_and_ended)
+
+
+def test_a_cheaper_plan_beyond_the_horizon_found_first_leaves_the_search_bounded(engine_first):
+    # Uniform-cost search finds the bus plan (3 steps) first: beyond the
+    # maximal horizon, it ends nothing; the solver's plan within the horizon
+    # is the answer, as when the solver is first (this once searched forever).
+    dear = Model.from_string(TOWN + "cost(walk1,2). cost(walk2,2). cost(walk3,2).")
+    result = find_plan(dear, max_horizon=1, time_limit=30)
+    assert result.status == "bounded" and result.plan == Plan.parse("taxi")
+    assert result.cost == 5 and result.optimal is False
+    assert "the maximal horizon is 1" in result.proof
+
+
 def test_the_bounded_text_on_the_command_line(tmp_path):
     path = tmp_path / "town.lp"
     path.write_text(TOWN + "cost(walk1,2). cost(walk2,2). cost(walk3,2).\n")

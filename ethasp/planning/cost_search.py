@@ -101,14 +101,18 @@ class _Engine:
         status = self.status
         return status.plan if status is not None and self.read_plan else None
 
-    def settled(self, cost: int | None) -> bool:
-        """Has the engine ended the search: a plan, no plan at all, or every
-        plan costing at least ``cost`` (the incumbent's)?"""
+    def settled(self, cost: int | None, longest: int) -> bool:
+        """Has the engine ended the search: a plan of at most ``longest``
+        steps, no plan at all, or every plan costing at least ``cost`` (the
+        incumbent's)?  Exactly where :meth:`_Search.decided` answers: a
+        cheaper plan beyond the maximal horizon ends nothing, the solver
+        goes on within it."""
         status = self.status
         if status is None:
             return False
+        plan = self.plan()
         return (
-            self.plan() is not None
+            (plan is not None and len(plan) <= longest)
             or status.complete
             or (cost is not None and status.cost_bound >= cost)
         )
@@ -353,7 +357,7 @@ class _Search:
                 return decided
             horizon = self.horizon
             budget.report(self.task, horizon=horizon)
-            settled = functools.partial(self.engine.settled, self.limit)
+            settled = functools.partial(self.engine.settled, self.limit, self.max_horizon)
             searching = replace(
                 setting, max_cost=self.limit - 1 if self.limit is not None else None
             )
