@@ -53,6 +53,20 @@ def test_the_scripts_follow_the_parser():
     assert "trolley" in bundled_models() and "hera/robot-and-frank.yaml" in bundled_models()
 
 
+def test_a_commands_parser_alone_is_the_whole_parsers():
+    # The command line builds only the parser of the command it runs.
+    whole = build_parser()
+    choices = whole._subparsers._group_actions[0].choices
+    for name in ("plan", "ask", "completion"):
+        alone = build_parser(name)
+        only = alone._subparsers._group_actions[0].choices
+        assert list(only) == [name]
+        assert only[name].format_help() == choices[name].format_help()
+    completion = build_parser("completion").parse_args(["completion", "bash"])
+    assert len(commands(completion.build_parser())) == len(choices)  # every command
+    assert build_parser("plna")._subparsers._group_actions[0].choices.keys() == choices.keys()
+
+
 def test_an_unknown_shell_is_one_line():
     run = subprocess.run(
         [sys.executable, "-m", "ethasp.interfaces.cli", "completion", "fish"],

@@ -116,17 +116,28 @@ def test_a_goal_utility_compiles_into_a_count_and_too_large_counts_are_refused()
     )
     model.planner.prepare(Budget(None))
     ground = search_model(Atoms(model.planner, weights=True))
-    # Base utility 1 (b false); gains 2 (a) and 3 (b): 6 needs both.
-    task = sas.threshold_task(ground, 6)
+    # Base utility 1 (b false); gains 2 (a) and 3 (b): 3 needs either.
+    task = sas.threshold_task(ground, 3)
     assert "begin_variable\nstage" in task.text and "begin_variable\ncounter" in task.text
+    assert "begin_goal\n2\n" in task.text  # the stage and the counter
     assert sas.threshold_task(ground, 1).text.count("counter") == 0  # every state is worth 1
+    # 4 needs b (a alone gives 3), and b suffices: a goal fact, nothing counted.
+    task = sas.threshold_task(ground, 4)
+    assert "counter" not in task.text and "begin_goal\n1\n" in task.text
+    # 6 needs both: two goal facts (as 5 does: a and b are worth 3 apart).
+    for threshold in (5, 6):
+        task = sas.threshold_task(ground, threshold)
+        assert "counter" not in task.text and "begin_goal\n2\n" in task.text
     big = Model.from_string(
         "variable(a;b). action(x;y). eff(x,a,true). eff(y,b,true). "
         "utility(a,true,1000000). utility(b,true,999999)."
     )
     big.planner.prepare(Budget(None))
     with pytest.raises(sas.NotCompiled):
-        sas.threshold_task(search_model(Atoms(big.planner, weights=True)), 1_999_999)
+        sas.threshold_task(search_model(Atoms(big.planner, weights=True)), 999_999)
+    # Both at their better values: nothing to count, a classical goal.
+    task = sas.threshold_task(search_model(Atoms(big.planner, weights=True)), 1_999_999)
+    assert "counter" not in task.text
 
 
 @installed
@@ -269,6 +280,57 @@ def test_the_command_line_plans_with_each_planner_and_the_lengths_agree():
 def test_no_planner_is_assumed_where_none_is_chosen():
     model = Model.from_string("variable(a). action(go). eff(go,a,true). goal(a,true).")
     assert model.planning_system == systems.AUTO
+
+
+@installed
+@pytest.mark.slow
+@settings(max_examples=100, deadline=None)
+@given(SEEDS, st.booleans())
+def test_a_goal_state_at_the_bound_is_fast_downwards_answer_first(seed, conditional):
+    """Before the diagrams, one A* search for a goal state that attains the
+    relaxed bound: where the oracle has one, the answer is such a goal state
+    at the least distance; elsewhere the other engines answer, as proven."""
+    from ethasp.planning.engines.best_state import best_reachable, upper_bound
+
+    spec = random_model(seed, conditional=conditional)
+    model = forced(spec.to_asp())
+    best = best_reachable(model)
+    assert best.status == "proven" and best.utility == spec.best_reachable_utility(), (best, spec)
+    bound = upper_bound(model.planner)
+    attaining = [
+        distance
+        for state, distance in spec.distances().items()
+        if spec.is_goal(state) and spec.state_utility(state) == bound
+    ]
+    if attaining:
+        assert "upper bound" in best.proof
+        final = spec.run([str(action) for action in best.plan])
+        assert final is not None and spec.is_goal(final), (best, spec)
+        assert spec.state_utility(final) == bound
+        assert best.found.distance == len(best.plan) == min(attaining), (best, spec)
+
+
+def test_fast_downward_answers_the_bound_without_the_diagrams(monkeypatch):
+    """A goal state far away attains the bound: the diagrams, which would
+    grow a layer for each step to it, are never built."""
+    if not systems.installed():
+        pytest.skip("Fast Downward is not installed (the planners extra)")
+    from ethasp.planning.driver.planner import Planner
+    from ethasp.planning.engines.best_state import best_reachable
+
+    model = forced(
+        "variable(p(0..12)). init(p(0)). action(s(0..11)). "
+        "pre(s(I),p(I),true) :- action(s(I)). eff(s(I),p(I+1),true) :- action(s(I)). "
+        "goal(p(12),true). utility(p(12),true,5)."
+    )
+
+    def refused(self):
+        raise AssertionError("the diagrams were built")
+
+    monkeypatch.setattr(Planner, "reachability", refused)
+    best = best_reachable(model)
+    assert best.status == "proven" and best.utility == 5 and len(best.plan) == 12
+    assert "upper bound" in best.proof
 
 
 @installed

@@ -218,9 +218,10 @@ def main(argv: Sequence[str] | None = None, worker: bool | None = None) -> int:
     time limit, but a grounding is not stopped).
     """
     try:
-        parser = build_parser()
+        arguments = list(sys.argv[1:] if argv is None else argv)
+        parser = build_parser(arguments[0] if arguments else None)
         try:
-            args = parser.parse_args(argv)
+            args = parser.parse_args(arguments)
         except SystemExit as done:  # --help, or a usage error already printed
             return done.code if isinstance(done.code, int) else (0 if done.code is None else 2)
         in_worker = (argv is None) if worker is None else worker

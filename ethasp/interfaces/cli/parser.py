@@ -51,7 +51,10 @@ input gets one line on standard error and exit code 2; Ctrl-C one line and exit
 code 130."""
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(command_name: str | None = None) -> argparse.ArgumentParser:
+    """The command line's parser; with ``command_name`` (the first argument,
+    where it names a command), only that command's parser is built (each
+    command's options take a few milliseconds to build)."""
     parser = _Parser(
         prog="ethasp", description=DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter
     )
@@ -65,10 +68,13 @@ def build_parser() -> argparse.ArgumentParser:
     )
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
-    for command in COMMANDS:
+    names = {command.__name__.rsplit(".", 1)[-1]: command for command in COMMANDS}
+    chosen = [names[command_name]] if command_name in names else COMMANDS
+    for command in chosen:
         command.add_parser(commands)
-    # The completion script is made from this parser.
-    commands.choices["completion"].set_defaults(build_parser=build_parser)
+    if "completion" in commands.choices:
+        # The completion script is made from the whole parser.
+        commands.choices["completion"].set_defaults(build_parser=build_parser)
     return parser
 
 

@@ -11,10 +11,19 @@ Utilitarianism compares the final state of a plan with every reachable state
   explicit breadth-first layers of configurations (state, time)
   (:mod:`ethasp.planning.engines.explicit`), with the same claims, up to a limit on
   the configurations;
-* when its diagrams outgrow their limit, clingo optimisation over the
+* when its diagrams outgrow their limit, Fast Downward where the model's
+  planning system hands searches to it (see the comment above
+  :func:`_planner_search`), else clingo optimisation over the
   planner's grounding (``encodings/judgement/best.lp``, a search without the
   goal, at horizons 0, 1, 2, 4, 8, ...), proven by the relaxed upper bound
   or the loop-free threshold (``encodings/planning/loopfree.lp``).
+
+Where Fast Downward searches, the best reachable state is first sought as a
+goal state that attains the upper bound, by one A* search on a classical
+goal (the model's goal and the facts every state of that utility has),
+before any diagram is built: where one exists, it is the answer (the
+nearest such goal state), however many layers the diagrams would grow to
+reach it.
 
 Each engine is used only on a model it handles (``FEATURES``, asked through
 :meth:`ethasp.planning.driver.planner.Planner.handles`).  Every state they
@@ -261,7 +270,11 @@ def _best_reachable(
     key = ("best_reachable", within, frozenset(other_than or ()), max_horizon)
     if key in results(planner):
         return results(planner)[key]
-    result = _best_exact(planner, budget, max_horizon, within, other_than)
+    # Where Fast Downward searches: first a goal state that attains the bound
+    # (one A* search on a classical goal), which proves the best utility.
+    result = _bound_by_planner(planner, budget, within, other_than)
+    if result is None:
+        result = _best_exact(planner, budget, max_horizon, within, other_than)
     if result is None:
         # The diagrams gave up: Fast Downward's searches, where it searches.
         result = _best_by_planner(planner, budget, within, other_than)
@@ -567,12 +580,14 @@ def _better_state(planner: Planner, utility: int, budget: Budget, max_horizon: i
 
 # -- an external planner: searches for a state of at least a utility ----------------
 #
-# Where the exact layers give up (diagram nodes: a limit of work, not of
-# time) and the model's planning system hands searches to Fast Downward
-# (ethasp.planning.systems), the best reachable utility is an
+# Where the model's planning system hands searches to Fast Downward
+# (ethasp.planning.systems), a goal state at the relaxed upper bound is
+# sought first, before the exact layers (A*; where there is one, the answer:
+# _bound_by_planner).  Where the exact layers then give up (diagram nodes: a
+# limit of work, not of time), the best reachable utility is an
 # oversubscription question answered by planner calls on the compiled goal
-# "a state worth at least k" (ethasp.planning.engines.sas): a goal state at the
-# relaxed upper bound first (A*; where there is one, the answer), then any
+# "a state worth at least k" (ethasp.planning.engines.sas): that goal state
+# at the bound first (answered again without another run), then any
 # state at the bound (one call where it is attained), then a bisection between the
 # best utility found and the bound, each call by greedy search (a state worth
 # at least k, or the proof that none is reachable: every state from which the
@@ -638,6 +653,30 @@ def _planner_model(planner: Planner):
     return search_model(Atoms(planner, weights=True))
 
 
+def _bound_by_planner(
+    planner: Planner, budget: Budget, within: str, other_than
+) -> BestReachable | None:
+    """A goal state that attains the upper bound, by Fast Downward: the
+    nearest (A* with LM-cut on the task whose goal is the model's goal and
+    every ``best_fact/2``, the facts every state of that utility has, see
+    :mod:`ethasp.planning.engines.sas`).  Where one exists it is the answer,
+    proven by the bound, whatever the diagrams would take to reach it; None
+    where there is none, or Fast Downward does not search here."""
+    if within != "all" or other_than is not None:
+        return None
+    ground = _planner_model(planner)
+    if ground is None:
+        return None
+    bound = upper_bound(planner)
+    kind, found = _planner_search(planner, ground, bound, budget, True, True)
+    if kind == "stopped":
+        start = _reached(planner, [])
+        return BestReachable(BOUNDED, f"{found}; best found {start.utility}, bound {bound}", start)
+    if kind != "state":
+        return None  # none attains it (or the planner failed): the other engines
+    return BestReachable(PROVEN, UB_PROOF.format(u=bound), found, found.distance)
+
+
 def _best_by_planner(
     planner: Planner, budget: Budget, within: str, other_than
 ) -> BestReachable | None:
@@ -651,10 +690,8 @@ def _best_by_planner(
     bound = upper_bound(planner)
     best = _reached(planner, [])
     low, high = best.utility, bound
-    # A goal state that attains the bound first: where there is one, it proves
-    # the best utility, no state of a lower utility is searched for, and the
-    # search for the nearest goal state as good at the end is this one again
-    # (answered by downward without another run).
+    # No goal state attains the bound (_bound_by_planner; its search is
+    # answered again by downward without another run).
     kind, found = _planner_search(planner, ground, high, budget, True, True)
     if kind == "failed":
         return None

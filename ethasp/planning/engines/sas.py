@@ -34,6 +34,12 @@ one of them followed by its count, so shortest plans correspond.  The same
 compilation without the model's goal asks for a reachable state worth at
 least B (:func:`threshold_task`).
 
+A valued variable whose better value every state worth B has (without its
+gain, all the others together fall short) is not counted: its better value
+is a goal fact.  At the greatest B (every valued variable at its better
+value) no count is left, and the task has a classical goal, which
+heuristics such as LM-cut see whole (a count hides it from them).
+
 Exogenous events and derived variables are not compiled (``FEATURES``).
 """
 
@@ -93,6 +99,15 @@ def task(model, goal: bool = True, at_least: int | None = None, grouped: bool = 
     if counting:
         number = {name: i for i, name in enumerate(names)}
         counting = ([(number[v], better, gain) for v, better, gain in counting[0]], counting[1])
+        forced, left = _forced(counting)
+        kept = list(model.goal) if goal else []
+        if forced and not any((v, not better) in kept for v, better in forced):
+            # Facts every state worth enough has: goal facts, not counted.  (A
+            # goal that refutes one keeps the whole count: no plan is found.)
+            model = replace(model, goal=kept + [fact for fact in forced if fact not in kept])
+            goal, counting = True, left
+    if counting and len(counting[0]) * (counting[1] + 1) > COUNTING_LIMIT:
+        raise NotCompiled("Fast Downward's task does not count a goal utility this large")
     wanted = {v for v, _ in model.goal} if goal else set()
     if counting:
         wanted |= {variable for variable, _, _ in counting[0]}
@@ -408,9 +423,24 @@ def _counting(model, threshold: int) -> tuple[list[tuple[clingo.Symbol, bool, in
     need = -(-need // divisor)
     if need > sum(gain for _, _, gain in items):
         items, need = [], 1  # no state is worth enough: the counter never fills
-    if len(items) * (need + 1) > COUNTING_LIMIT:
-        raise NotCompiled("Fast Downward's task does not count a goal utility this large")
     return items, need
+
+
+def _forced(counting) -> tuple[list[tuple[int, bool]], tuple | None]:
+    """The valued variables whose better value every state worth enough has
+    (without the gain of one, the others together cannot fill the counter),
+    as facts; and the count of the others (None where nothing is left to
+    count).  At the greatest threshold every valued variable is forced:
+    the goal utility is a conjunction of facts, a classical goal."""
+    items, need = counting
+    total = sum(gain for _, _, gain in items)
+    forced = [(v, better, gain) for v, better, gain in items if total - gain < need]
+    if not forced or not items:
+        return [], counting
+    rest = [item for item in items if item not in forced]
+    need -= sum(gain for _, _, gain in forced)
+    left = (rest, need) if need > 0 else None
+    return [(v, better) for v, better, _ in forced], left
 
 
 def _count(counting, layout: _Layout, stage: int, counter: int) -> list[list[str]]:
