@@ -359,3 +359,42 @@ def test_best_reachable_utility_and_better_states_agree_with_the_oracle(seed, co
     assert (compared.better is not None) == (spec.best_reachable_utility() > utility)
     if compared.better is not None:
         assert compared.better.utility > utility
+
+
+@installed
+def test_facts_asked_of_the_final_state_are_goal_facts_of_the_task(monkeypatch):
+    """Question constraints ends(F,B) (the goal's items in conflicts) are
+    searched by Fast Downward as goal facts; its plan is checked to end
+    with them, and a fact that never holds is no plan at all."""
+    import clingo
+
+    from ethasp.planning import search
+    from ethasp.planning.driver.planner import Setting
+    from ethasp.planning.search import shortest
+
+    model = forced(
+        "variable(a;b;c;fixed). action(x;y). eff(x,a,true). pre(y,a,true). eff(y,b,true). "
+        "eff(y,c,true). goal(c,true)."
+    )
+    planner = model.planner
+    solved = []
+    solve = downward.solve
+    monkeypatch.setattr(downward, "solve", lambda *a: solved.append(a[0]) or solve(*a))
+
+    def ends(variable: str, value: str) -> Setting:
+        term = clingo.parse_term(f"ends({variable},{value})")
+        return Setting(constraints=frozenset(planner.question([term])))
+
+    found = shortest(planner, ends("b", "true"), Budget(None))
+    assert found.status == "found" and [str(a) for a in found.plan] == ["x", "y"]
+    assert "begin_goal\n2\n" in solved[-1].text  # c and b
+    refuted = shortest(planner, ends("b", "false"), Budget(None))
+    assert refuted.status == "none"  # y makes both b and c true
+    never = shortest(planner, ends("fixed", "true"), Budget(None))
+    assert never.status == "none"  # known before any search (relaxed reachability)
+    # The task itself, where such facts came through: no task, no plan.
+    ground = search_model(Atoms(planner))
+    fixed, c = clingo.Function("fixed"), clingo.Function("c")
+    assert search._with_final_facts(planner, ground, [(fixed, True)]) is None
+    assert search._with_final_facts(planner, ground, [(c, False)]) is None
+    assert search._with_final_facts(planner, ground, [(fixed, False)]).goal == ground.goal

@@ -19,6 +19,7 @@ from hypothesis import strategies as st
 from oracle import features, goal_structure, random_model, with_goal
 
 from ethasp import Model
+from ethasp.planning import systems
 from ethasp.principles.conflict import goal_conflicts
 
 SEEDS = st.integers(min_value=0, max_value=10**9)
@@ -37,10 +38,18 @@ def _facts(items) -> frozenset:
     return frozenset((str(item.fact[0]), item.fact[1]) for item in items)
 
 
-def check_against_oracle(seed: int, principle: str, larger: bool = False) -> None:
+def check_against_oracle(
+    seed: int, principle: str, larger: bool = False, system: str | None = None
+) -> None:
     sizes = {"max_variables": 6, "max_actions": 5} if larger else {}
-    spec = random_model(seed, **sizes, **features(seed))
-    result = goal_conflicts(Model.from_string(spec.to_asp()), [principle], max_horizon=HORIZON)
+    drawn = features(seed)
+    if system == systems.FAST_DOWNWARD:  # the features its task compiles
+        drawn = {**drawn, "derived": False, "events": False}
+    spec = random_model(seed, **sizes, **drawn)
+    model = Model.from_string(spec.to_asp())
+    if system is not None:
+        model.planning_system = system
+    result = goal_conflicts(model, [principle], max_horizon=HORIZON)
     conflicts, subsets = goal_structure(spec, principle)
     assert result.status == "proven", (result.proof, spec)
     assert not result.conflicts_truncated and not result.goal_subsets_truncated
@@ -80,6 +89,16 @@ def test_conflicts_of_larger_goals_agree_with_the_oracle(seed, principle):
 @given(SEEDS, st.sampled_from(PAPER))
 def test_conflicts_agree_with_the_oracle(seed, principle):
     check_against_oracle(seed, principle)
+
+
+@pytest.mark.skipif(not systems.installed(), reason="Fast Downward is not installed")
+@pytest.mark.slow
+@settings(max_examples=80, deadline=None)
+@given(SEEDS, st.sampled_from(PAPER + HERA))
+def test_conflicts_decided_by_fast_downward_agree_with_the_oracle(seed, principle):
+    # Each set of items a task's goal facts, decided by the planner's proofs
+    # without the depth (on models whose features its task compiles).
+    check_against_oracle(seed, principle, system=systems.FAST_DOWNWARD)
 
 
 @settings(max_examples=20, deadline=None)

@@ -38,7 +38,13 @@ from dataclasses import replace
 
 from ethasp.errors import InputError
 from ethasp.planning.budget import Budget
-from ethasp.planning.driver.planner import MUTEX_AFTER, GroundingStopped, Planner, Setting
+from ethasp.planning.driver.planner import (
+    MUTEX_AFTER,
+    GroundingStopped,
+    Planner,
+    Setting,
+    final_facts,
+)
 from ethasp.planning.engines import layers as layers_module
 from ethasp.planning.engines.layers import Atoms, Layers, Status
 from ethasp.planning.plan import Plan, steps
@@ -401,6 +407,39 @@ def _least(
     return witness
 
 
+NEVER_HOLDS = (
+    "no plan ends with the facts asked of the final state (one of them never holds, "
+    "or the goal asks for its other value)"
+)
+
+
+def _with_final_facts(planner: Planner, model, facts):
+    """A search model whose goal also asks ``facts`` of the final state
+    (question constraints ``ends(F,B)``, see :func:`ethasp.planning.driver.
+    planner.final_facts`); None where one never holds (a variable that never
+    changes, of the other value, or the goal's other value)."""
+    if not facts:
+        return model
+    changing = set(model.variables)
+    goal = list(model.goal)
+    reachable = None
+    for variable, value in facts:
+        if variable not in changing:  # the one value it has in every state
+            if reachable is None:
+                reachable = {
+                    (atom.arguments[0], atom.arguments[1].name == "true")
+                    for atom in planner.search_atoms("reachable", 2)
+                }
+            if (variable, value) not in reachable:
+                return None
+            continue
+        if (variable, not value) in goal:
+            return None
+        if (variable, value) not in goal:
+            goal.append((variable, value))
+    return replace(model, goal=goal)
+
+
 def _least_by_solver(planner: Planner, setting: Setting, budget: Budget, length: int):
     """The solver's least plan of ``length`` steps (the optimum, proven), or
     None where it does not fit in clingo's numbers or the budget stops it."""
@@ -441,8 +480,12 @@ def _external(
     from ethasp.planning.engines import downward, sas
     from ethasp.planning.engines.layers import Atoms, search_model
 
+    facts = final_facts(setting.constraints)  # question constraints: goal facts
+    ground = _with_final_facts(planner, search_model(Atoms(planner)), facts)
+    if ground is None:
+        return SearchResult(NONE, horizon=0, optimal=optimal, proof=NEVER_HOLDS)
     try:
-        task = downward.compiled(search_model(Atoms(planner)))
+        task = downward.compiled(ground)
     except sas.NotCompiled as why:
         systems.warn(f"{why}: clingo searches instead")
         return None
@@ -456,7 +499,7 @@ def _external(
         return None
     if outcome.status == downward.NO_PLAN:
         return SearchResult(NONE, horizon=0, optimal=optimal, proof=SEARCHED)
-    plan = _checked(planner, task.plan(outcome.operators), "Fast Downward")
+    plan = _checked(planner, task.plan(outcome.operators), "Fast Downward", facts)
     length = len(plan)
     if optimal and longest is not None and length > longest:
         return SearchResult(NONE, horizon=longest, proof=_too_long(longest))

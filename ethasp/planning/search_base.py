@@ -90,12 +90,20 @@ SEARCHED = "every reachable state was searched, and none is a goal state"
 GREEDY_PROOF = "a plan found by greedy forward search (not proven shortest)"
 
 
-def checked(planner: Planner, actions, engine: str) -> Plan:
-    """A plan that an engine proposed, checked by its trace (the encodings)."""
+def checked(planner: Planner, actions, engine: str, final=None) -> Plan:
+    """A plan that an engine proposed, checked by its trace (the encodings);
+    ``final``: facts (variable, value) its final state must have."""
     plan = Plan(tuple(actions))
     answer = planner.trace(plan)
     if not answer.get("plan", 0):
         raise RuntimeError(f"{engine} proposed {plan}, which the encodings refute")
+    if final:
+        ends = {
+            (atom.arguments[0], atom.arguments[1].name == "true") for atom in answer.get("final", 2)
+        }
+        missing = [fact for fact in final if fact not in ends]
+        if missing:
+            raise RuntimeError(f"{engine} proposed {plan}, whose final state the encodings refute")
     return plan
 
 

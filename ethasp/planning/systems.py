@@ -78,6 +78,7 @@ def usable(planner, setting=None, all_plans: bool = False) -> bool:
 
 def _unsuited(planner, setting, all_plans: bool) -> str:
     """Why a search is not one Fast Downward does (words), or the empty text."""
+    from ethasp.planning.driver.planner import final_facts
     from ethasp.planning.engines import downward, handles
 
     if setting is None:
@@ -86,7 +87,7 @@ def _unsuited(planner, setting, all_plans: bool) -> str:
         return "for all shortest plans"
     elif not setting.goal or setting.at_least is not None or setting.other_state is not None:
         return "for states of a utility"
-    elif setting.constraints:
+    elif setting.constraints and final_facts(setting.constraints) is None:
         return "under a question's constraints that no HModel compiles"
     if not handles(downward.FEATURES, planner.features):
         return f"models with {' or '.join(sorted(planner.features - downward.FEATURES))}"

@@ -359,8 +359,8 @@ def _proof(items: GoalItems, exploration: Exploration, status: str) -> str:
         if items.budget.expired():
             return f"{items.budget.why_stopped()} while the goal's items were explored"
         return "some sets of the goal's items were not decided within the maximal horizon"
-    depth = items.depth()
-    if depth.horizon is not None and not items.searched_in_asp:
+    depth = items.known_depth
+    if depth is not None and depth.horizon is not None and not items.searched_in_asp:
         return (
             f"each set of the goal's items decided by one search to horizon {depth.horizon} "
             f"({depth.proof})"

@@ -25,9 +25,13 @@ solve at that horizon: every reachable configuration lies within it, so an
 unsatisfiable solve is a proof, and clingo's core of the assumptions names a
 subset of S that is unreachable already.  Without the depth (cut short), by
 plan search (:func:`ethasp.planning.search.shortest`) and its proofs, or
-``bounded``.  A question constraint that the soft HModel cannot record (a
-fact after a step, of a derived variable) is searched in ASP as it is, and
-its sets are always decided by plan search.
+``bounded``.  Where plan search hands the soft HModel to an external planner
+(:mod:`ethasp.planning.systems`: S's items are then goal facts of its
+task), by plan search without the depth: the planner proves "none" by
+exhausting the states, where the depth would cost every reachable state.
+A question constraint that the soft HModel cannot record (a fact after a
+step, of a derived variable) is searched in ASP as it is, and its sets are
+always decided by plan search.
 """
 
 from __future__ import annotations
@@ -171,6 +175,11 @@ class GoalItems:
             self._depth = reachable_depth(self.soft.planner, self.budget, self.max_horizon)
         return self._depth
 
+    @property
+    def known_depth(self) -> Depth | None:
+        """The depth, where a decision computed it (None otherwise)."""
+        return self._depth
+
     def reach(self, items: frozenset[int]) -> Reach:
         """Whether a permissible plan reaches the items (kept per set)."""
         if items not in self._reached:
@@ -186,7 +195,8 @@ class GoalItems:
         known = self._relaxed(items)
         if known is not None:
             return Reach(NONE, core=known)
-        horizon = None if self.searched_in_asp else self.depth().horizon
+        searched = self.searched_in_asp or self._by_planner(setting)
+        horizon = None if searched else self.depth().horizon
         if horizon is None:
             result = self._search(setting)
             if result.status == FOUND:
@@ -204,6 +214,14 @@ class GoalItems:
             if any(_active(c) in failed for c in self._constraints[number])
         )
         return Reach(NONE, core=core)
+
+    def _by_planner(self, setting: Setting) -> bool:
+        """Does plan search hand this setting to an external planner (its
+        items are goal facts of the planner's task), which proves "none"
+        without the depth of every reachable configuration?"""
+        from ethasp.planning import systems
+
+        return systems.usable(self.soft.planner, setting)
 
     def _relaxed(self, items: frozenset[int]) -> frozenset[int] | None:
         """Items that no plan reaches even ignoring delete effects (relaxed

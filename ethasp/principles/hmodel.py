@@ -105,8 +105,11 @@ def compiled(term: clingo.Symbol, derived: frozenset = frozenset()) -> bool:
 def hmodel(model: Model, restriction: Restriction) -> Model:
     """The HModel of the model under the restriction (made once per model and
     restriction): a model whose plans are the model's plans that satisfy it
-    (the model itself where the restriction removes and adds nothing)."""
-    return _made(model, restriction)[0]
+    (the model itself where the restriction removes and adds nothing).  It
+    is planned for as the model is (its ``planning_system``)."""
+    made = _made(model, restriction)[0]
+    made.planning_system = model.planning_system
+    return made
 
 
 def goal_items(model: Model, restriction: Restriction) -> dict[clingo.Symbol, list[Literal]]:

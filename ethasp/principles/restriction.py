@@ -333,7 +333,6 @@ def plan_with_principles(
     # The HModel: a planning model of its own, planned for by every engine.
     derived = derived_variables(model)
     restricted = model if restriction.empty else hmodel(model, restriction)
-    restricted.planning_system = model.planning_system
     against = impossible(model, restriction) if restriction.terms else []
     if against:
         # Known before any search (a constraint against the goal, or one that

@@ -273,6 +273,20 @@ class Constraint:
         return str(self.term)
 
 
+def final_facts(constraints) -> list[tuple[clingo.Symbol, bool]] | None:
+    """The facts that constraints ask of the final state, where each is
+    ``ends(F,B)`` (the final state has F = B, ``questions/questions.lp``):
+    a classical goal; else None."""
+    facts = []
+    for constraint in sorted(constraints, key=str):
+        term = constraint.term
+        if term.name != "ends" or len(term.arguments) != 2:
+            return None
+        variable, value = term.arguments
+        facts.append((variable, value.name == "true"))
+    return facts
+
+
 @dataclass(frozen=True)
 class Setting:
     """What one solve asks of the model.

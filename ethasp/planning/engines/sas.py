@@ -115,7 +115,10 @@ def task(model, goal: bool = True, at_least: int | None = None, grouped: bool = 
     variables = [variable for variable in model.variables if variable in necessary]
     layout = _Layout(model, variables, goal, counting, grouped, names)
     lines = ["begin_version", "3", "end_version", "begin_metric", "0", "end_metric"]
-    count = len(layout.domains) + (2 if counting else 0)
+    # Fast Downward refuses a task without a goal: where nothing is asked, a
+    # variable of its own that holds from the start (every state is a goal).
+    unasked = not (goal and model.goal) and not counting
+    count = len(layout.domains) + (2 if counting else 0) + (1 if unasked else 0)
     lines.append(str(count))
     for i, values in enumerate(layout.domains):
         lines += ["begin_variable", f"v{i}", "-1", str(len(values))]
@@ -128,13 +131,20 @@ def task(model, goal: bool = True, at_least: int | None = None, grouped: bool = 
         lines += [f"Atom stage({k})" for k in range(len(items) + 2)] + ["end_variable"]
         lines += ["begin_variable", "counter", "-1", str(need + 1)]
         lines += [f"Atom counter({k})" for k in range(need + 1)] + ["end_variable"]
+    if unasked:
+        lines += ["begin_variable", "unasked", "-1", "2", "Atom unasked()"]
+        lines += ["NegatedAtom unasked()", "end_variable"]
     lines.append("0")  # no mutex groups
     lines.append("begin_state")
     lines += [str(value) for value in layout.initial(model.init)]
     if counting:
         lines += ["0", "0"]
+    if unasked:
+        lines.append("0")
     lines.append("end_state")
     goals = [layout.fact[literal] for literal in model.goal] if goal else []
+    if unasked:
+        goals.append((len(layout.domains), 0))
     if counting:
         goals += [(stage, len(counting[0]) + 1), (counter, counting[1])]
     lines += ["begin_goal", str(len(goals))]
