@@ -166,6 +166,21 @@ def add_encoding(
     return dict(params)
 
 
+# A name that may be a marker, as an atom (with "#program": the text is split).
+_MAYBE_MARKED = re.compile(r"\b(?:" + "|".join([STEP, TIME_MARKER, *INPUTS]) + r")\s*\(|#program")
+
+
+@functools.cache
+def plain_text(path: Path) -> str | None:
+    """The text of an encoding file that no marker can be in (no name of one
+    followed by a parenthesis, no ``#program``): every statement of it goes
+    into one part as it is, so the text is added to that part whole, without
+    reading its syntax tree here (a part of every command's start).  None
+    for a file to split (:func:`add_encoding`)."""
+    text = Path(path).read_text()
+    return None if _MAYBE_MARKED.search(text) else text
+
+
 @functools.cache
 def _split_file(
     path: str, step_part: str, switch: clingo.Symbol | None, base_part: str, check_part: str

@@ -401,9 +401,7 @@ class Planner:
         # A grounding left running when a budget ran out: (done, failure).
         self._pending: tuple[threading.Event, list] | None = None
         try:
-            with clingo.ast.ProgramBuilder(self.ctl) as builder:
-                for name in MODEL_ENCODINGS:
-                    incremental.add_encoding(builder, encoding(name), on_message=self.messages)
+            self._add_encodings(MODEL_ENCODINGS, "base")
             self.ctl.ground([("base", [])])
         except RuntimeError:
             self.messages.raise_first("grounding failed")
@@ -605,17 +603,26 @@ class Planner:
         if self._relaxed:
             return
         try:
-            with clingo.ast.ProgramBuilder(self.ctl) as builder:
-                incremental.add_encoding(
-                    builder,
-                    encoding(RELAXED_ENCODING),
-                    on_message=self.messages,
-                    base_part=RELAXED,
-                )
+            self._add_encodings((RELAXED_ENCODING,), RELAXED)
         except RuntimeError:
             self.messages.raise_first("grounding failed")
         self._relaxed = True  # (noted before: see _start_search)
         self._ground([(RELAXED, [])], budget)
+
+    def _add_encodings(self, names, part: str) -> None:
+        """Add encodings whose rules all go into ``part``: as text where no
+        marker can be in them (:func:`incremental.plain_text`), else split."""
+        split = [name for name in names if incremental.plain_text(encoding(name)) is None]
+        if split:
+            with clingo.ast.ProgramBuilder(self.ctl) as builder:
+                for name in split:
+                    incremental.add_encoding(
+                        builder, encoding(name), on_message=self.messages, base_part=part
+                    )
+        for name in names:
+            text = incremental.plain_text(encoding(name))
+            if text is not None:
+                self.ctl.add(part, [], text)
 
     def _start_search(self, budget: Budget | None = None) -> None:
         """Add and ground the searches' encodings (once, on the first search)."""
