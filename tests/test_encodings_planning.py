@@ -123,3 +123,24 @@ def test_weights_default_to_zero():
         ["planning/model.lp"], "variable(x). action(a). utility(x,true,3). #show weight/2."
     )[0]
     assert answer == {"weight(action(a),0)", "weight(fact(x,true),3)", "weight(fact(x,false),0)"}
+
+
+def test_encodings_without_markers_are_added_whole_as_their_split_would():
+    """The planner adds an encoding that no marker can be in as text
+    (incremental.plain_text); split, it is one part of its statements as
+    they are, so both ways give the same program."""
+    import clingo
+
+    from ethasp.planning.driver import incremental
+    from ethasp.planning.driver.planner import MODEL_ENCODINGS, RELAXED_ENCODING
+    from ethasp.resources import encoding
+
+    for name in (*MODEL_ENCODINGS, RELAXED_ENCODING):
+        text = incremental.plain_text(encoding(name))
+        assert text is not None, name
+        parts, _ = incremental._split_file(str(encoding(name)), "step", None, "base", "check")
+        assert list(parts) == ["base"], name
+        statements = []
+        clingo.ast.parse_string(text, statements.append)
+        assert [str(s) for s in statements[1:]] == [str(s) for s in parts["base"]], name
+    assert incremental.plain_text(encoding("planning/transition.lp")) is None  # step(T)
