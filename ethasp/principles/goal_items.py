@@ -27,8 +27,9 @@ subset of S that is unreachable already.  Without the depth (cut short), by
 plan search (:func:`ethasp.planning.search.shortest`) and its proofs, or
 ``bounded``.  Where plan search hands the soft HModel to an external planner
 (:mod:`ethasp.planning.systems`: S's items are then goal facts of its
-task), by plan search without the depth: the planner proves "none" by
-exhausting the states, where the depth would cost every reachable state.
+task), by its search for any plan (:func:`ethasp.planning.search.any_plan`)
+without the depth: the planner proves "none" by exhausting the states, where
+the depth would cost every reachable state.
 A question constraint that the soft HModel cannot record (a fact after a
 step, of a derived variable) is searched in ASP as it is, and its sets are
 always decided by plan search.
@@ -54,6 +55,7 @@ from ethasp.planning.search import (
     FOUND,
     NONE,
     SearchResult,
+    any_plan,
     plans_of,
     shortest,
 )
@@ -195,8 +197,14 @@ class GoalItems:
         known = self._relaxed(items)
         if known is not None:
             return Reach(NONE, core=known)
-        searched = self.searched_in_asp or self._by_planner(setting)
-        horizon = None if searched else self.depth().horizon
+        if not self.searched_in_asp and self._by_planner(setting):
+            # Any plan decides it: the planner's greedy search finds one fast, and
+            # exhausts the states (pruning only relaxed dead ends) to prove none.
+            result = any_plan(planner, setting, self.budget, task="goal subsets")
+            if result.status == FOUND:
+                return Reach(FOUND, result.plan)
+            return Reach(result.status)
+        horizon = None if self.searched_in_asp else self.depth().horizon
         if horizon is None:
             result = self._search(setting)
             if result.status == FOUND:
