@@ -227,14 +227,14 @@ def _events(atoms, keeps=lambda variable, value: None, moving=None) -> list:
     never change decided (``keeps``), effects on them dropped (relaxed
     reachability counts what events may set, so an effect on a variable not
     ``moving`` keeps its value).  ``moving`` None: every variable."""
-    from ethasp.planning.engines.explicit import GroundEvent
-
     steps: dict = {}
     for atom in atoms.get("event_at", 2):
         if atom.arguments[1].type == clingo.SymbolType.Number:
             steps.setdefault(atom.arguments[0], []).append(atom.arguments[1].number)
     if not steps:
         return []
+    from ethasp.planning.engines.explicit import GroundEvent  # (models with events only)
+
     never: set = set()  # events whose precondition never holds
     pre: dict = {}
     for atom in atoms.get("event_pre", 3):

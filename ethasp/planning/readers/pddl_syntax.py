@@ -191,6 +191,8 @@ class Atom:
 
 @dataclass(frozen=True)
 class Equal:
+    """``(= t1 t2)``: two terms name the same object."""
+
     left: str
     right: str
     pos: int
@@ -198,33 +200,45 @@ class Equal:
 
 @dataclass(frozen=True)
 class Not:
+    """``(not f)``."""
+
     argument: Formula
 
 
 @dataclass(frozen=True)
 class And:
+    """``(and f ...)``."""
+
     parts: tuple[Formula, ...]
 
 
 @dataclass(frozen=True)
 class Or:
+    """``(or f ...)``."""
+
     parts: tuple[Formula, ...]
 
 
 @dataclass(frozen=True)
 class Imply:
+    """``(imply f g)``."""
+
     left: Formula
     right: Formula
 
 
 @dataclass(frozen=True)
 class Exists:
+    """``(exists (?x ...) f)``."""
+
     params: tuple[Param, ...]
     body: Formula
 
 
 @dataclass(frozen=True)
 class Forall:
+    """``(forall (?x ...) f)``."""
+
     params: tuple[Param, ...]
     body: Formula
 
@@ -249,12 +263,16 @@ class AllEffects:
 
 @dataclass(frozen=True)
 class ForallEffect:
+    """``(forall (?x ...) e)``: the effect for every object."""
+
     params: tuple[Param, ...]
     effect: Effect
 
 
 @dataclass(frozen=True)
 class When:
+    """``(when f e)``: a conditional effect."""
+
     condition: Formula
     effect: Effect
 
@@ -275,6 +293,8 @@ Effect = Literal | AllEffects | ForallEffect | When | CostEffect
 
 @dataclass(frozen=True)
 class Action:
+    """``(:action name :parameters ... :precondition ... :effect ...)``."""
+
     name: str
     params: tuple[Param, ...]
     precondition: Formula
@@ -294,6 +314,9 @@ class Derived:
 
 @dataclass
 class Domain:
+    """A domain file read: its name, requirements, types, constants,
+    predicates, functions, actions and derived predicates."""
+
     file: PddlFile
     name: str
     requirements: set[str] = field(default_factory=set)
@@ -320,6 +343,8 @@ class NumericFact:
 
 @dataclass
 class Problem:
+    """A problem file read: its name, domain, objects, initial state, goal and metric."""
+
     file: PddlFile
     name: str
     domain_name: str
