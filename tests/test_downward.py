@@ -398,3 +398,32 @@ def test_facts_asked_of_the_final_state_are_goal_facts_of_the_task(monkeypatch):
     assert search._with_final_facts(planner, ground, [(fixed, True)]) is None
     assert search._with_final_facts(planner, ground, [(c, False)]) is None
     assert search._with_final_facts(planner, ground, [(fixed, False)]).goal == ground.goal
+
+
+@installed
+def test_goal_conflicts_are_decided_by_the_planner_without_the_depth(monkeypatch):
+    """Each set of the goal's items is a goal of the planner's task, decided
+    by the search that exhausts the states fastest; the depth of every
+    reachable state is not computed."""
+    from ethasp.principles import goal_items
+    from ethasp.principles.conflict import goal_conflicts
+
+    model = forced(
+        "variable(a;b). action(x;y). eff(x,a,true). eff(y,b,true). "
+        "goal(a,true). goal(b,true). utility(y,-1)."
+    )
+    configurations = []
+    search = downward._search
+
+    def recorded(task, budget, config, binary):
+        configurations.append(config)
+        return search(task, budget, config, binary)
+
+    monkeypatch.setattr(downward, "_search", recorded)
+    monkeypatch.setattr(goal_items, "reachable_depth", None)  # (called: a TypeError)
+    result = goal_conflicts(model, ["deontology"])
+    assert result.status == "proven"
+    assert [[str(item.term) for item in c] for c in result.conflicts] == [["goal(b,true)"]]
+    assert [[str(item.term) for item in s.items] for s in result.goal_subsets] == [["goal(a,true)"]]
+    assert downward.DECIDING in configurations
+    assert "by plan search and its proofs" in result.proof

@@ -466,6 +466,7 @@ def _external(
     longest: int | None,
     optimal: bool,
     all_plans: bool = False,
+    deciding: bool = False,
 ) -> SearchResult | None:
     """The search by an external planner (:mod:`ethasp.planning.systems`):
     its result, or None where clingo searches (not chosen, not compiled, or
@@ -489,7 +490,7 @@ def _external(
     except sas.NotCompiled as why:
         systems.warn(f"{why}: clingo searches instead")
         return None
-    outcome = downward.solve(task, budget, optimal)
+    outcome = downward.solve(task, budget, optimal, deciding)
     if outcome.status == downward.STOPPED:
         return SearchResult(
             BOUNDED, optimal=optimal, proof=f"{budget.why_stopped()} during Fast Downward's search"
@@ -710,9 +711,13 @@ def any_plan(
     start_proof: str = "",
     task: str = "plan search",
     longest: int | None = None,
+    deciding: bool = False,
 ) -> SearchResult:
     """Some plan under a setting, found fast and not proven shortest
-    (``optimal`` False); ``longest`` as in :func:`shortest`.
+    (``optimal`` False); ``longest`` as in :func:`shortest`; ``deciding``:
+    a search that decides whether a plan exists, where a proof that none does
+    is as likely (an external planner then searches in a way that exhausts
+    the states faster, see :mod:`ethasp.planning.engines.downward`).
 
     The solver gets each horizon for a slice of work only (:data:`SLICE`
     conflicts): a horizon it refutes within it is a lower bound (as in
@@ -746,7 +751,7 @@ def any_plan(
         return SearchResult(NONE, horizon=0, optimal=False, proof=impossible)
     if longest is not None and start > longest:
         return SearchResult(NONE, horizon=longest, optimal=False, proof=_too_long(longest))
-    external = _external(planner, setting, budget, max_horizon, longest, False)
+    external = _external(planner, setting, budget, max_horizon, longest, False, deciding=deciding)
     if external is not None:
         return external
     plain = not setting.constraints

@@ -200,7 +200,7 @@ class GoalItems:
         if not self.searched_in_asp and self._by_planner(setting):
             # Any plan decides it: the planner's greedy search finds one fast, and
             # exhausts the states (pruning only relaxed dead ends) to prove none.
-            result = any_plan(planner, setting, self.budget, task="goal subsets")
+            result = any_plan(planner, setting, self.budget, task="goal subsets", deciding=True)
             if result.status == FOUND:
                 return Reach(FOUND, result.plan)
             return Reach(result.status)

@@ -614,7 +614,7 @@ def _planner_search(planner, ground, at_least: int, budget: Budget, goal: bool, 
     except sas.NotCompiled as why:
         systems.warn(f"{why}: clingo searches instead")
         return "failed", str(why)
-    outcome = downward.solve(task, budget, optimal)
+    outcome = downward.solve(task, budget, optimal, deciding=not optimal)
     if outcome.status == downward.STOPPED:
         return "stopped", f"{budget.why_stopped()} during Fast Downward's search"
     if outcome.status == downward.FAILED:

@@ -19,9 +19,13 @@ same plan on every run):
   costs 1: a shortest plan (proven);
 * any plan: ``lazy_greedy([ff()], preferred=[ff()])``, lazy greedy search
   with the FF heuristic and its helpful actions: a plan fast, not proven
-  shortest.
+  shortest;
+* whether a plan exists, where a proof that none does is as likely an
+  answer (the sets of a goal's items in its conflicts):
+  ``eager_greedy([ff()])``, which evaluates each state once as it reaches
+  it, so that exhausting the states costs less than with the others.
 
-Both prove that there is no plan when they explore every state not
+Each proves that there is no plan when they explore every state not
 recognised as a dead end (one from which the goal is unreachable even
 ignoring delete effects): the planner then says the task is provably
 unsolvable.  Anything else (an error, a configuration that refuses the
@@ -54,6 +58,7 @@ FEATURES = sas.FEATURES
 OPTIMAL = "astar(lmcut())"
 OPTIMAL_CONDITIONAL = "astar(hmax())"
 SATISFICING = "lazy_greedy([ff()], preferred=[ff()])"
+DECIDING = "eager_greedy([ff()])"
 
 # What the planner says at the end of a search (its standard output).
 SOLVED = "Solution found."
@@ -85,10 +90,11 @@ def executable() -> Path | None:
     return None
 
 
-def configuration(task: sas.Task, optimal: bool) -> str:
-    """The search configuration for a task (see the module docstring)."""
+def configuration(task: sas.Task, optimal: bool, deciding: bool = False) -> str:
+    """The search configuration for a task (see the module docstring);
+    ``deciding``: any plan, where none may well exist."""
     if not optimal:
-        return SATISFICING
+        return DECIDING if deciding else SATISFICING
     return OPTIMAL_CONDITIONAL if task.conditional else OPTIMAL
 
 
@@ -114,9 +120,10 @@ _ANSWERS_LOCK = threading.Lock()
 ANSWERS_KEPT = 64
 
 
-def solve(task: sas.Task, budget: Budget, optimal: bool = True) -> Outcome:
-    """Search the task with Fast Downward, under the budget."""
-    config = configuration(task, optimal)
+def solve(task: sas.Task, budget: Budget, optimal: bool = True, deciding: bool = False) -> Outcome:
+    """Search the task with Fast Downward, under the budget (``deciding``:
+    see :func:`configuration`)."""
+    config = configuration(task, optimal, deciding)
     binary = executable()
     if binary is None:
         return Outcome(FAILED, config, why="Fast Downward is not installed")
