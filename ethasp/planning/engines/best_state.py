@@ -674,6 +674,8 @@ def _bound_by_planner(
         return BestReachable(BOUNDED, f"{found}; best found {start.utility}, bound {bound}", start)
     if kind != "state":
         return None  # none attains it (or the planner failed): the other engines
+    if found.utility != bound:  # (the trace's utility of the final state)
+        raise RuntimeError(f"Fast Downward proposed {found.plan}, which the encodings refute")
     return BestReachable(PROVEN, UB_PROOF.format(u=bound), found, found.distance)
 
 
