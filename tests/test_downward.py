@@ -180,7 +180,9 @@ def test_a_failing_planner_falls_back_to_clingo_with_one_line_of_warning(monkeyp
     monkeypatch.setattr(
         downward,
         "solve",
-        lambda task, budget, optimal=True: downward.Outcome("failed", "x", why="boom"),
+        lambda task, budget, optimal=True, deciding=False: downward.Outcome(
+            "failed", "x", why="boom"
+        ),
     )
     result = find_plan(forced("variable(a). action(go). eff(go,a,true). goal(a,true)."))
     assert result.status == "found"
