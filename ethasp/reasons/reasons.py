@@ -245,7 +245,7 @@ def other_state(
     final = [
         (s.arguments[0], s.arguments[1].name == "true") for s in planner.trace(plan).get("final", 2)
     ]
-    weights = planner.ground_model().weights
+    weights = planner.fact_weights()
     valued = [(v, b) for v, b in final if weights.get((v, True), 0) != weights.get((v, False), 0)]
     if valued:
         best = best_reachable(planner, budget, max_horizon, other_than=valued)

@@ -95,7 +95,6 @@ TRACE_ENCODINGS = (
     "planning/trace_events.lp",
     "judgement/judge.lp",
 )
-BOUND_ENCODINGS = ("planning/model.lp", "planning/relaxed.lp")
 
 LOOPFREE = "loopfree"
 SEARCH = "search"
@@ -393,6 +392,7 @@ class Planner:
         self._avoided: dict[frozenset, int] = {}
         self._reachability: Reachability | None = None
         self._ground_model: GroundModel | None = None
+        self._fact_weights: dict[tuple[clingo.Symbol, bool], int] | None = None
         self._externals: dict[clingo.Symbol, bool] = {}  # values assigned so far
         self._model_text: str | None = None
         self._action_atoms: dict[clingo.Symbol, list[clingo.Symbol]] | None = None
@@ -450,11 +450,11 @@ class Planner:
     @_locked
     def bound(self) -> Answer:
         """``upper_bound/1`` and ``best_fact/2`` of planning/relaxed.lp: no reachable
-        state is worth more than the upper bound (a small program of its own:
-        no search needs to be grounded for it)."""
+        state is worth more than the upper bound (read off relaxed reachability's
+        part of the grounding: no search needs to be grounded for it)."""
         if self._bound is None:
-            self._bound = self.solve_program(
-                BOUND_ENCODINGS, "#show upper_bound/1. #show best_fact/2.\n"
+            self._bound = Answer(
+                self.search_atoms("upper_bound", 1) + self.search_atoms("best_fact", 2)
             )
         return self._bound
 
@@ -479,6 +479,20 @@ class Planner:
         )
 
     @_locked
+    def fact_weights(self) -> dict[tuple[clingo.Symbol, bool], int]:
+        """The utility of each fact (``weight(fact(V,B),U)`` of model.lp) by
+        (V, value): what a state is worth, without the whole ground model."""
+        if self._fact_weights is None:
+            weights = {}
+            for atom in self.get("weight", 2):
+                element, utility = atom.arguments
+                if element.name == "fact":
+                    variable, value = element.arguments
+                    weights[(variable, value.name == "true")] = utility.number
+            self._fact_weights = weights
+        return self._fact_weights
+
+    @_locked
     def ground_model(self) -> GroundModel:
         """The model for the reachability engine, from the ground vocabulary."""
         if self._ground_model is None:
@@ -488,11 +502,7 @@ class Planner:
             def value(symbol: clingo.Symbol) -> bool:
                 return symbol.name == "true"
 
-            weights = {}
-            for atom in self.get("weight", 2):
-                element, utility = atom.arguments
-                if element.name == "fact":
-                    weights[(element.arguments[0], value(element.arguments[1]))] = utility.number
+            weights = dict(self.fact_weights())
             self._ground_model = from_atoms(
                 [a.arguments[0] for a in self.get("variable", 1)],
                 [a.arguments[0] for a in self.get("action", 1)],

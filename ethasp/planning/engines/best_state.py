@@ -634,9 +634,10 @@ def _reached(planner: Planner, actions) -> ReachableState:
     if answer.get("failure", 1) or answer.get("invalid", 1):
         raise RuntimeError(f"Fast Downward proposed {plan}, which the encodings refute")
     final = {atom.arguments[0]: atom.arguments[1].name == "true" for atom in answer.get("final", 2)}
-    model = planner.ground_model()
-    facts = [(v, final.get(v, False)) for v in model.variables]
-    return ReachableState(facts, model.utility(v for v, b in facts if b), len(plan), plan)
+    weights = planner.fact_weights()
+    facts = [(v, final.get(v, False)) for v in (a.arguments[0] for a in planner.get("variable", 1))]
+    utility = sum(weights.get(fact, 0) for fact in facts)
+    return ReachableState(facts, utility, len(plan), plan)
 
 
 def _planner_model(planner: Planner):
@@ -646,7 +647,7 @@ def _planner_model(planner: Planner):
 
     if getattr(planner.model, "planning_system", systems.DEFAULT) == systems.CLINGO:
         return None
-    if not planner.prepare(None) or not systems.usable(planner):
+    if not planner.prepare(None, relaxed=True) or not systems.usable(planner):
         return None
     from ethasp.planning.engines.layers import Atoms, search_model
 

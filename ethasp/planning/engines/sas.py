@@ -371,6 +371,11 @@ def _operator(name: str, action, layout: _Layout, stage: int) -> tuple[list[str]
             return None
         pre[var] = value
     effects_kept = [effect for effect in action.effects if effect.variable in where]
+    # A variable an effect without condition makes true is true after the
+    # action (true wins): effects making it false are left out, and one
+    # effect says so once (LM-cut refuses an operator with two effects on a
+    # variable, and a condition that is always true is no condition).
+    always = {e.variable for e in effects_kept if e.value and not e.condition}
     lines_of_effects = []
     touched = set()
     conditional = False
@@ -384,11 +389,15 @@ def _operator(name: str, action, layout: _Layout, stage: int) -> tuple[list[str]
             else:
                 deleted.setdefault(var, []).append(where[effect.variable][1])
             continue
+        if effect.variable in always and (not effect.value or effect.condition):
+            continue
         conditions = [fact[literal] for literal in effect.condition]
         conditional = conditional or bool(conditions)
         parts = [str(len(conditions))] + [f"{v} {b}" for v, b in conditions]
         parts += [str(var), str(pre.get(var, -1)), str(int(effect.value))]
-        lines_of_effects.append(" ".join(parts))
+        line = " ".join(parts)
+        if line not in lines_of_effects:
+            lines_of_effects.append(line)
         touched.add(var)
     for var in sorted(set(added) | set(deleted)):
         if var in added:
