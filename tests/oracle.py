@@ -26,7 +26,9 @@ events included) and at every later step.
 
 from __future__ import annotations
 
+import contextlib
 import heapq
+import io
 import random
 from collections import deque
 from dataclasses import dataclass, field
@@ -847,3 +849,16 @@ def assert_shortest(result, spec: RandomModel) -> None:
     plan = [str(action) for action in result.plan]
     assert spec.is_plan(plan), (plan, spec)
     assert len(plan) == expected and result.optimal, (plan, expected, spec)
+
+
+def answered(search):
+    """The result of a search in which Fast Downward never failed (a failure
+    falls back to clingo with a warning, which the oracle would not notice)."""
+    from ethasp.planning import systems
+
+    systems._warned.clear()  # (each warning is given once per process)
+    said = io.StringIO()
+    with contextlib.redirect_stderr(said):
+        result = search()
+    assert "Fast Downward failed" not in said.getvalue(), said.getvalue()
+    return result

@@ -8,8 +8,6 @@ The tests that run the planner are skipped where it is not installed (the
 ``planners`` extra); those of the choice and the fallback run everywhere.
 """
 
-import contextlib
-import io
 import json
 import os
 import subprocess
@@ -20,7 +18,7 @@ from pathlib import Path
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from oracle import assert_shortest, random_model
+from oracle import answered, assert_shortest, random_model
 
 from ethasp import Model, find_plan
 from ethasp.execution.limits import descendants
@@ -44,17 +42,6 @@ def forced(text: str, system: str = systems.FAST_DOWNWARD) -> Model:
     model = Model.from_string(text)
     model.planning_system = system
     return model
-
-
-def answered(search):
-    """The result of a search in which Fast Downward never failed (a failure
-    falls back to clingo with a warning: the oracle would not notice)."""
-    systems._warned.clear()  # (each warning is given once per process)
-    said = io.StringIO()
-    with contextlib.redirect_stderr(said):
-        result = search()
-    assert "Fast Downward failed" not in said.getvalue(), said.getvalue()
-    return result
 
 
 # -- against the oracle --------------------------------------------------------------
