@@ -69,3 +69,11 @@ def child_then_sleep() -> None:
 def lines_child(count: int, out) -> None:
     for number in range(count):
         out.write(f"line {number}\n")
+
+
+def stdin_replaced_child(path: str, out) -> None:
+    """Put a file on standard input (as a planner's child does before it
+    becomes the planner), then write a line after a while."""
+    os.dup2(os.open(path, os.O_RDONLY), 0)
+    time.sleep(0.5)
+    out.write("still here\n")

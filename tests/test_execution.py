@@ -142,6 +142,19 @@ def test_a_spawner_starts_children_from_a_process_with_threads():
         busy.join()
 
 
+def test_a_child_that_replaces_its_standard_input_lives_on(tmp_path):
+    """A child started as a new Python process watches its parent's pipe for
+    its end; a child that puts a file on standard input (Fast Downward's
+    reads its task there) is not taken for orphaned when that file ends.
+    (Where the watch began reading only after the replacement, a loaded
+    machine's order, it read the file to its end and ended the child: the
+    planner's searches then failed at random in processes with threads.)"""
+    task = tmp_path / "task"
+    task.write_text("a task\n")
+    child = spawner.SubprocessSpawner().spawn(work.stdin_replaced_child, (str(task),))
+    assert list(child.lines()) == ["still here\n"]
+
+
 def test_symbols_mean_the_same_in_another_process():
     """clingo pickles a symbol as its address in this process; ethasp.execution
     makes it pickle as its text, which a fresh process reads back."""

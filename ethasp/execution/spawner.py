@@ -205,9 +205,13 @@ def child_main() -> None:
     source = sys.stdin.buffer
     (size,) = struct.unpack("!Q", source.read(8))
     target, args, memory = pickle.loads(source.read(size))
+    # The parent's pipe, watched on a descriptor of its own: a target may put
+    # something else on standard input (a planner reads its task there), and
+    # the watch must not take the end of that for the end of its parent.
+    parent = os.fdopen(os.dup(source.fileno()), "rb", buffering=0)
 
     def watch() -> None:
-        source.read()  # until the parent closes it
+        parent.read()  # until the parent closes it
         os._exit(0)
 
     threading.Thread(target=watch, name="ethasp-parent-watch", daemon=True).start()
