@@ -586,9 +586,8 @@ def _better_state(planner: Planner, utility: int, budget: Budget, max_horizon: i
 # _bound_by_planner).  Where the exact layers then give up (diagram nodes: a
 # limit of work, not of time), the best reachable utility is an
 # oversubscription question answered by planner calls on the compiled goal
-# "a state worth at least k" (ethasp.planning.engines.sas): that goal state
-# at the bound first (answered again without another run), then any
-# state at the bound (one call where it is attained), then a bisection between the
+# "a state worth at least k" (ethasp.planning.engines.sas): any state at the
+# bound first (one call where it is attained), then a bisection between the
 # best utility found and the bound, each call by greedy search (a state worth
 # at least k, or the proof that none is reachable: every state from which the
 # relaxed count could still reach k was searched).  The best state reported
@@ -654,6 +653,18 @@ def _planner_model(planner: Planner):
     return search_model(Atoms(planner, weights=True))
 
 
+def _planner_task(planner: Planner, within: str, other_than):
+    """Fast Downward's search model with the utilities of facts, and the
+    relaxed upper bound, where Fast Downward answers for the best reachable
+    state (of every state, none avoided); else None."""
+    if within != "all" or other_than is not None:
+        return None
+    ground = _planner_model(planner)
+    if ground is None:
+        return None
+    return ground, upper_bound(planner)
+
+
 def _bound_by_planner(
     planner: Planner, budget: Budget, within: str, other_than
 ) -> BestReachable | None:
@@ -663,12 +674,10 @@ def _bound_by_planner(
     :mod:`ethasp.planning.engines.sas`).  Where one exists it is the answer,
     proven by the bound, whatever the diagrams would take to reach it; None
     where there is none, or Fast Downward does not search here."""
-    if within != "all" or other_than is not None:
+    task = _planner_task(planner, within, other_than)
+    if task is None:
         return None
-    ground = _planner_model(planner)
-    if ground is None:
-        return None
-    bound = upper_bound(planner)
+    ground, bound = task
     kind, found = _planner_search(planner, ground, bound, budget, True, True)
     if kind == "stopped":
         start = _reached(planner, [])
@@ -683,26 +692,16 @@ def _bound_by_planner(
 def _best_by_planner(
     planner: Planner, budget: Budget, within: str, other_than
 ) -> BestReachable | None:
-    """The best reachable state by Fast Downward (see above); None where it
-    does not answer (the search goes on with the other engines)."""
-    if within != "all" or other_than is not None:
+    """The best reachable state by Fast Downward (see above), where no goal
+    state attains the bound (:func:`_bound_by_planner` found none); None
+    where it does not answer (the search goes on with the other engines)."""
+    task = _planner_task(planner, within, other_than)
+    if task is None:
         return None
-    ground = _planner_model(planner)
-    if ground is None:
-        return None
-    bound = upper_bound(planner)
+    ground, bound = task
     best = _reached(planner, [])
     low, high = best.utility, bound
-    # No goal state attains the bound (_bound_by_planner; its search is
-    # answered again by downward without another run).
-    kind, found = _planner_search(planner, ground, high, budget, True, True)
-    if kind == "failed":
-        return None
-    if kind == "stopped":
-        return BestReachable(BOUNDED, f"{found}; best found {low}, bound {high}", best)
-    if kind == "state":
-        best, low = found, high
-    target = high  # the bound first: often attained
+    target = high  # the bound first: often attained (by a state that is no goal state)
     while low < high:
         budget.report("best reachable state (Fast Downward)", best=low, bound=high)
         kind, found = _planner_search(planner, ground, target, budget, False, False)
