@@ -8,6 +8,7 @@ test_cheapest.py."""
 from __future__ import annotations
 
 import json
+import time
 
 import pytest
 from conftest import MODELS, answer_sets, ethasp_process
@@ -163,8 +164,10 @@ def engine_first(monkeypatch):
     def started_and_ended(self, *args, **kwargs):
         start(self, *args, **kwargs)
         if self.engine is not None:
-            while self.engine.status.working:
+            deadline = time.monotonic() + 120  # (a busy machine; the search is tiny)
+            while self.engine.status.working and time.monotonic() < deadline:
                 self.engine.news.wait(0.05)
+            assert not self.engine.status.working, "uniform-cost search did not end"
 
     monkeypatch.setattr(cost_search._Engine, "__init__", started_and_ended)
 
