@@ -121,7 +121,7 @@ def test_the_trace_and_the_runs_give_the_same_final_state(data):
     )
     runs = only_answer(
         ["planning/model.lp", "judgement/runs.lp"],
-        model.planner.model_text()
+        "".join(f"{symbol}.\n" for symbol in model.planner.model_symbols())
         + f"run(r). run_length(r,{len(plan)}). "
         + occurs
         + "#show run_final/3.",

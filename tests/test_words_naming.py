@@ -15,7 +15,7 @@ import pytest
 from conftest import MODELS, ROOT
 
 from ethasp import InputError, Model, Plan, parse_formula, query
-from ethasp.interfaces.prompt import answer_text
+from ethasp.interfaces.answer_words import answer_text
 from ethasp.planning.naming import Naming, PddlNaming
 from ethasp.principles.formula import Elements
 from ethasp.questions.contrast import ask

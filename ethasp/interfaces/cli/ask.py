@@ -74,7 +74,7 @@ def add_parser(commands) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ethasp.interfaces.prompt import answer_text
+    from ethasp.interfaces.answer_words import answer_text
     from ethasp.questions.contrast import ask
 
     default_reasons_limit(args)

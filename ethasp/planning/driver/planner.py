@@ -388,15 +388,18 @@ class Planner:
         self._inputs: dict[str, list[clingo.Symbol]] = {name: [] for name in incremental.INPUTS}
         self._questions: dict[clingo.Symbol, list[Constraint]] = {}
         self._question_ids: dict[tuple[clingo.Symbol, ...], clingo.Symbol] = {}
+        # Questions named but not grounded yet (their ``contrast/2`` facts): a
+        # question is grounded when a search or impossible() first needs it.
+        self._ungrounded: dict[clingo.Symbol, list[clingo.Symbol]] = {}
         self._configurations: dict[tuple[clingo.Symbol, ...], tuple[clingo.Symbol, int]] = {}
         self._avoided: dict[frozenset, int] = {}
         self._reachability: Reachability | None = None
         self._ground_model: GroundModel | None = None
         self._fact_weights: dict[tuple[clingo.Symbol, bool], int] | None = None
         self._externals: dict[clingo.Symbol, bool] = {}  # values assigned so far
-        self._model_text: str | None = None
+        self._model_symbols: list[clingo.Symbol] | None = None
         self._action_atoms: dict[clingo.Symbol, list[clingo.Symbol]] | None = None
-        self._state_text: str | None = None
+        self._state_symbols: list[clingo.Symbol] | None = None
         self._bound: Answer | None = None
         # A grounding left running when a budget ran out: (done, failure).
         self._pending: tuple[threading.Event, list] | None = None
@@ -886,17 +889,25 @@ class Planner:
 
     @_locked
     def question(self, terms: Sequence[clingo.Symbol]) -> list[Constraint]:
-        """The constraints of a question (its ``contrast`` terms), grounded on first
-        use; the same terms give the same question (named ``q(N)``)."""
+        """The constraints of a question (its ``contrast`` terms); the same terms
+        give the same question (named ``q(N)``).  It is grounded when a search
+        of this planner or :meth:`impossible` first needs it: a question whose
+        plans another planner searches (an HModel's) grounds nothing here."""
         key = tuple(sorted(set(terms), key=str))
         if key not in self._question_ids:
             name = clingo.Function("q", [clingo.Number(len(self._question_ids) + 1)])
-            own = [Constraint(name, term) for term in key]
-            facts = [clingo.Function("contrast", [name, term]) for term in key]
-            self._register("question", name, facts)
-            self._questions[name] = own
+            self._questions[name] = [Constraint(name, term) for term in key]
+            self._ungrounded[name] = [clingo.Function("contrast", [name, term]) for term in key]
             self._question_ids[key] = name
         return list(self._questions[self._question_ids[key]])
+
+    def _ground_questions(self, names: Iterable[clingo.Symbol], budget: Budget | None) -> None:
+        """Ground the questions named (those not grounded yet), in the order
+        they were asked."""
+        wanted = set(names)
+        for name in [name for name in self._ungrounded if name in wanted]:
+            self._register("question", name, self._ungrounded[name], budget)
+            del self._ungrounded[name]
 
     @_locked
     def impossible(self, constraints: Iterable[Constraint]) -> list[tuple[Constraint, str]]:
@@ -907,6 +918,8 @@ class Planner:
         relaxed reachability only, so an atom is grounded exactly when its
         rule holds for the question (the grounder drops a rule with a false
         body)."""
+        constraints = list(constraints)
+        self._ground_questions([c.question for c in constraints], None)
         found = []
         for constraint in constraints:
             for name, why in (
@@ -1001,6 +1014,7 @@ class Planner:
                     f"constraint {constraint} of an unknown question "
                     f"{constraint.question} (see Planner.question)"
                 )
+        self._ground_questions([c.question for c in setting.constraints], budget)
         if setting.at_least is not None:
             self._threshold("at_least", setting.at_least, budget)
         if (setting.optimize and not setting.least) or setting.at_least is not None:
@@ -1156,9 +1170,9 @@ class Planner:
                     parts += self._input_parts("simple_path", value, times)
                 self._loopfree = length
                 self._ground(parts, budget)
-            # One set of tracked facts per set of questions asked so far (a question
-            # asked later adds tracked facts, so it needs comparisons of its own).
-            key = tuple(sorted(self._questions, key=str))
+            # One set of tracked facts per set of questions grounded so far (a question
+            # grounded later adds tracked facts, so it needs comparisons of its own).
+            key = tuple(sorted(self._inputs["question"], key=str))
             if key not in self._configurations:
                 self._configurations[key] = clingo.Number(len(self._configurations) + 1)
                 self._register("simple_path", self._configurations[key], budget=budget)
@@ -1170,39 +1184,43 @@ class Planner:
 
     # -- programs over the ground model (given plans, formulas, reasons) --------------
 
-    def model_text(self) -> str:
-        """The ground model's vocabulary as facts (made once)."""
-        if self._model_text is None:
-            self._model_text = self.vocabulary_text(MODEL_VOCABULARY)
-        return self._model_text
+    def model_symbols(self) -> list[clingo.Symbol]:
+        """The ground model's vocabulary (made once)."""
+        if self._model_symbols is None:
+            self._model_symbols = [
+                symbol for signature in MODEL_VOCABULARY for symbol in self.get(*signature)
+            ]
+        return self._model_symbols
 
     @_locked
     def prepare_traces(self) -> None:
-        """Index the facts about actions by action (for :meth:`plan_model_text`;
+        """Index the facts about actions by action (for :meth:`plan_model_symbols`;
         made once, and early by a search that waits for an engine)."""
         if self._action_atoms is None:
             by_action: dict[clingo.Symbol, list[clingo.Symbol]] = {}
             for signature in ACTION_VOCABULARY:
                 for symbol in self.get(*signature):
                     by_action.setdefault(symbol.arguments[0], []).append(symbol)
-            self._state_text = self.vocabulary_text(
-                [s for s in MODEL_VOCABULARY if s not in ACTION_VOCABULARY]
-            )
+            self._state_symbols = [
+                symbol
+                for signature in MODEL_VOCABULARY
+                if signature not in ACTION_VOCABULARY
+                for symbol in self.get(*signature)
+            ]
             if self.has_costs:  # (costs of other actions than the plan's are left out)
-                self._state_text += "costs_given.\n"
+                self._state_symbols.append(clingo.Function("costs_given"))
             self._action_atoms = by_action
 
-    def plan_model_text(self, plan) -> str:
-        """The ground model's vocabulary as facts, the facts about actions
+    def plan_model_symbols(self, plan) -> list[clingo.Symbol]:
+        """The ground model's vocabulary, the facts about actions
         (:data:`ACTION_VOCABULARY`) for the plan's actions only: all that a
         trace of the plan reads (``planning/trace.lp`` joins every fact about
         an action with its occurrence), and much less than the whole model."""
         self.prepare_traces()
-        return self._state_text + "".join(
-            f"{symbol}.\n"
-            for action in dict.fromkeys(plan)
-            for symbol in self._action_atoms.get(action, ())
-        )
+        assert self._state_symbols is not None and self._action_atoms is not None
+        return self._state_symbols + [
+            symbol for action in dict.fromkeys(plan) for symbol in self._action_atoms.get(action, ())
+        ]
 
     def program(
         self,
@@ -1215,14 +1233,17 @@ class Planner:
         """A grounded control with the ground model's facts (unless ``model`` is
         False), the encodings and further facts: programs about one plan or one
         formula, which read the model but do not search it.  ``facts`` is text
-        that clingo itself printed (atoms of answer sets, the ground model);
-        ``symbols`` (plans, terms users gave) go in through the backend."""
+        that clingo itself printed (atoms of answer sets); the ground model and
+        ``symbols`` (plans, terms users gave) go in through the backend (no
+        text to write and parse again)."""
         messages = Messages()
         ctl = clingo.Control(list(arguments), logger=messages, message_limit=20)
         try:
             for name in encodings:
                 ctl.load(str(encoding(name)))
-            ctl.add("base", [], (self.model_text() if model else "") + facts)
+            if facts:
+                ctl.add("base", [], facts)
+            add_facts(ctl, self.model_symbols() if model else ())
             add_facts(ctl, symbols)
             ctl.ground([("base", [])])
         except RuntimeError:
@@ -1251,7 +1272,9 @@ class Planner:
             )
         else:
             answer = self.solve_program(
-                TRACE_ENCODINGS, self.plan_model_text(plan), model=False, symbols=occurrences(plan)
+                TRACE_ENCODINGS,
+                model=False,
+                symbols=self.plan_model_symbols(plan) + occurrences(plan),
             )
         traces.setdefault(plan, []).append((wanted, answer))
         return answer
