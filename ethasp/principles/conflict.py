@@ -17,8 +17,10 @@ Both are enumerated together by MARCO (Liffiton et al., Constraints 2016):
 the map of unexplored sets (``encodings/conflicts/map.lp``) proposes a
 largest unexplored *seed*; a reachable seed grows into a goal subset (every
 subset of it is then explored), an unreachable one shrinks into a conflict
-by clingo's core and then by deletion (every superset of it is then
-explored).  Every set is decided on the one grounding of the soft HModel
+(every superset of it is then explored): by deletion from clingo's core
+where the decision gave one, else by insertion, which decides one
+unreachable set per item of the conflict (a planner proves a set
+unreachable by exhausting its states).  Every set is decided on the one grounding of the soft HModel
 (:class:`ethasp.principles.goal_items.GoalItems`), each decision a proof or
 ``bounded``.  With worths (what dropping each item costs) the seeds come in
 decreasing worth, and the exploration can stop at the goal subsets of
@@ -146,8 +148,11 @@ class Exploration:
         return subset
 
     def _shrink(self, seed: frozenset[int], core: frozenset[int] | None) -> frozenset[int]:
-        """A conflict within the unreachable seed (its core first)."""
-        conflict = seed if core is None else seed & core
+        """A conflict within the unreachable seed: by deletion from its core
+        where the decision gave one, else by insertion (:meth:`_insert`)."""
+        if core is None:
+            return self._insert(seed)
+        conflict = seed & core
         for number in sorted(conflict):
             if number not in conflict:
                 continue
@@ -156,6 +161,39 @@ class Exploration:
             if status == NONE:
                 conflict = trial if smaller is None else trial & smaller
         return conflict
+
+    def _insert(self, seed: frozenset[int]) -> frozenset[int]:
+        """A conflict within the unreachable seed, item by item: the items are
+        added in order to the conflict's items found so far until the set is
+        unreachable; the last one added is in every conflict within that set
+        (without it the set is reachable), so it joins the conflict, and the
+        set becomes the seed of the next round.  The conflict is complete when
+        it is unreachable itself.  Where a decision needs the whole state space
+        (a planner's search that proves "none" exhausts it, and gives no core
+        to start from), this decides about as many unreachable sets as the
+        conflict has items, where deletion decides one for every item it
+        leaves out; the reachable sets between are found fast."""
+        conflict: frozenset[int] = frozenset()
+        while True:
+            if conflict == seed:
+                return conflict  # (known unreachable)
+            status, _ = self._status(conflict)
+            if status == NONE:
+                return conflict
+            trial = conflict
+            last = None
+            for number in sorted(seed - conflict):
+                trial = trial | {number}
+                last = number
+                # (the whole seed is known unreachable: no decision)
+                status = NONE if trial == seed else self._status(trial)[0]
+                if status == NONE:
+                    break
+            if last is None or status != NONE:
+                # Unreachable sets only undecided (bounded) on the way: the seed
+                # stands as the conflict, unproven minimal (exact is False).
+                return seed
+            conflict, seed = conflict | {last}, trial
 
     # -- the map -----------------------------------------------------------------
 
