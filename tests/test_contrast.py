@@ -518,3 +518,32 @@ def test_dialogue_starts_from_the_models_own_plan():
     assert "Lying to Frank is inherently bad (utility -1)" in explained.step_text(1)
     with pytest.raises(InputError, match="why step 2: the current plan has steps 1 to 1"):
         dialogue.explain_step(2)
+
+
+def test_the_conflicts_of_a_dropped_principle_trust_the_contrasts_proof(trolley, monkeypatch):
+    """The search under the principle proved the whole goal with the question's
+    constraints unreachable: the conflicts do not decide that set again, and
+    they are those that deciding every set gives."""
+    from ethasp.principles import goal_items
+    from ethasp.principles.conflict import goal_conflicts
+
+    decided = []
+    reach = goal_items.GoalItems.reach
+
+    def recording(self, items):
+        decided.append((len(self.items), items))
+        return reach(self, items)
+
+    monkeypatch.setattr(goal_items.GoalItems, "reach", recording)
+    answer = ask(trolley, "why refrain rather than pull", principle="do-no-harm")
+    assert answer.principle_dropped and answer.impasse is not None
+    assert decided and all(len(items) < count for count, items in decided), decided
+    before = len(decided)
+    again = goal_conflicts(trolley, ["do-no-harm"], answer.constraints)
+    found = answer.impasse.conflicts
+    assert [[i.term for i in c] for c in found.conflicts] == [
+        [i.term for i in c] for c in again.conflicts
+    ]
+    assert found.status == again.status == "proven"
+    # Deciding every set (as goal_conflicts alone does) decides the whole one.
+    assert any(len(items) == count for count, items in decided[before:])

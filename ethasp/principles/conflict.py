@@ -44,7 +44,7 @@ from ethasp.planning.model import Model
 from ethasp.planning.naming import Naming
 from ethasp.planning.plan import Plan
 from ethasp.planning.search import BOUNDED, DEFAULT_MAX_HORIZON, FOUND, NONE
-from ethasp.principles.goal_items import GoalItems, Item
+from ethasp.principles.goal_items import GoalItems, Item, Reach
 from ethasp.principles.restriction import chosen_principles
 from ethasp.resources import encoding
 
@@ -72,8 +72,11 @@ class Exploration:
         varied: Sequence[int],
         kept: frozenset[int] = frozenset(),
         worth: dict[int, int] | None = None,
+        unreachable: Sequence[frozenset[int]] = (),
     ):
         self.items = items
+        # Sets of items (kept ones included) proven unreachable before.
+        self.unreachable = set(unreachable)
         self.varied = list(varied)
         self.kept = kept
         self.worth = worth
@@ -124,6 +127,8 @@ class Exploration:
         return None
 
     def _decide(self, items: frozenset[int]):
+        if items | self.kept in self.unreachable:
+            return Reach(NONE)
         return self.items.reach(items | self.kept)
 
     def _status(self, items: frozenset[int]) -> tuple[str, frozenset[int] | None]:
@@ -311,11 +316,14 @@ def goal_conflicts(
     time_limit: float | None = None,
     budget: Budget | None = None,
     limit: int = DEFAULT_LIMIT,
+    unreachable: bool = False,
 ) -> Conflicts:
     """The minimal conflicts and maximal goal subsets of the model's goal (and
     the question ``constraints``, which count like goal facts) under the
     principles: at most ``limit`` of each (0: none computed).  ``budget`` (or
-    else ``time_limit``) bounds the searches."""
+    else ``time_limit``) bounds the searches.  ``unreachable``: a search
+    proved before that no plan permissible under the principles meets the
+    goal and every constraint (the whole set of items is not decided again)."""
     model.require_planning("the conflicts of a goal")
     budget = budget or Budget(time_limit)
     horizon = DEFAULT_MAX_HORIZON if max_horizon is None else max_horizon
@@ -344,7 +352,8 @@ def goal_conflicts(
             proof="not computed (limit 0)",
             best=items.best,
         )
-    exploration = Exploration(items, range(len(items.items)))
+    every = frozenset(range(len(items.items)))
+    exploration = Exploration(items, sorted(every), unreachable=[every] if unreachable else [])
     exploration.run(lambda: len(exploration.conflicts) > limit and len(exploration.subsets) > limit)
     subsets = []
     for subset in _ordered(exploration.subsets)[:limit]:

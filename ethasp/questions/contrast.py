@@ -757,7 +757,10 @@ def answer_questions(
     # A causal agency model has no goal and no steps: every action was judged,
     # and the contrast's judgement says why the principle forbids it.
     if search.principle_dropped and not model.is_cam and not budget.expired():
-        stuck = impasse(model, under, constraints, max_horizon, budget, reasons_limit)
+        # (principle_dropped: the search under it proved no plan permissible)
+        stuck = impasse(
+            model, under, constraints, max_horizon, budget, reasons_limit, unreachable=True
+        )
     return Answer(
         list(questions),
         principle,

@@ -23,6 +23,7 @@ from ethasp.planning.model import Model
 from ethasp.planning.naming import Naming
 from ethasp.principles.conflict import Conflicts, goal_conflicts
 from ethasp.principles.repair import RepairResult, declares_changes, repair
+from ethasp.principles.restriction import SEARCH_BOUNDS
 from ethasp.reasons import words
 from ethasp.reasons.conflicts import explain_conflicts
 from ethasp.reasons.reasons import model_labels
@@ -53,10 +54,24 @@ def impasse(
     max_horizon: int,
     budget: Budget,
     limit: int,
+    unreachable: bool = False,
 ) -> Impasse:
     """The conflicts of the goal and the constraints under the principle
-    ``under`` (at most ``limit``), and the cheapest repair."""
-    conflicts = goal_conflicts(model, [under], constraints, max_horizon, budget=budget, limit=limit)
+    ``under`` (at most ``limit``), and the cheapest repair.  ``unreachable``:
+    the contrast's search proved that no plan permissible under ``under``
+    meets the goal and the constraints (the conflicts do not decide it again,
+    unless the constraints bound the plan's length or cost: that search then
+    answered another question than the goal's items ask)."""
+    bounds = any(constraint.term.name in SEARCH_BOUNDS for constraint in constraints)
+    conflicts = goal_conflicts(
+        model,
+        [under],
+        constraints,
+        max_horizon,
+        budget=budget,
+        limit=limit,
+        unreachable=unreachable and not bounds,
+    )
     terms = [constraint.term for constraint in constraints]
     explained = explain_conflicts(model, conflicts, terms, max_horizon, budget)
     text = explained.text

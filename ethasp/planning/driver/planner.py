@@ -1219,7 +1219,9 @@ class Planner:
         self.prepare_traces()
         assert self._state_symbols is not None and self._action_atoms is not None
         return self._state_symbols + [
-            symbol for action in dict.fromkeys(plan) for symbol in self._action_atoms.get(action, ())
+            symbol
+            for action in dict.fromkeys(plan)
+            for symbol in self._action_atoms.get(action, ())
         ]
 
     def program(
