@@ -29,6 +29,10 @@ class Decisions:
         self.budget = Budget()
         self.decided: list[tuple[frozenset, str]] = []
 
+    def relaxed_core(self, items: frozenset) -> frozenset | None:
+        # Relaxed reachability knows the conflicts of one item.
+        return next((c for c in self.family if len(c) == 1 and c <= items), None)
+
     def reach(self, items: frozenset) -> Reach:
         hit = next((c for c in self.family if c <= items), None)
         status = FOUND if hit is None else NONE
@@ -97,3 +101,18 @@ def test_an_empty_conflict_is_found_by_insertion():
     decisions = Decisions([set()])
     exploration = Exploration(decisions, list(range(4)))
     assert exploration._shrink(frozenset(range(4)), None) == frozenset()
+
+
+def test_a_set_known_unreachable_is_not_decided_again():
+    # The whole set was proven unreachable before (the contrast's search):
+    # it is not decided again, and relaxed reachability's core still serves.
+    decisions = Decisions([{2}, {0, 3}])
+    every = frozenset(range(5))
+    exploration = Exploration(decisions, sorted(every), unreachable=[every])
+    exploration.run()
+    assert set(exploration.conflicts) == {frozenset({2}), frozenset({0, 3})}
+    assert every not in [items for items, _ in decisions.decided]
+    # Relaxed reachability named {2} within the whole set: the empty set is the
+    # only one decided for it (no insertion over the items before 2), and the
+    # next decision is the map's next seed.
+    assert [items for items, _ in decisions.decided[:2]] == [frozenset(), frozenset({0, 1, 3, 4})]

@@ -128,7 +128,8 @@ class Exploration:
 
     def _decide(self, items: frozenset[int]):
         if items | self.kept in self.unreachable:
-            return Reach(NONE)
+            # (no search; relaxed reachability may still name a smaller core)
+            return Reach(NONE, core=self.items.relaxed_core(items | self.kept))
         return self.items.reach(items | self.kept)
 
     def _status(self, items: frozenset[int]) -> tuple[str, frozenset[int] | None]:

@@ -223,6 +223,11 @@ class GoalItems:
         )
         return Reach(NONE, core=core)
 
+    def relaxed_core(self, items: frozenset[int]) -> frozenset[int] | None:
+        """Items among ``items`` that no plan reaches even ignoring delete
+        effects (see :meth:`_reach`), else None: no search is made."""
+        return self._relaxed(items)
+
     def _by_planner(self, setting: Setting) -> bool:
         """Does plan search hand this setting to an external planner (its
         items are goal facts of the planner's task), which proves "none"
