@@ -126,11 +126,53 @@ def test_a_transition_relation_beyond_the_node_limit_is_not_built():
     beyond any use), and the searches go on without it."""
     spec = random_model(11, max_variables=6, max_actions=6)
     small = Reachability(ground(spec), node_limit=2)
-    assert small.unbuilt and "diagram nodes" in small.unbuilt
-    assert not small.expand() and small.stopped == small.unbuilt and len(small.layers) == 1
+    assert not small.expand() and small.unbuilt and "diagram nodes" in small.unbuilt
+    assert small.stopped == small.unbuilt and len(small.layers) == 1
     assert small.closed() is None and not small.complete
     full = Reachability(ground(spec))
-    assert not full.unbuilt and full.run()
+    assert full.run() and not full.unbuilt
+
+
+class _After:
+    """A budget that runs out after ``checks`` looks at it (then for good)."""
+
+    def __init__(self, checks: int):
+        self.checks = checks
+
+    def expired(self) -> bool:
+        self.checks -= 1
+        return self.checks < 0
+
+    def why_stopped(self) -> str:
+        return "the time limit was reached"
+
+
+@pytest.mark.parametrize("checks", [0, 1, 3])
+def test_a_budget_stops_the_transition_relation_while_it_is_built(checks):
+    """The relations are built by the first search, under its budget (which
+    is looked at between two actions): a budget that runs out then stops the
+    search without a claim, and a later search goes on from there to the
+    same layers as an engine built at once."""
+    spec = random_model(3, max_variables=6, max_actions=6)
+    assert len(spec.actions) > 3
+    r = Reachability(ground(spec))
+    assert not r.expand(_After(checks)) and not r.complete and len(r.layers) == 1
+    assert "while the transition relation was built" in r.stopped
+    assert r.run()
+    fresh = Reachability(ground(spec))
+    assert fresh.run()
+    assert [_states(r, layer) for layer in r.layers] == [
+        _states(fresh, layer) for layer in fresh.layers
+    ]
+
+
+def _states(r: Reachability, layer) -> set[frozenset]:
+    """The states of a layer, each as its true variables."""
+    care = [f"x{i}" for i in range(len(r.model.variables))]
+    return {
+        frozenset(v for v in r.model.variables if values[f"x{r.index[v]}"])
+        for values in r.bdd.pick_iter(layer, care_vars=care)
+    }
 
 
 @settings(max_examples=60, deadline=None)

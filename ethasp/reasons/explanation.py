@@ -66,7 +66,8 @@ class Explanation:
     (see :mod:`ethasp.reasons.words`): the chosen reason, or the only
     sufficient reason when its literals are all of one kind (a permissible
     plan of several actions under deontology: none of them is bad), and
-    ``spoken_reason`` their texts.  ``actual`` holds every atom of the
+    ``spoken_reason`` their texts; ``cut`` says why a limit cut the reasons
+    short, where one did (the lists are then truncated).  ``actual`` holds every atom of the
     principle's formula with its value for the plan (what the plan makes
     true or false of it), for telling which of a reason's literals another
     plan shares; ``conjunctions`` the members of the conjunctions its
@@ -92,6 +93,7 @@ class Explanation:
     comparisons: dict[clingo.Symbol, Comparison] = field(default_factory=dict)
     labels: Labels = field(default_factory=Labels)
     conjunctions: dict[clingo.Symbol, list[tuple[clingo.Symbol, str]]] = field(default_factory=dict)
+    cut: str = ""  # why a limit cut the reasons short (the budget ran out), if it did
 
     def to_json(self) -> dict:
         data = {

@@ -40,7 +40,7 @@ from clorm import unify
 from ethasp.errors import InputError
 from ethasp.memo import results
 from ethasp.planning.budget import Budget
-from ethasp.planning.driver.planner import solve_configuration
+from ethasp.planning.driver.planner import GroundingStopped, solve_configuration
 from ethasp.planning.engines.best_state import ReachableState, best_reachable, unhandled
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
@@ -130,20 +130,43 @@ def _kind(literal: Literal) -> tuple:
     return atom.name, literal.value, element
 
 
-def _enumerate(ctl: clingo.Control, limit: int) -> tuple[list[list[clingo.Symbol]], bool]:
+def _answers(
+    ctl: clingo.Control, budget: Budget | None
+) -> tuple[list[list[clingo.Symbol]], clingo.SolveResult | None]:
+    """The answer sets of a solve (shown atoms, in the order clingo finds
+    them), and its result where it ended by itself: None where the budget ran
+    out first (the solve is then cancelled; the answer sets found so far)."""
+    found: list[list[clingo.Symbol]] = []
+    if budget is None:
+        with ctl.solve(yield_=True) as handle:
+            for answer in handle:
+                found.append(list(answer.symbols(shown=True)))
+            return found, handle.get()
+    with ctl.solve(yield_=True, async_=True) as handle:
+        while True:
+            handle.resume()
+            if not budget.wait(handle):
+                return found, None
+            answer = handle.model()
+            if answer is None:
+                return found, handle.get()
+            found.append(list(answer.symbols(shown=True)))
+
+
+def _enumerate(
+    ctl: clingo.Control, limit: int, budget: Budget | None = None
+) -> tuple[list[list[clingo.Symbol]], bool]:
     """Up to ``limit`` subset-minimal answer sets (shown atoms) and whether
     they are all there are.  One more is asked for: clingo does not say
     ``exhausted`` when it stops at its model limit, so only an answer set
-    beyond the ``limit`` proves that more exist."""
+    beyond the ``limit`` proves that more exist (nor are they all where the
+    budget ran out first)."""
     config = solve_configuration(ctl)
     config.opt_mode = "ignore"
     config.enum_mode = "domRec"
     config.models = str(limit + 1)
-    found: list[list[clingo.Symbol]] = []
-    with ctl.solve(yield_=True) as handle:
-        for answer in handle:
-            found.append(list(answer.symbols(shown=True)))
-    return found[:limit], len(found) <= limit
+    found, result = _answers(ctl, budget)
+    return found[:limit], result is not None and len(found) <= limit
 
 
 # The conflicts within which INUS reasons are searched (the same effort on
@@ -154,11 +177,16 @@ INUS_CONFLICTS = 20_000
 
 
 def _inus(
-    model: Model, program: str, sufficient: list[list[clingo.Symbol]], limit: int
+    model: Model,
+    program: str,
+    sufficient: list[list[clingo.Symbol]],
+    limit: int,
+    budget: Budget | None = None,
 ) -> tuple[list[list[Literal]], bool]:
     """Up to ``limit`` INUS reasons (``reasons/inus.lp``, one answer set each,
     projected on their literals) of the given sufficient reasons, and whether
-    they are all there are (not where :data:`INUS_CONFLICTS` ran out first)."""
+    they are all there are (not where :data:`INUS_CONFLICTS` or the budget
+    ran out first)."""
     members = "".join(
         f"sufficient_member({number},{literal.atom}).\n"
         for number, reason in enumerate(sufficient, 1)
@@ -166,28 +194,36 @@ def _inus(
     )
     if not members:
         return [], True
-    ctl = model.planner.program(INUS, program + members, ("--project=show",), model=False)
+    try:
+        ctl = model.planner.program(
+            INUS, program + members, ("--project=show",), model=False, budget=budget
+        )
+    except GroundingStopped:
+        return [], False
     config = solve_configuration(ctl)
     config.models = str(limit + 1)
     config.solve_limit = str(INUS_CONFLICTS)
-    found: list[list[Literal]] = []
-    with ctl.solve(yield_=True) as handle:
-        for answer in handle:
-            found.append(_literals(answer.symbols(shown=True)))
-        exhausted = handle.get().exhausted
+    answers, result = _answers(ctl, budget)
+    exhausted = result is not None and result.exhausted
+    found = [_literals(answer) for answer in answers]
     found.sort(key=lambda reason: (len(reason), [(str(lit.atom), lit.value) for lit in reason]))
     # (Past the conflicts, the search stops: more may exist.)
     return found[:limit], len(found) <= limit and exhausted
 
 
-def _optimum(ctl: clingo.Control) -> list[clingo.Symbol] | None:
-    """The shown atoms of an optimal answer set, None if there is none."""
+def _optimum(
+    ctl: clingo.Control, budget: Budget | None = None
+) -> tuple[list[clingo.Symbol] | None, bool]:
+    """The shown atoms of an optimal answer set (None if there is none), and
+    whether the search ended by itself (False where the budget ran out before
+    the optimum was proven: then no answer set is given)."""
     config = solve_configuration(ctl)
     config.opt_mode = "opt"
     config.models = "0"
-    found: list[list[clingo.Symbol]] = []
-    ctl.solve(on_model=lambda answer: found.append(list(answer.symbols(shown=True))))
-    return found[-1] if found else None
+    found, result = _answers(ctl, budget)
+    if result is None:
+        return None, False
+    return (found[-1] if found else None), True
 
 
 def _labels(symbols: Iterable[clingo.Symbol]) -> Labels:
@@ -309,18 +345,39 @@ def explain(
         + model.planner.vocabulary_text(LABELS)
         + f"explain({chosen.asp_name}).\n"
     )
-    necessary_ctl = model.planner.program(NECESSARY, program, OPTIONS, model=False)
-    actual = _actual(necessary_ctl)
-    best = _optimum(necessary_ctl)
-    literals = _literals(best) if best is not None else []
-    necessary, necessary_done = _enumerate(necessary_ctl, limit) if best is not None else ([], True)
-    sufficient_ctl = model.planner.program(SUFFICIENT, program, OPTIONS, model=False)
-    # One more than the limit allows: whether a single sufficient reason is the only one.
-    sufficient, sufficient_done = _enumerate(sufficient_ctl, max(limit, 2))
-    if len(sufficient) > limit:
-        sufficient, sufficient_done = sufficient[:limit], False
-    inus, inus_done = _inus(model, program, sufficient, limit)
+    # Each program and solve under the budget: where it runs out, the reasons
+    # found so far, said to be cut short (and not kept for later calls).
+    actual: frozenset[Literal] = frozenset()
+    best: list[clingo.Symbol] | None = None
+    necessary: list[list[clingo.Symbol]] = []
+    sufficient: list[list[clingo.Symbol]] = []
+    inus: list[list[Literal]] = []
+    necessary_done = sufficient_done = inus_done = False
+    stopped = False
+    try:
+        necessary_ctl = model.planner.program(
+            NECESSARY, program, OPTIONS, model=False, budget=budget
+        )
+        actual = _actual(necessary_ctl)
+        best, proven = _optimum(necessary_ctl, budget)
+        if not proven:
+            raise GroundingStopped()
+        necessary, necessary_done = (
+            _enumerate(necessary_ctl, limit, budget) if best is not None else ([], True)
+        )
+        sufficient_ctl = model.planner.program(
+            SUFFICIENT, program, OPTIONS, model=False, budget=budget
+        )
+        # One more than the limit allows: whether a single sufficient reason is the only one.
+        sufficient, sufficient_done = _enumerate(sufficient_ctl, max(limit, 2), budget)
+        if len(sufficient) > limit:
+            sufficient, sufficient_done = sufficient[:limit], False
+        inus, inus_done = _inus(model, program, sufficient, limit, budget)
+        stopped = budget.expired() and not (necessary_done and sufficient_done and inus_done)
+    except GroundingStopped:
+        stopped = True
     inus_done = inus_done and sufficient_done
+    literals = _literals(best) if best is not None else []
     words = sufficient[0] if sufficient else []
     # The words say a reason whole when it is the only sufficient reason and its
     # literals are all of one kind ("none of his 8 actions is inherently bad"):
@@ -373,8 +430,11 @@ def explain(
         labels=_labels_of(model),
         conjunctions=conj,
     )
+    if stopped:
+        explanation.cut = budget.why_stopped()
     explanation.text = non_contrastive(explanation)
-    memo[key] = explanation
+    if not stopped:
+        memo[key] = explanation
     return explanation
 
 
@@ -399,7 +459,7 @@ def judge(
     report = judge_verdicts(model, plan, principles, max_horizon, budget=budget, best=best)
     chosen = select_principles(principles, model_kind(model))
     for principle, judgement in zip(chosen, report.judgements, strict=True):
-        if reasons_limit:
+        if reasons_limit:  # (cut short where the budget runs out: explain)
             # An impermissible utilitarian plan is explained against the better
             # state that decided it; a permissible one against a best other state.
             other = judgement.compared if not judgement.permissible else None

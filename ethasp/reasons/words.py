@@ -467,6 +467,8 @@ def verdict_sentence(
     if principle:
         words += f" under {principle_phrase(explanation.principle)}"
     if not explanation.literals:
+        if explanation.cut:
+            return f"{words} (its reasons were cut short: {explanation.cut})."
         return f"{words} in any case."
     return f"{words} because {explanation_clause(explanation, pronoun)}."
 

@@ -721,7 +721,10 @@ class Planner:
                 done.set()
 
         self._pending = (done, failure)
-        threading.Thread(target=work, name="ethasp-grounding", daemon=True).start()
+        # Not a daemon: clingo cannot be stopped while it grounds, and a thread
+        # still in clingo when the interpreter shuts down would crash it; the
+        # interpreter waits for the grounding to end instead.
+        threading.Thread(target=work, name="ethasp-grounding").start()
         self._settle(budget)
 
     def _settle(self, budget: Budget | None) -> None:
@@ -1231,13 +1234,17 @@ class Planner:
         arguments: Sequence[str] = (),
         model: bool = True,
         symbols: Iterable[clingo.Symbol] = (),
+        budget: Budget | None = None,
     ) -> clingo.Control:
         """A grounded control with the ground model's facts (unless ``model`` is
         False), the encodings and further facts: programs about one plan or one
         formula, which read the model but do not search it.  ``facts`` is text
         that clingo itself printed (atoms of answer sets); the ground model and
         ``symbols`` (plans, terms users gave) go in through the backend (no
-        text to write and parse again)."""
+        text to write and parse again).  Under a ``budget`` the grounding runs
+        in a thread of its own, and GroundingStopped is raised if the budget
+        runs out first (the control, of no other use, is left to finish its
+        grounding and is dropped)."""
         messages = Messages()
         ctl = clingo.Control(list(arguments), logger=messages, message_limit=20)
         try:
@@ -1247,8 +1254,25 @@ class Planner:
                 ctl.add("base", [], facts)
             add_facts(ctl, self.model_symbols() if model else ())
             add_facts(ctl, symbols)
-            ctl.ground([("base", [])])
+            if budget is None:
+                ctl.ground([("base", [])])
+                return ctl
         except RuntimeError:
+            messages.raise_first("grounding failed")
+        done, failure = threading.Event(), []
+
+        def work() -> None:
+            try:
+                ctl.ground([("base", [])])
+            except RuntimeError as error:
+                failure.append(error)
+            finally:
+                done.set()
+
+        threading.Thread(target=work, name="ethasp-program").start()  # (not a daemon: above)
+        if not budget.wait_event(done):
+            raise GroundingStopped()
+        if failure:
             messages.raise_first("grounding failed")
         return ctl
 

@@ -51,9 +51,6 @@ Literal = tuple[clingo.Symbol, bool]
 # resort must not eat the machine's memory).
 DEFAULT_NODE_LIMIT = 4_000_000
 
-# Images between two checks of the budget (the node count is checked once a
-# layer: counting the nodes takes time of its own).
-CHECK_EVERY = 8
 # The most nodes whose best utility is remembered between queries.
 UTILITY_MEMO_LIMIT = 2_000_000
 
@@ -267,6 +264,10 @@ def _backend():
             del sys.modules["networkx"]
 
 
+class _Stopped(Exception):
+    """A budget ran out while a transition relation was built."""
+
+
 class _TooLarge(Exception):
     """A transition relation grew beyond the node limit while it was built."""
 
@@ -299,18 +300,16 @@ class Reachability:
         self._derived: dict = {}
         self._derive()
         self._groups = _clusters(model, self.index)
-        # Why the transition relation was not built: more nodes than the limit
-        # (some orders of the variables make a cluster's relation grow beyond
-        # any use; the engine then gives up before its first layer, and the
-        # searches go on without it, as where a layer grows too large).
+        # The clusters' transition relations, built by the first search that
+        # needs them (:meth:`_build`, under its budget: one cluster after the
+        # other, resumed where a budget stopped it).  Why they cannot be
+        # built: more nodes than the limit (some orders of the variables make
+        # a cluster's relation grow beyond any use; the engine then gives up
+        # before its first layer, and the searches go on without it, as where
+        # a layer grows too large).
+        self._images: list = []
+        self._built = False
         self.unbuilt = ""
-        try:
-            self._images = [self._cluster(group) for group in self._groups]
-        except _TooLarge:
-            self._images = []
-            self.unbuilt = f"more than {node_limit} diagram nodes in the transition relation"
-        else:
-            self._merge(MERGE_NODES)
         init = self._cube([(v, v in model.init) for v in model.variables])
         self.layers = [init]
         self._prefixes: list = []
@@ -449,7 +448,35 @@ class Reachability:
             entry[0 if effect.value else 1] |= self._cube(effect.condition)
         return {i: adds | (bdd.var(f"x{i}") & ~deletes) for i, (adds, deletes) in changes.items()}
 
-    def _cluster(self, actions: list[GroundAction]):
+    def _build(self, budget: Budget | None) -> bool:
+        """Build the transition relations not built yet; False (and
+        :attr:`stopped` says why) if the budget or the node limit stopped it.
+        A budget stops it between two actions: a later call goes on with the
+        cluster it stopped in."""
+        if self._built:
+            return True
+        if self.unbuilt:
+            self.stopped = self.unbuilt
+            return False
+        while len(self._images) < len(self._groups):
+            try:
+                self._images.append(self._cluster(self._groups[len(self._images)], budget))
+            except _TooLarge:
+                self._images = []
+                self.unbuilt = (
+                    f"more than {self.node_limit} diagram nodes in the transition relation"
+                )
+                self.stopped = self.unbuilt
+                return False
+            except _Stopped:
+                assert budget is not None
+                self.stopped = f"{budget.why_stopped()} while the transition relation was built"
+                return False
+        self._merge(MERGE_NODES)
+        self._built = True
+        return True
+
+    def _cluster(self, actions: list[GroundAction], budget: Budget | None = None):
         """The transition relation of a cluster of actions over the variables they
         write (before: x, after: y), and what an image under it quantifies and renames."""
         index, bdd = self.index, self.bdd
@@ -457,6 +484,8 @@ class Reachability:
         unchanged = {i: bdd.var(f"y{i}").equiv(bdd.var(f"x{i}")) for i in written}
         relation = bdd.false
         for action in actions:
+            if budget is not None and budget.expired():
+                raise _Stopped()
             after = self._after_values(action)
             step = self._cube(action.pre)
             for i in written:
@@ -521,17 +550,17 @@ class Reachability:
         """The states one step from ``frontier`` by ``image`` (per cluster), less
         those ``reached``; None (and :attr:`stopped` says why) if the budget or
         the node limit stopped it."""
-        if self.unbuilt:
-            self.stopped = self.unbuilt
+        if not self._build(budget):
             return None
         if budget is not None and budget.expired():
             self.stopped = budget.why_stopped()
             return None
         new = self.bdd.false
-        for count, parts in enumerate(self._images, start=1):
+        for parts in self._images:
             new |= image(frontier, parts)
-            checked = count % CHECK_EVERY == 0 or count == len(self._images)
-            if checked and budget is not None and budget.expired():
+            # (after every image: one may take long, and a look at the clock is cheap;
+            # the node count, which takes time of its own, once a layer)
+            if budget is not None and budget.expired():
                 self.stopped = budget.why_stopped()
                 return None
         if self.nodes() > self.node_limit:
@@ -617,6 +646,8 @@ class Reachability:
         of such a path leads into ``states`` are computed backwards within the
         layers, then the least action into the next set is taken, step after
         step.  The same path whatever engine found the length first."""
+        if length > 0:
+            self._build(None)  # (built by the expansions that made the layers)
         targets = [self.bdd.false] * (length + 1)
         targets[length] = self.layers[length] & states
         for k in range(length - 1, -1, -1):
@@ -637,6 +668,7 @@ class Reachability:
     def _least_successor(self, state: frozenset[clingo.Symbol], states):
         """The least action (by its term) that leads from ``state`` into
         ``states``, and the state it leads to; None if none does."""
+        self._build(None)
         full = self.state(state)
         candidates: list[GroundAction] = []
         for group, parts in zip(self._groups, self._images, strict=True):
@@ -683,6 +715,7 @@ class Reachability:
         """An action and a state of ``layer`` from which the action leads to
         ``state``: first a cluster of actions that has one (one pre-image per
         cluster), then an action of it."""
+        self._build(None)
         full = self.state(state)
         variables = self.model.variables
         for group, (relation, qvars, rename) in zip(self._groups, self._images, strict=True):
