@@ -330,6 +330,15 @@ def plan_with_principles(
             best=best,
             proof=f"no reachable state valued yet: {best.proof}",
         )
+    if budget.expired() and not restriction.empty:
+        # (The HModel's compilation, a program over the whole ground model, is
+        # not begun once the limit struck.)
+        return HPlanResult(
+            BOUNDED,
+            names,
+            proof=f"no {plans}{permissible} found: {budget.why_stopped()} before the search began",
+            best=best,
+        )
     # The HModel: a planning model of its own, planned for by every engine.
     derived = derived_variables(model)
     restricted = model if restriction.empty else hmodel(model, restriction)
