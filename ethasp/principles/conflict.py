@@ -20,7 +20,8 @@ subset of it is then explored), an unreachable one shrinks into a conflict
 (every superset of it is then explored): by deletion from clingo's core
 where the decision gave one, else by insertion, which decides one
 unreachable set per item of the conflict (a planner proves a set
-unreachable by exhausting its states).  Every set is decided on the one grounding of the soft HModel
+unreachable by exhausting its states).  Every set is decided on the one
+grounding of the soft HModel
 (:class:`ethasp.principles.goal_items.GoalItems`), each decision a proof or
 ``bounded``.  With worths (what dropping each item costs) the seeds come in
 decreasing worth, and the exploration can stop at the goal subsets of
