@@ -131,7 +131,7 @@ def test_a_cluster_computes_the_lines_of_the_local_pool_and_loses_no_case(cluste
             workers[0].wait()
             killed = True
     assert killed
-    assert len(lines) == 24 * len(HERA) + 1
+    assert len(lines) == 24 * len(HERA) + 1, [line for line in lines if "error" in line]
     assert len(list(read_lines(output))) == len(lines)
     assert {h: without_times(line) for h, line in by_hash(lines).items()} == {
         h: without_times(line) for h, line in by_hash(local).items()
@@ -140,3 +140,24 @@ def test_a_cluster_computes_the_lines_of_the_local_pool_and_loses_no_case(cluste
     assert error["case"] == str(bad) and error["error"].startswith(f"{bad}:4:1")
     # Run again: nothing is missing.
     assert list(ethasp.batch([cases], ["hera"], scheduler=address, output=output)) == []
+
+
+def test_a_result_is_told_from_an_error_by_itself_not_by_the_futures_status():
+    # A worker lost after its result was gathered makes the future's status
+    # "lost" while the case's lines are here: they are kept (one error line
+    # had replaced a case's lines when a worker was killed at that moment).
+    from ethasp.batch.cases import Case
+    from ethasp.batch.cluster import DaskCluster, task_error
+    from ethasp.batch.task import Work
+
+    lines = [{"case": "c.lp", "principle": "deontology", "permissible": True}]
+    assert task_error(lines) is None
+
+    class KilledWorker(Exception):
+        pass
+
+    killed = KilledWorker("lost three times")
+    assert task_error(killed) is killed
+    assert task_error((KilledWorker, killed, None)) is killed  # (Dask's form)
+    work = Work(Case.of("c.lp"), ((None, None),))
+    assert "ended while computing it" in DaskCluster._failure(work, killed)["error"]

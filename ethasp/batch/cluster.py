@@ -122,10 +122,14 @@ class DaskCluster:
                         continue
                     pending.discard(future)
                     work = futures[future]
-                    if future.status == "finished":
+                    # (Told by the result, not by the future's status: a worker
+                    # lost after its result was gathered makes the status
+                    # "lost" while the result is here, whole.)
+                    error = task_error(result)
+                    if error is None:
                         yield work, result
                     else:
-                        yield work, [self._failure(work, result)]
+                        yield work, [self._failure(work, error)]
         finally:
             for future in pending:
                 future.cancel()
@@ -163,6 +167,18 @@ class DaskCluster:
         if name == "CancelledError":
             return error_line(work.case, "its task was cancelled on the cluster")
         return error_line(work.case, f"internal error on a worker: {name}: {error}")
+
+
+def task_error(result) -> BaseException | None:
+    """The error a task's result stands for, None for the lines of a case:
+    Dask gives a task that raised as its exception, with its type and
+    traceback (``(type, exception, traceback)``), a cancelled one as the
+    CancelledError."""
+    if isinstance(result, BaseException):
+        return result
+    if isinstance(result, tuple) and len(result) == 3 and isinstance(result[1], BaseException):
+        return result[1]
+    return None
 
 
 def _running_seconds(keys, dask_scheduler=None) -> dict:
