@@ -376,6 +376,7 @@ def test_facts_asked_of_the_final_state_are_goal_facts_of_the_task(monkeypatch):
     from ethasp.planning import search
     from ethasp.planning.driver.planner import Setting
     from ethasp.planning.search import shortest
+    from ethasp.planning.search_base import checked
 
     model = forced(
         "variable(a;b;c;fixed). action(x;y). eff(x,a,true). pre(y,a,true). eff(y,b,true). "
@@ -397,12 +398,21 @@ def test_facts_asked_of_the_final_state_are_goal_facts_of_the_task(monkeypatch):
     assert refuted.status == "none"  # y makes both b and c true
     never = shortest(planner, ends("fixed", "true"), Budget(None))
     assert never.status == "none"  # known before any search (relaxed reachability)
-    # The task itself, where such facts came through: no task, no plan.
+    against = shortest(planner, ends("c", "false"), Budget(None))
+    assert against.status == "none" and "goal" in against.proof  # (questions.lp)
+    # The task: facts of variables no action changes are no goal facts.
     ground = search_model(Atoms(planner))
-    fixed, c = clingo.Function("fixed"), clingo.Function("c")
-    assert search._with_final_facts(planner, ground, [(fixed, True)]) is None
-    assert search._with_final_facts(planner, ground, [(c, False)]) is None
-    assert search._with_final_facts(planner, ground, [(fixed, False)]).goal == ground.goal
+    fixed, b = clingo.Function("fixed"), clingo.Function("b")
+    assert search._with_final_facts(ground, [(fixed, False)]).goal == ground.goal
+    assert search._with_final_facts(ground, [(b, True)]).goal == [*ground.goal, (b, True)]
+    # A plan an engine proposes is checked to meet the constraints by the encodings.
+    with pytest.raises(RuntimeError, match="question's encodings refute"):
+        checked(
+            planner,
+            [clingo.Function("x"), clingo.Function("y")],
+            "an engine",
+            ends("b", "false").constraints,
+        )
 
 
 @installed

@@ -407,36 +407,16 @@ def _least(
     return witness
 
 
-NEVER_HOLDS = (
-    "no plan ends with the facts asked of the final state (one of them never holds, "
-    "or the goal asks for its other value)"
-)
-
-
-def _with_final_facts(planner: Planner, model, facts):
+def _with_final_facts(model, facts):
     """A search model whose goal also asks ``facts`` of the final state
     (question constraints ``ends(F,B)``, see :func:`ethasp.planning.driver.
-    planner.final_facts`); None where one never holds (a variable that never
-    changes, of the other value, or the goal's other value)."""
-    if not facts:
-        return model
+    planner.final_facts`).  A fact about a variable that no action changes is
+    its value in every state, or else no plan meets it, which the encodings
+    proved before any search (``questions/questions.lp``: relaxed
+    reachability, and the goal): such facts are no goal facts of the task."""
     changing = set(model.variables)
     goal = list(model.goal)
-    reachable = None
-    for variable, value in facts:
-        if variable not in changing:  # the one value it has in every state
-            if reachable is None:
-                reachable = {
-                    (atom.arguments[0], atom.arguments[1].name == "true")
-                    for atom in planner.search_atoms("reachable", 2)
-                }
-            if (variable, value) not in reachable:
-                return None
-            continue
-        if (variable, not value) in goal:
-            return None
-        if (variable, value) not in goal:
-            goal.append((variable, value))
+    goal += [fact for fact in facts if fact[0] in changing and fact not in goal]
     return replace(model, goal=goal)
 
 
@@ -481,10 +461,10 @@ def _external(
     from ethasp.planning.engines import downward, sas
     from ethasp.planning.engines.layers import Atoms, search_model
 
-    facts = final_facts(setting.constraints)  # question constraints: goal facts
-    ground = _with_final_facts(planner, search_model(Atoms(planner)), facts)
-    if ground is None:
-        return SearchResult(NONE, horizon=0, optimal=optimal, proof=NEVER_HOLDS)
+    # Question constraints ends(F,B), the only ones handed over: goal facts
+    # (those no plan meets were refused before: impossible_constraint).
+    facts = final_facts(setting.constraints) or []
+    ground = _with_final_facts(search_model(Atoms(planner)), facts)
     try:
         task = downward.compiled(ground)
     except sas.NotCompiled as why:
@@ -500,7 +480,7 @@ def _external(
         return None
     if outcome.status == downward.NO_PLAN:
         return SearchResult(NONE, horizon=0, optimal=optimal, proof=SEARCHED)
-    plan = _checked(planner, task.plan(outcome.operators), "Fast Downward", facts)
+    plan = _checked(planner, task.plan(outcome.operators), "Fast Downward", setting.constraints)
     length = len(plan)
     if optimal and longest is not None and length > longest:
         return SearchResult(NONE, horizon=longest, proof=_too_long(longest))

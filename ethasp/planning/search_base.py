@@ -90,20 +90,17 @@ SEARCHED = "every reachable state was searched, and none is a goal state"
 GREEDY_PROOF = "a plan found by greedy forward search (not proven shortest)"
 
 
-def checked(planner: Planner, actions, engine: str, final=None) -> Plan:
-    """A plan that an engine proposed, checked by its trace (the encodings);
-    ``final``: facts (variable, value) its final state must have."""
+def checked(planner: Planner, actions, engine: str, constraints=()) -> Plan:
+    """A plan that an engine proposed, checked by its trace (the encodings),
+    and by ``questions/questions.lp`` to meet the question ``constraints``
+    (those the engine was given as its goal's facts)."""
     plan = Plan(tuple(actions))
     answer = planner.trace(plan)
     if not answer.get("plan", 0):
         raise RuntimeError(f"{engine} proposed {plan}, which the encodings refute")
-    if final:
-        ends = {
-            (atom.arguments[0], atom.arguments[1].name == "true") for atom in answer.get("final", 2)
-        }
-        missing = [fact for fact in final if fact not in ends]
-        if missing:
-            raise RuntimeError(f"{engine} proposed {plan}, whose final state the encodings refute")
+    terms = [constraint.term for constraint in constraints]
+    if terms and not set(terms) <= planner.met(plan, terms):
+        raise RuntimeError(f"{engine} proposed {plan}, which the question's encodings refute")
     return plan
 
 

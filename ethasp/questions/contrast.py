@@ -23,11 +23,10 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import clingo
-from clorm import unify
 
 from ethasp.errors import InputError
 from ethasp.planning.budget import Budget
-from ethasp.planning.driver.planner import Constraint, occurrences
+from ethasp.planning.driver.planner import Constraint
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan, parse_action, steps
 from ethasp.planning.search import BOUNDED, DEFAULT_MAX_HORIZON, FOUND, NONE
@@ -45,20 +44,7 @@ from ethasp.questions.impasse import Impasse, impasse
 from ethasp.questions.question import EITHER, Question
 from ethasp.reasons import words
 from ethasp.reasons.reasons import DEFAULT_LIMIT, judge
-from ethasp.vocabulary import Met
 
-QUESTIONS = "questions/questions.lp"
-# A given plan's states, for questions about facts (questions/given.lp).
-GIVEN = (
-    "planning/model.lp",
-    "planning/trace.lp",
-    "planning/trace_events.lp",
-    "planning/steps.lp",
-    "questions/given.lp",
-    QUESTIONS,
-)
-# Constraint terms about the plan's actions only (no states needed to check them).
-ACTION_TERMS = ("used", "unused", "before", "at", "not_at", "within", "not_within", "at_most")
 DEFAULT_PRINCIPLE = "deontology"
 DEFAULT_CAM_PRINCIPLE = "hera-deontology"  # the same concept, for causal agency models
 
@@ -170,30 +156,11 @@ def resolve(model: Model, question: Question) -> Resolved:
 
 
 def _met(model: Model, plan: Plan, terms: Sequence[clingo.Symbol]) -> set[clingo.Symbol]:
-    """The constraint terms that the plan meets (questions.lp run on the plan:
-    its actions only, or its states too (questions/given.lp) when a term is
-    about facts)."""
+    """The constraint terms that the plan meets (a causal agency model's
+    choice, or a plan: :meth:`ethasp.planning.driver.planner.Planner.met`)."""
     if model.is_cam:
         return causal.met_constraints(model, plan, terms)
-    name = clingo.Function("q")
-    symbols = [clingo.Function("contrast", [name, term]) for term in terms]
-    if all(term.name in ACTION_TERMS for term in terms):
-        horizon = len(plan)
-        facts = [f"time(0..{horizon}).", f"horizon({horizon})."]
-        if horizon:
-            facts += [f"step(1..{horizon}).", f"acted(1..{horizon})."]
-        ctl = model.planner.program(
-            [QUESTIONS], "\n".join(facts) + "\n", symbols=symbols + occurrences(plan)
-        )
-    else:
-        ctl = model.planner.program(GIVEN, symbols=symbols + occurrences(plan))
-    found: list[clingo.Symbol] = []
-    with ctl.solve(yield_=True) as handle:
-        for answer in handle:
-            found = list(answer.symbols(shown=True))
-            break
-    answer = unify([Met], found)
-    return {atom.constraint.symbol for atom in answer.query(Met).all()}
+    return model.planner.met(plan, terms)
 
 
 def _subject_words(model: Model, resolved: Resolved) -> str:

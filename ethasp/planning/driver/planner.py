@@ -96,6 +96,21 @@ TRACE_ENCODINGS = (
     "judgement/judge.lp",
 )
 
+# What tells whether a given plan meets question constraints
+# (``questions/questions.lp``'s ``met/3``): the plan's actions, and for
+# constraints about facts its states (``questions/given.lp``).
+QUESTIONS = "questions/questions.lp"
+GIVEN = (
+    "planning/model.lp",
+    "planning/trace.lp",
+    "planning/trace_events.lp",
+    "planning/steps.lp",
+    "questions/given.lp",
+    QUESTIONS,
+)
+# Constraint terms about the plan's actions only (no states needed to check them).
+ACTION_TERMS = ("used", "unused", "before", "at", "not_at", "within", "not_within", "at_most")
+
 LOOPFREE = "loopfree"
 SEARCH = "search"
 
@@ -1304,6 +1319,29 @@ class Planner:
             )
         traces.setdefault(plan, []).append((wanted, answer))
         return answer
+
+    def met(self, plan, terms: Sequence[clingo.Symbol]) -> set[clingo.Symbol]:
+        """The question constraint terms that a plan meets (``met/3`` of
+        ``questions/questions.lp`` run on the plan: its actions only, or its
+        states too, ``questions/given.lp``, when a term is about facts)."""
+        from clorm import unify
+
+        from ethasp.vocabulary import Met
+
+        name = clingo.Function("q")
+        symbols = [clingo.Function("contrast", [name, term]) for term in terms]
+        if all(term.name in ACTION_TERMS for term in terms):
+            horizon = len(plan)
+            facts = [f"time(0..{horizon}).", f"horizon({horizon})."]
+            if horizon:
+                facts += [f"step(1..{horizon}).", f"acted(1..{horizon})."]
+            answer = self.solve_program(
+                [QUESTIONS], "\n".join(facts) + "\n", symbols=symbols + occurrences(plan)
+            )
+        else:
+            answer = self.solve_program(GIVEN, symbols=symbols + occurrences(plan))
+        found = unify([Met], answer.get("met", 3))
+        return {atom.constraint.symbol for atom in found.query(Met).all()}
 
     def solve_program(
         self,
