@@ -625,7 +625,8 @@ def _planner_search(planner, ground, at_least: int, budget: Budget, goal: bool, 
 
 
 def _reached(planner: Planner, actions) -> ReachableState:
-    """The final state of an action sequence an engine proposed, by its trace."""
+    """The final state of an action sequence an engine proposed and its
+    utility, by its trace (``utility_of_final/1`` of ``judgement/judge.lp``)."""
     from ethasp.planning.plan import Plan
 
     plan = Plan(tuple(actions))
@@ -633,9 +634,8 @@ def _reached(planner: Planner, actions) -> ReachableState:
     if answer.get("failure", 1) or answer.get("invalid", 1):
         raise RuntimeError(f"Fast Downward proposed {plan}, which the encodings refute")
     final = {atom.arguments[0]: atom.arguments[1].name == "true" for atom in answer.get("final", 2)}
-    weights = planner.fact_weights()
     facts = [(v, final.get(v, False)) for v in (a.arguments[0] for a in planner.get("variable", 1))]
-    utility = sum(weights.get(fact, 0) for fact in facts)
+    utility = answer.get("utility_of_final", 1)[0].arguments[0].number
     return ReachableState(facts, utility, len(plan), plan)
 
 
