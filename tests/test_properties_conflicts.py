@@ -189,13 +189,44 @@ def _plain(symbol):
 @settings(max_examples=72, deadline=None)
 @given(SEEDS, st.sampled_from(QUESTION_PRINCIPLES))
 def test_conflicts_of_goals_and_question_constraints_agree_with_the_oracle(seed, principle):
-    from question_oracle import shortest_meeting
 
     spec = random_model(seed, **features(seed))
     terms = _random_terms(spec, random.Random(seed))
     model = Model.from_string(spec.to_asp())
     constraints = model.planner.question([_symbol(term) for term in terms])
     result = goal_conflicts(model, [principle], constraints, max_horizon=HORIZON)
+    _agrees_with_the_oracle(result, spec, terms, principle)
+
+
+@pytest.mark.slow
+@settings(max_examples=60, deadline=None)
+@given(SEEDS, st.sampled_from(QUESTION_PRINCIPLES))
+def test_conflicts_after_a_contrast_proved_no_permissible_plan_agree_with_the_oracle(
+    seed, principle
+):
+    """Where the contrast's search under the principle proved that no
+    permissible plan meets the goal and the question (a dropped principle),
+    the conflicts take that proof instead of deciding the whole set again
+    (ethasp/questions/impasse.py): they are still exactly the oracle's."""
+    from ethasp.principles.restriction import plan_with_principles
+    from ethasp.questions.contrast import longest
+
+    spec = random_model(seed, **features(seed))
+    terms = [t for t in _random_terms(spec, random.Random(seed)) if t[0] != "at_most"]
+    assume(terms)
+    model = Model.from_string(spec.to_asp())
+    constraints = model.planner.question([_symbol(term) for term in terms])
+    under = plan_with_principles(
+        model, [principle], HORIZON, constraints=constraints, max_length=longest(constraints)
+    )
+    assume(under.status == "none")
+    result = goal_conflicts(model, [principle], constraints, max_horizon=HORIZON, unreachable=True)
+    _agrees_with_the_oracle(result, spec, terms, principle)
+
+
+def _agrees_with_the_oracle(result, spec, terms, principle) -> None:
+    from question_oracle import shortest_meeting
+
     items = [("goal", v, b) for v, b in sorted(spec.goal.items())] + [tuple(t) for t in terms]
 
     def reachable(subset) -> bool:
