@@ -131,17 +131,12 @@ def _kind(literal: Literal) -> tuple:
 
 
 def _answers(
-    ctl: clingo.Control, budget: Budget | None
+    ctl: clingo.Control, budget: Budget
 ) -> tuple[list[list[clingo.Symbol]], clingo.SolveResult | None]:
     """The answer sets of a solve (shown atoms, in the order clingo finds
     them), and its result where it ended by itself: None where the budget ran
     out first (the solve is then cancelled; the answer sets found so far)."""
     found: list[list[clingo.Symbol]] = []
-    if budget is None:
-        with ctl.solve(yield_=True) as handle:
-            for answer in handle:
-                found.append(list(answer.symbols(shown=True)))
-            return found, handle.get()
     with ctl.solve(yield_=True, async_=True) as handle:
         while True:
             handle.resume()
@@ -154,7 +149,7 @@ def _answers(
 
 
 def _enumerate(
-    ctl: clingo.Control, limit: int, budget: Budget | None = None
+    ctl: clingo.Control, limit: int, budget: Budget
 ) -> tuple[list[list[clingo.Symbol]], bool]:
     """Up to ``limit`` subset-minimal answer sets (shown atoms) and whether
     they are all there are.  One more is asked for: clingo does not say
@@ -181,7 +176,7 @@ def _inus(
     program: str,
     sufficient: list[list[clingo.Symbol]],
     limit: int,
-    budget: Budget | None = None,
+    budget: Budget,
 ) -> tuple[list[list[Literal]], bool]:
     """Up to ``limit`` INUS reasons (``reasons/inus.lp``, one answer set each,
     projected on their literals) of the given sufficient reasons, and whether
@@ -211,9 +206,7 @@ def _inus(
     return found[:limit], len(found) <= limit and exhausted
 
 
-def _optimum(
-    ctl: clingo.Control, budget: Budget | None = None
-) -> tuple[list[clingo.Symbol] | None, bool]:
+def _optimum(ctl: clingo.Control, budget: Budget) -> tuple[list[clingo.Symbol] | None, bool]:
     """The shown atoms of an optimal answer set (None if there is none), and
     whether the search ended by itself (False where the budget ran out before
     the optimum was proven: then no answer set is given)."""
