@@ -1323,23 +1323,25 @@ class Planner:
     def met(self, plan, terms: Sequence[clingo.Symbol]) -> set[clingo.Symbol]:
         """The question constraint terms that a plan meets (``met/3`` of
         ``questions/questions.lp`` run on the plan: its actions only, or its
-        states too, ``questions/given.lp``, when a term is about facts)."""
+        states too, ``questions/given.lp``, when a term is about facts; over
+        :meth:`plan_model_symbols`, all that the plan's states read)."""
         from clorm import unify
 
         from ethasp.vocabulary import Met
 
         name = clingo.Function("q")
         symbols = [clingo.Function("contrast", [name, term]) for term in terms]
+        symbols += self.plan_model_symbols(plan) + occurrences(plan)
         if all(term.name in ACTION_TERMS for term in terms):
             horizon = len(plan)
             facts = [f"time(0..{horizon}).", f"horizon({horizon})."]
             if horizon:
                 facts += [f"step(1..{horizon}).", f"acted(1..{horizon})."]
             answer = self.solve_program(
-                [QUESTIONS], "\n".join(facts) + "\n", symbols=symbols + occurrences(plan)
+                [QUESTIONS], "\n".join(facts) + "\n", model=False, symbols=symbols
             )
         else:
-            answer = self.solve_program(GIVEN, symbols=symbols + occurrences(plan))
+            answer = self.solve_program(GIVEN, model=False, symbols=symbols)
         found = unify([Met], answer.get("met", 3))
         return {atom.constraint.symbol for atom in found.query(Met).all()}
 
