@@ -78,6 +78,7 @@ INUS = (
     "reasons/literals.lp",
     "reasons/theory.lp",
     "reasons/shape.lp",
+    "reasons/evaluate.lp",
     "reasons/evaluate_copies.lp",
     "reasons/inus.lp",
 )
