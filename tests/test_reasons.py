@@ -426,3 +426,65 @@ def test_truncated_says_whether_a_reason_beyond_the_limit_exists(seed, principle
     assert not explain(model, Plan.parse(" ".join(plan)), principle, limit=most).truncated
     if most > 1:
         assert explain(model, Plan.parse(" ".join(plan)), principle, limit=most - 1).truncated
+
+
+# -- the INUS program's ground size ------------------------------------------------
+
+INUS_FILES = [*CORE, "reasons/shape.lp", "reasons/evaluate_copies.lp", "reasons/inus.lp"]
+
+
+def inus_ground(program: str) -> tuple[list[str], set[frozenset]]:
+    """The copies that the INUS program grounds (copy/1 atoms) and its INUS
+    reasons, for a formula given as facts."""
+    ctl = clingo.Control(["0", "--project=show"], logger=lambda code, message: None)
+    for name in INUS_FILES:
+        ctl.load(str(ENCODINGS / name))
+    ctl.add("base", [], program)
+    ctl.ground([("base", [])])
+    copies = sorted(
+        str(atom.symbol.arguments[0]) for atom in ctl.symbolic_atoms.by_signature("copy", 1)
+    )
+    found: set[frozenset] = set()
+    ctl.solve(on_model=lambda model: found.add(frozenset(map(str, model.symbols(shown=True)))))
+    return copies, found
+
+
+def test_inus_reasons_of_a_read_once_formula_ground_one_witness_copy():
+    # Deontology over 30 actions, none bad: the one sufficient reason has
+    # all 30 literals, and each is an INUS reason of its own.  A read-once
+    # formula needs one witness (G alone), not one per candidate literal,
+    # whose copies of the formula made long plans' reasons quadratic.
+    n = 30
+    lines = ["formula(q,all(q)).", "explain(q).", "verdict(q,true)."]
+    lines += [f"member(q,neg(bad(action(a{i}))))." for i in range(n)]
+    lines += [f"sufficient_member(1,bad(action(a{i})))." for i in range(n)]
+    copies, found = inus_ground("\n".join(lines))
+    assert copies == ["g"]
+    assert found == {frozenset({f"reason(bad(action(a{i})),false)"}) for i in range(n)}
+
+
+def test_inus_reasons_of_a_formula_with_a_theory_link_ground_a_witness_per_candidate():
+    # Good(a) and Bad(a) cannot both hold: not read-once, so each candidate
+    # literal gets a witness of its own (and the saturation checks
+    # entailment).  Good(a) | Bad(a) | Good(b) with a and b good has the
+    # sufficient reasons {Good(a)} and {Good(b)} and the necessary reason
+    # {Good(a), Good(b)}, within neither: no INUS reason.
+    lines = [
+        "formula(q,or(good(action(a)),or(bad(action(a)),good(action(b))))).",
+        "explain(q).",
+        "verdict(q,true).",
+        "satisfied(good(action(a))).",
+        "satisfied(good(action(b))).",
+        "sufficient_member(1,good(action(a))).",
+        "sufficient_member(2,good(action(b))).",
+    ]
+    copies, found = inus_ground("\n".join(lines))
+    assert copies == ["w(good(action(a)))", "w(good(action(b)))"]
+    assert found == set()
+    # Without Good(b) the one sufficient reason {Good(a)} is also necessary.
+    lines = ["formula(q,or(good(action(a)),bad(action(a))))."]
+    lines += ["explain(q).", "verdict(q,true).", "satisfied(good(action(a)))."]
+    lines.append("sufficient_member(1,good(action(a))).")
+    copies, found = inus_ground("\n".join(lines))
+    assert copies == ["w(good(action(a)))"]
+    assert found == {frozenset({"reason(good(action(a)),true)"})}
