@@ -165,6 +165,10 @@ def _enumerate(
     return found[:limit], result is not None and len(found) <= limit
 
 
+class _Cut(Exception):
+    """The budget ran out before the relevant reason was proven optimal."""
+
+
 # The conflicts within which INUS reasons are searched (the same effort on
 # every run): beyond them the list is cut short (more may exist).  The
 # saturation of inus.lp over formulas that are not read-once can take
@@ -355,7 +359,7 @@ def explain(
         actual = _actual(necessary_ctl)
         best, proven = _optimum(necessary_ctl, budget)
         if not proven:
-            raise GroundingStopped()
+            raise _Cut()
         necessary, necessary_done = (
             _enumerate(necessary_ctl, limit, budget) if best is not None else ([], True)
         )
@@ -368,7 +372,7 @@ def explain(
             sufficient, sufficient_done = sufficient[:limit], False
         inus, inus_done = _inus(model, program, sufficient, limit, budget)
         stopped = budget.expired() and not (necessary_done and sufficient_done and inus_done)
-    except GroundingStopped:
+    except (GroundingStopped, _Cut):
         stopped = True
     inus_done = inus_done and sufficient_done
     literals = _literals(best) if best is not None else []
