@@ -156,7 +156,7 @@ def task(model, goal: bool = True, at_least: int | None = None, grouped: bool = 
             continue  # it changes nothing that matters (see _necessary)
         written = _operator(f"a{number}", action, layout, stage)
         if written is None:
-            continue  # never applicable (it needs two variables of a group)
+            continue  # never applicable (it needs two variables of a group), or no change
         operator, has_conditions = written
         operators.append(operator)
         conditional = conditional or has_conditions
@@ -360,7 +360,9 @@ def _necessary(model, wanted: set) -> set:
 def _operator(name: str, action, layout: _Layout, stage: int) -> tuple[list[str], bool] | None:
     """An action as an operator (its lines; effects on variables left out of
     the task dropped), and whether it has conditional effects; None where it
-    needs two members of a group true (it is never applicable)."""
+    needs two members of a group true (it is never applicable), or where it
+    changes nothing (the members of a group it makes false are false wherever
+    it applies: Fast Downward refuses an operator without effects)."""
     where, fact = layout.where, layout.fact
     pre: dict[int, int] = {}
     for literal in action.pre:
@@ -410,6 +412,8 @@ def _operator(name: str, action, layout: _Layout, stage: int) -> tuple[list[str]
             continue  # it stays (a prevail condition)
         lines_of_effects.append(f"0 {var} {pre.get(var, -1)} {post}")
         touched.add(var)
+    if not lines_of_effects:
+        return None
     prevail = sorted((var, value) for var, value in pre.items() if var not in touched)
     if stage >= 0:
         prevail.append((stage, 0))
