@@ -5,11 +5,14 @@ variables; and the ground model it reads from the planner."""
 
 from __future__ import annotations
 
+import random
+
 import clingo
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from oracle import random_model
+from test_groups import token_model
 
 from ethasp import Model
 from ethasp.planning.engines.reachability import Reachability, from_atoms
@@ -77,15 +80,6 @@ def test_layers_best_states_and_paths_agree_with_breadth_first_search(seed):
         target = r.best_in_layer(first, r.goal())
         plan = [str(a) for a in r.path_to(target.state, first)]
         assert spec.is_plan(plan) and len(plan) == first
-
-
-def _states(r: Reachability, layer) -> list[frozenset]:
-    variables = r.model.variables
-    names = [f"x{r.index[v]}" for v in variables]
-    result = []
-    for values in r.bdd.pick_iter(layer, care_vars=names):
-        result.append(frozenset(v for v in variables if values[f"x{r.index[v]}"]))
-    return result
 
 
 def test_the_planner_reads_the_ground_model_from_the_encodings():
@@ -167,12 +161,10 @@ def test_a_budget_stops_the_transition_relation_while_it_is_built(checks):
 
 
 def _states(r: Reachability, layer) -> set[frozenset]:
-    """The states of a layer, each as its true variables."""
-    care = [f"x{i}" for i in range(len(r.model.variables))]
-    return {
-        frozenset(v for v in r.model.variables if values[f"x{r.index[v]}"])
-        for values in r.bdd.pick_iter(layer, care_vars=care)
-    }
+    """The states of a layer, each as its true variables (each once)."""
+    states = list(r.states(layer))
+    assert len(set(states)) == len(states)
+    return set(states)
 
 
 @settings(max_examples=60, deadline=None)
@@ -208,3 +200,103 @@ def test_every_state_has_a_shortest_path_and_each_layer_its_best(seed, cluster, 
             plan = [str(a) for a in r.path_to(state, k)]
             assert len(plan) == k
             assert spec.run(plan) == frozenset(str(v) for v in state), (plan, state)
+
+
+def _token_model(seed: int, conditional: bool, derived: bool):
+    """A model of tokens that move (mutex groups: tests/test_groups.py), with
+    utilities on some facts (members of groups among them)."""
+    spec = token_model(seed, conditional, derived)
+    rng = random.Random(seed)
+    spec.fact_utility = {
+        (v, rng.random() < 0.7): rng.randint(-3, 3) for v in spec.variables if rng.random() < 0.3
+    }
+    return spec
+
+
+def _reached(r: Reachability, sets) -> list[set[frozenset]]:
+    """The reachable states of each set, each as the text of its true variables
+    (up to the last set that has one)."""
+    found = [
+        {frozenset(str(v) for v in s) for s in _states(r, layer & r.reached)} for layer in sets
+    ]
+    while found and not found[-1]:
+        found.pop()
+    return found
+
+
+@settings(max_examples=120, deadline=None)
+@given(st.integers(min_value=0, max_value=10**9), st.booleans(), st.booleans())
+def test_groups_in_binary_agree_with_a_bit_per_variable_and_breadth_first_search(
+    seed, conditional, derived
+):
+    """Mutex groups as finite-domain variables in binary: the same layers
+    (against explicit breadth-first search), best states, goal distances,
+    backward layers (their reachable states) and least paths as with a
+    diagram variable per variable."""
+    spec = _token_model(seed, conditional, derived)
+    ground_model = Model.from_string(spec.to_asp()).planner.ground_model()
+    grouped, plain = Reachability(ground_model), Reachability(ground_model, grouped=False)
+    assert all(len(m) == 1 for m in plain.layout.units)
+    assert grouped.run() and plain.run()
+    distances = spec.distances()
+    assert len(grouped.layers) == len(plain.layers) == max(distances.values()) + 1
+    for k, layer in enumerate(grouped.layers):
+        expected = {state for state, d in distances.items() if d == k}
+        assert {frozenset(str(v) for v in s) for s in _states(grouped, layer)} == expected
+    best = grouped.best_of(grouped.reached)
+    assert best.utility == plain.best_of(plain.reached).utility == spec.best_reachable_utility()
+    assert spec.state_utility(frozenset(str(v) for v in best.state)) == best.utility
+    first = grouped.first_layer(grouped.goal())
+    assert first == plain.first_layer(plain.goal()) == spec.shortest_plan_length()
+    grouped.start_backward(grouped.goal())
+    plain.start_backward(plain.goal())
+    while not (grouped.back_complete and plain.back_complete):
+        assert grouped.expand_backward() and plain.expand_backward()
+    assert _reached(grouped, grouped.back_layers) == _reached(plain, plain.back_layers)
+    if first is not None:
+        least = grouped.least_path(grouped.goal(), first)
+        assert least == plain.least_path(plain.goal(), first)
+        assert spec.is_plan([str(a) for a in least]) and len(least) == first
+        target = grouped.best_in_layer(first, grouped.goal())
+        path = [str(a) for a in grouped.path_to(target.state, first)]
+        assert spec.is_plan(path) and len(path) == first
+
+
+def test_the_token_models_give_groups_of_several_bits():
+    """(The property test above meets groups: most token models have one.)"""
+    widths = []
+    for seed in range(20):
+        spec = _token_model(seed, False, False)
+        r = Reachability(Model.from_string(spec.to_asp()).planner.ground_model())
+        widths += [
+            len(bits) for unit, bits in enumerate(r.layout.bits) if len(r.layout.units[unit]) > 1
+        ]
+    assert len(widths) >= 10 and max(widths) >= 2
+
+
+TOKEN = """
+    variable(at(t,p0);at(t,p1);at(t,p2);v). action(go(p0,p1);go(p1,p2)).
+    pre(go(A,B),at(t,A),true) :- action(go(A,B)).
+    eff(go(A,B),at(t,A),false) :- action(go(A,B)).
+    eff(go(A,B),at(t,B),true) :- action(go(A,B)).
+    init(at(t,p0)). goal(at(t,p2),true).
+"""
+
+
+def _units(r: Reachability) -> list[list[str]]:
+    return sorted([str(v) for v in members] for members in r.layout.units)
+
+
+def test_a_group_is_one_variable_in_binary_and_a_weighted_member_a_bit_of_its_own():
+    r = Reachability(Model.from_string(TOKEN).planner.ground_model())
+    assert _units(r) == [["at(t,p0)", "at(t,p1)", "at(t,p2)"], ["v"]]
+    assert r.layout.width == 3  # two bits for the codes 0-3, one for v
+    assert r.run() and r.first_layer(r.goal()) == 2
+    assert [str(a) for a in r.least_path(r.goal(), 2)] == ["go(p0,p1)", "go(p1,p2)"]
+    weighted = Reachability(
+        Model.from_string(TOKEN + "utility(at(t,p1),true,5).").planner.ground_model()
+    )
+    assert _units(weighted) == [["at(t,p0)", "at(t,p2)"], ["at(t,p1)"], ["v"]]
+    assert weighted.run() and weighted.first_layer(weighted.goal()) == 2
+    best = weighted.best_of(weighted.reached)
+    assert best.utility == 5 and {str(v) for v in best.state} == {"at(t,p1)"}

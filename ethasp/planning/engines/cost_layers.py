@@ -110,7 +110,7 @@ class CostLayers(Reachability):
             for k, sublayer in enumerate(sublayers):
                 met = sublayer & goal
                 if met != bdd.false:
-                    state = self._one(met)
+                    state = self.pick(met)
                     yield {"plan": tuple(self._path(state, cost, k)), "cost": cost}
                     return
             layer = bdd.false
@@ -145,12 +145,6 @@ class CostLayers(Reachability):
             self.stopped = f"more than {self.node_limit} diagram nodes"
             return None
         return new
-
-    def _one(self, states) -> frozenset[clingo.Symbol]:
-        """The true variables of one state of a (non-empty) set."""
-        names = [f"x{self.index[v]}" for v in self.model.variables]
-        values = self.bdd.pick(states, care_vars=names)
-        return frozenset(v for v in self.model.variables if values[f"x{self.index[v]}"])
 
     def _path(self, state: frozenset[clingo.Symbol], cost: int, k: int) -> list[clingo.Symbol]:
         """The actions of a cheapest path to a state of sublayer k of layer

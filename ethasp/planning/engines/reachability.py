@@ -21,7 +21,14 @@ value.  A conditional effect (``ceff/4`` with conditions ``cpre/4``) fires
 when its conditions hold in the state before the action; when effects that
 fire set a variable both true and false, true wins (PDDL's delete-then-add).
 
-States are sets of variables (true) over the model's variables.  The
+States are sets of variables (true) over the model's variables.  In the
+diagrams, each proven mutex group of the model (:mod:`ethasp.planning.engines.
+groups`: at most one of its variables holds in every reachable state) is one
+finite-domain variable written in binary, one diagram variable per bit (its
+value: which member holds, or none), as symbolic planners encode the groups
+of their tasks; every other variable is a diagram variable of its own
+(:class:`Layout`).  A group has no member whose facts carry a utility (the
+utility of a state is read off the diagrams one variable at a time).  The
 diagrams come from the ``dd`` package: CUDD (``dd.cudd``) when its compiled
 module is installed, else ``dd``'s own Python implementation.  The engine is
 cross-checked against explicit breadth-first search by the tests
@@ -33,7 +40,7 @@ from __future__ import annotations
 
 import sys
 import warnings
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 
 import clingo
@@ -239,6 +246,88 @@ def _clusters(model: GroundModel, index: dict[clingo.Symbol, int]) -> list[list[
     return groups
 
 
+class Layout:
+    """The diagram variables (bits) of a model's variables.
+
+    Each mutex group (``groups``: disjoint lists of two or more variables, of
+    which at most one holds in every reachable state) is one *unit*, a
+    finite-domain variable written in binary: its member k (counted from 1)
+    has the code k, code 0 says that no member holds, and its bits come most
+    significant first.  Every other variable is a unit of its own, one bit
+    (code 1: true).  Units take the places of their first variables in
+    ``order`` (a list of variable numbers), their bits numbered in that
+    order: the diagrams' order.
+    """
+
+    def __init__(self, variables: Sequence[clingo.Symbol], order: Sequence[int], groups=()):
+        group_of = {v: number for number, group in enumerate(groups) for v in group}
+        self.units: list[tuple[clingo.Symbol, ...]] = []  # unit -> its members
+        self.bits: list[tuple[int, ...]] = []  # unit -> its bits
+        self.place: dict[clingo.Symbol, tuple[int, int]] = {}  # variable -> (unit, code)
+        placed: set[int] = set()
+        width = 0
+        for i in order:
+            variable = variables[i]
+            number = group_of.get(variable)
+            if number is None:
+                members: tuple[clingo.Symbol, ...] = (variable,)
+            elif number in placed:
+                continue
+            else:
+                placed.add(number)
+                members = tuple(groups[number])
+            unit = len(self.units)
+            size = len(members).bit_length()  # codes 0 to len(members)
+            self.units.append(members)
+            self.bits.append(tuple(range(width, width + size)))
+            width += size
+            for code, member in enumerate(members, start=1):
+                self.place[member] = (unit, code)
+        self.width = width
+
+    def assignment(self, true, units: Iterable[int]) -> dict[int, bool] | None:
+        """The bits of ``units`` in the state whose true variables are ``true``
+        (None if it has two members of a group true: no reachable state)."""
+        values: dict[int, bool] = {}
+        for unit in units:
+            held = [code for code, m in enumerate(self.units[unit], start=1) if m in true]
+            if len(held) > 1:
+                return None
+            values.update(self.code_bits(unit, held[0] if held else 0))
+        return values
+
+    def code_bits(self, unit: int, code: int) -> dict[int, bool]:
+        bits = self.bits[unit]
+        last = len(bits) - 1
+        return {b: bool(code >> (last - j) & 1) for j, b in enumerate(bits)}
+
+    def state(self, value) -> frozenset[clingo.Symbol]:
+        """The true variables of the state whose bit b has the value ``value(b)``."""
+        true = []
+        for unit, members in enumerate(self.units):
+            code = 0
+            for b in self.bits[unit]:
+                code = 2 * code + bool(value(b))
+            if 1 <= code <= len(members):
+                true.append(members[code - 1])
+        return frozenset(true)
+
+
+def mutex_groups(model: GroundModel) -> list[list[clingo.Symbol]]:
+    """The proven mutex groups of the model (:func:`ethasp.planning.engines.
+    groups.groups`) less their members whose facts carry a utility (a subset
+    of a group is a group), those of two or more variables kept."""
+    from ethasp.planning.engines import groups as groups_module
+
+    weighted = {variable for (variable, _), utility in model.weights.items() if utility}
+    found = []
+    for group in groups_module.groups(model):
+        rest = [v for v in group if v not in weighted]
+        if len(rest) > 1:
+            found.append(rest)
+    return found
+
+
 def _backend():
     """The decision diagram module: ``dd.cudd`` (compiled), else ``dd.autoref``.
 
@@ -281,7 +370,9 @@ class Reachability:
     they looked.
     """
 
-    def __init__(self, model: GroundModel, node_limit: int = DEFAULT_NODE_LIMIT):
+    def __init__(
+        self, model: GroundModel, node_limit: int = DEFAULT_NODE_LIMIT, grouped: bool = True
+    ):
         require("exact reachability", FEATURES, model_features(model))
         self.model = model
         self.node_limit = node_limit
@@ -290,13 +381,26 @@ class Reachability:
         self._module = module
         self.bdd = module.BDD(memory_estimate=256 * 2**20) if compiled else module.BDD()
         self.index = {variable: i for i, variable in enumerate(model.variables)}
+        # ``grouped``: mutex groups as finite-domain variables (else a bit per variable).
+        groups = mutex_groups(model) if grouped else []
+        self.layout = Layout(model.variables, _order(model, self.index), groups)
         names = []
-        for i in _order(model, self.index):
-            names += [f"x{i}", f"y{i}"]  # a variable's value before and after an action
+        for b in range(self.layout.width):
+            names += [f"x{b}", f"y{b}"]  # a bit's value before and after an action
         self.bdd.declare(*names)
         # The variables keep the order of _order: reordering them (sifting) cost
         # far more than it saved on the planning models measured.
         self.bdd.configure(reordering=False)
+        self._members: dict = {}
+        self._unit_bits: dict = {}
+        # The states whose groups have valid codes (every reachable one).
+        self.valid = self.bdd.true
+        for unit, members in enumerate(self.layout.units):
+            if len(members) > 1:
+                held = self._code(unit, 0)
+                for member in members:
+                    held |= self._member(member)
+                self.valid &= held
         self._derived: dict = {}
         self._derive()
         self._groups = _clusters(model, self.index)
@@ -310,7 +414,7 @@ class Reachability:
         self._images: list = []
         self._built = False
         self.unbuilt = ""
-        init = self._cube([(v, v in model.init) for v in model.variables])
+        init = self.state(model.init)
         self.layers = [init]
         self._prefixes: list = []
         self._relations: dict = {}
@@ -330,14 +434,25 @@ class Reachability:
 
     # -- diagrams of literals -----------------------------------------------------
 
-    def _var(self, variable: clingo.Symbol, after: bool = False):
-        return self.bdd.var(f"{'y' if after else 'x'}{self.index[variable]}")
+    def _code(self, unit: int, code: int, after: bool = False):
+        """The set of states where a unit has a code."""
+        prefix = "y" if after else "x"
+        bits = self.layout.code_bits(unit, code)
+        return self.bdd.cube({f"{prefix}{b}": value for b, value in bits.items()})
+
+    def _member(self, variable: clingo.Symbol, after: bool = False):
+        """The set of states where a (non-derived) variable holds."""
+        key = (variable, after)
+        node = self._members.get(key)
+        if node is None:
+            node = self._members[key] = self._code(*self.layout.place[variable], after)
+        return node
 
     def _literal(self, literal: Literal, after: bool = False):
         if literal[0] in self._derived:
             node = self._derived[literal[0]]
         else:
-            node = self._var(literal[0], after)
+            node = self._member(literal[0], after)
         return node if literal[1] else ~node
 
     def _derive(self) -> None:
@@ -426,27 +541,87 @@ class Reachability:
         return known(0, bound)
 
     def state(self, true: Iterable[clingo.Symbol]):
-        """The set holding one state (its true variables given)."""
-        true = set(true)
-        return self._values(true, self.model.variables)
+        """The set holding one state (its true variables given; empty where two
+        members of a group are true: no reachable state is)."""
+        return self._values(set(true), range(len(self.layout.units)))
 
-    def _values(self, true, variables, after: bool = False):
-        """The cube giving (non-derived) variables their values in a state (true ones given)."""
+    def _values(self, true, units: Iterable[int], after: bool = False):
+        """The cube giving the bits of ``units`` their values in a state (true
+        variables given)."""
+        values = self.layout.assignment(true, units)
+        if values is None:
+            return self.bdd.false
         prefix = "y" if after else "x"
-        return self.bdd.cube({f"{prefix}{self.index[v]}": v in true for v in variables})
+        return self.bdd.cube({f"{prefix}{b}": value for b, value in values.items()})
+
+    def _bit_values(self, true, bits: Iterable[int], after: bool = False):
+        """The cube giving ``bits`` their values in a state (true variables given)."""
+        owner = self._owners()
+        return self._values(true, sorted({owner[b] for b in bits}), after)
+
+    def _owners(self) -> list[int]:
+        """The unit of each bit."""
+        if not self._unit_bits:
+            self._unit_bits = {
+                b: unit for unit, bits in enumerate(self.layout.bits) for b in bits
+            }
+        return self._unit_bits
+
+    def pick(self, states) -> frozenset[clingo.Symbol]:
+        """The true variables of one state of a (non-empty) set."""
+        care = [f"x{b}" for b in range(self.layout.width)]
+        values = self.bdd.pick(states, care_vars=care)
+        return self.layout.state(lambda b: values[f"x{b}"])
+
+    def states(self, states) -> Iterator[frozenset[clingo.Symbol]]:
+        """The true variables of every state of a set, one state after the other."""
+        care = [f"x{b}" for b in range(self.layout.width)]
+        for values in self.bdd.pick_iter(states, care_vars=care):
+            yield self.layout.state(lambda b, values=values: values[f"x{b}"])
+
+    def _written_units(self, actions: Iterable[GroundAction]) -> list[int]:
+        place = self.layout.place
+        return sorted({place[e.variable][0] for a in actions for e in a.effects})
+
+    def _written_bits(self, actions: Iterable[GroundAction]) -> list[int]:
+        bits = self.layout.bits
+        return [b for unit in self._written_units(actions) for b in bits[unit]]
 
     # -- images -------------------------------------------------------------------
 
     def _after_values(self, action: GroundAction) -> dict[int, object]:
-        """The value after the action of each variable it writes (by index),
-        over the values before: set where an effect setting it true fires,
-        else kept where none setting it false fires."""
-        bdd = self.bdd
+        """The value after the action of each bit it writes, over the values
+        before.  A variable of its own is set where an effect setting it true
+        fires, else kept where none setting it false fires.  A group takes the
+        code of the member an effect makes true (at most one, unconditionally:
+        the group's proof), else code 0 where an effect makes its member that
+        holds false, else keeps its code."""
+        bdd, layout = self.bdd, self.layout
         changes: dict[int, list] = {}
         for effect in action.effects:
-            entry = changes.setdefault(self.index[effect.variable], [bdd.false, bdd.false])
-            entry[0 if effect.value else 1] |= self._cube(effect.condition)
-        return {i: adds | (bdd.var(f"x{i}") & ~deletes) for i, (adds, deletes) in changes.items()}
+            unit, code = layout.place[effect.variable]
+            entry = changes.setdefault(unit, [bdd.false, bdd.false, None])
+            fires = self._cube(effect.condition)
+            if effect.value:
+                entry[0] |= fires
+                entry[2] = code
+            else:
+                entry[1] |= fires & self._member(effect.variable)
+        after: dict[int, object] = {}
+        for unit, (adds, deletes, added) in changes.items():
+            bits = layout.bits[unit]
+            if len(layout.units[unit]) == 1:
+                (b,) = bits
+                after[b] = adds | (bdd.var(f"x{b}") & ~deletes)
+            elif added is not None:
+                if adds != bdd.true:
+                    raise ValueError(f"a conditional effect on the group of {layout.units[unit]}")
+                for b, value in layout.code_bits(unit, added).items():
+                    after[b] = bdd.true if value else bdd.false
+            else:
+                for b in bits:  # (code 0: every bit false)
+                    after[b] = bdd.var(f"x{b}") & ~deletes
+        return after
 
     def _build(self, budget: Budget | None) -> bool:
         """Build the transition relations not built yet; False (and
@@ -477,10 +652,10 @@ class Reachability:
         return True
 
     def _cluster(self, actions: list[GroundAction], budget: Budget | None = None):
-        """The transition relation of a cluster of actions over the variables they
+        """The transition relation of a cluster of actions over the bits they
         write (before: x, after: y), and what an image under it quantifies and renames."""
-        index, bdd = self.index, self.bdd
-        written = sorted({index[e.variable] for a in actions for e in a.effects})
+        bdd = self.bdd
+        written = self._written_bits(actions)
         unchanged = {i: bdd.var(f"y{i}").equiv(bdd.var(f"x{i}")) for i in written}
         relation = bdd.false
         for action in actions:
@@ -620,6 +795,7 @@ class Reachability:
         """Start backward layers from a set of states (the goal states, say):
         backward layer j holds the states whose shortest path into the set has
         j actions (states not reachable from the initial state included)."""
+        states &= self.valid  # (the states of no reachable state's shape left out)
         self.back_layers = [states]
         self.back_reached = states
         self.back_complete = False
@@ -674,18 +850,14 @@ class Reachability:
         for group, parts in zip(self._groups, self._images, strict=True):
             if self._image(full, parts) & states != self.bdd.false:
                 candidates += group
-        care = [f"x{i}" for i in range(len(self.model.variables))]
         for action in sorted(candidates, key=lambda candidate: candidate.name):
             relation, written = self._relation(action)
-            qvars = [f"x{self.index[v]}" for v in written]
+            qvars = [f"x{b}" for b in written]
             moved = self.bdd.exist(qvars, full & relation)
-            renaming = {f"y{self.index[v]}": x for v, x in zip(written, qvars, strict=True)}
+            renaming = {f"y{b}": f"x{b}" for b in written}
             after = self.bdd.let(renaming, moved) & states
             if after != self.bdd.false:
-                values = self.bdd.pick(after, care_vars=care)
-                return action.name, frozenset(
-                    v for v in self.model.variables if values[f"x{self.index[v]}"]
-                )
+                return action.name, self.pick(after)
         return None
 
     def run(self, budget: Budget | None = None) -> bool:
@@ -717,10 +889,8 @@ class Reachability:
         cluster), then an action of it."""
         self._build(None)
         full = self.state(state)
-        variables = self.model.variables
         for group, (relation, qvars, rename) in zip(self._groups, self._images, strict=True):
-            written = [variables[int(x[1:])] for x in qvars]
-            after = self._values(state, written, after=True)
+            after = self._bit_values(state, [int(x[1:]) for x in qvars], after=True)
             before = self.bdd.exist(list(rename), relation & after)
             if before & self.bdd.exist(qvars, full) & layer == self.bdd.false:
                 continue
@@ -738,17 +908,12 @@ class Reachability:
             if not self._may_lead_to(action, state):
                 continue
             relation, written = self._relation(action)
-            after = self._values(state, written, after=True)
-            qvars = [f"x{self.index[v]}" for v in written]
-            rest = self.bdd.exist(qvars, full)  # the variables the action leaves alone
-            before = self.bdd.exist([f"y{self.index[v]}" for v in written], relation & after)
+            after = self._bit_values(state, written, after=True)
+            rest = self.bdd.exist([f"x{b}" for b in written], full)  # the bits it leaves alone
+            before = self.bdd.exist([f"y{b}" for b in written], relation & after)
             before &= rest & layer
             if before != self.bdd.false:
-                values = self.bdd.pick(
-                    before, care_vars=[f"x{i}" for i in range(len(self.model.variables))]
-                )
-                true = frozenset(v for v in self.model.variables if values[f"x{self.index[v]}"])
-                return action.name, true
+                return action.name, self.pick(before)
         return None
 
     def _may_lead_to(self, action: GroundAction, state: frozenset[clingo.Symbol]) -> bool:
@@ -784,14 +949,13 @@ class Reachability:
         return found
 
     def _relation(self, action: GroundAction):
-        """The transition relation of one action over the variables it writes."""
+        """The transition relation of one action over the bits it writes, and those bits."""
         if action.name not in self._relations:
-            written = sorted({e.variable for e in action.effects}, key=self.index.__getitem__)
+            written = self._written_bits([action])
             after = self._after_values(action)
             relation = self._cube(action.pre)
-            for variable in written:
-                i = self.index[variable]
-                relation &= self.bdd.var(f"y{i}").equiv(after[i])
+            for b in written:
+                relation &= self.bdd.var(f"y{b}").equiv(after[b])
             self._relations[action.name] = (relation, written)
         return self._relations[action.name]
 
@@ -849,19 +1013,25 @@ class Reachability:
         return Best(utility, true, k)
 
     def _levels(self):
-        """Per level of the diagrams: (variable index, w(false), w(true)) or None
-        for an after-variable; and free[l], the best utility of the variables at
-        levels l and below, unconstrained.  (The order never changes: no
-        reordering.)"""
+        """Per level of the diagrams: (bit, w(false), w(true)) or None for an
+        after-bit (the bit of a variable of its own: the utilities of its facts;
+        a group's bits: 0, its members carry none); and free[l], the best
+        utility of the bits at levels l and below, unconstrained.  (The order
+        never changes: no reordering.)"""
         if self._level_table is None:
-            bdd, variables, weights = self.bdd, self.model.variables, self.model.weights
+            bdd, weights, layout = self.bdd, self.model.weights, self.layout
+            owner = self._owners()
             by_level: list[tuple[int, int, int] | None] = []
             for level in range(len(bdd.vars)):
                 name = bdd.var_at_level(level)
                 if name.startswith("x"):
-                    i = int(name[1:])
-                    v = variables[i]
-                    by_level.append((i, weights.get((v, False), 0), weights.get((v, True), 0)))
+                    b = int(name[1:])
+                    members = layout.units[owner[b]]
+                    if len(members) == 1:
+                        v = members[0]
+                        by_level.append((b, weights.get((v, False), 0), weights.get((v, True), 0)))
+                    else:
+                        by_level.append((b, 0, 0))
                 else:
                     by_level.append(None)
             free = [0] * (len(by_level) + 1)
@@ -926,15 +1096,8 @@ class Reachability:
             if entry is not None:
                 chosen[entry[0]] = value
             node = child
-        variables = self.model.variables
-        true = set()
-        for entry in by_level:
-            if entry is None:
-                continue
-            i, w_false, w_true = entry
-            if chosen.get(i, w_true > w_false):
-                true.add(variables[i])
-        return int(total), frozenset(true)
+        best = {entry[0]: entry[2] > entry[1] for entry in by_level if entry is not None}
+        return int(total), self.layout.state(lambda b: chosen.get(b, best[b]))
 
 
 def _effect_order(effect: Effect) -> tuple:
