@@ -562,9 +562,7 @@ class Reachability:
     def _owners(self) -> list[int]:
         """The unit of each bit."""
         if not self._unit_bits:
-            self._unit_bits = {
-                b: unit for unit, bits in enumerate(self.layout.bits) for b in bits
-            }
+            self._unit_bits = {b: unit for unit, bits in enumerate(self.layout.bits) for b in bits}
         return self._unit_bits
 
     def pick(self, states) -> frozenset[clingo.Symbol]:
