@@ -13,6 +13,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from oracle import features, random_model
+from test_groups import token_model
 
 import ethasp.planning.engines.layers as layers_module
 import ethasp.planning.search as search_module
@@ -195,24 +196,33 @@ def test_budget_until_stops_on_its_condition():
 
 
 @pytest.mark.slow
-@settings(max_examples=60, deadline=None)
-@given(st.integers(min_value=0, max_value=10**9), st.booleans(), st.booleans())
+@settings(max_examples=80, deadline=None)
+@given(st.integers(min_value=0, max_value=10**9), st.booleans(), st.booleans(), st.booleans())
 def test_bidirectional_layers_prove_the_shortest_length_and_read_a_shortest_plan(
-    seed, conditional, derived
+    seed, conditional, derived, tokens
 ):
     """Forward layers and backward layers from the goal states (pre-images):
     where they first meet is the oracle's shortest length, the plan read off
-    through both is valid, and `complete` only when no goal state is reachable."""
-    spec = random_model(seed, conditional=conditional, derived=derived, far_goal=seed % 2 == 1)
+    through both is valid and the least one, as forward layers read it, and
+    `complete` only when no goal state is reachable (``tokens``: models with
+    mutex groups, tests/test_groups.py)."""
+    if tokens:
+        spec = token_model(seed, conditional, derived)
+    else:
+        spec = random_model(seed, conditional=conditional, derived=derived, far_goal=seed % 2 == 1)
     model = Model.from_string(spec.to_asp())
     if model.planner.is_fact("unreachable_goal"):
         assert spec.shortest_plan_length() is None
     else:
-        layers = Layers(Atoms(model.planner), Budget(None), bidirectional=True).start()
+        both = Layers(Atoms(model.planner), Budget(None), bidirectional=True).start()
+        forward = Layers(Atoms(model.planner), Budget(None), bidirectional=False).start()
         try:
-            check_against_oracle(spec, finished(layers), model)
+            status = finished(both)
+            check_against_oracle(spec, status, model)
+            assert status.plan == finished(forward).plan
         finally:
-            layers.stop()
+            both.stop()
+            forward.stop()
 
 
 @pytest.mark.parametrize("seed", [5, 8, 13, 21, 34, 55, 89, 144])

@@ -257,6 +257,10 @@ def test_groups_in_binary_agree_with_a_bit_per_variable_and_breadth_first_search
         least = grouped.least_path(grouped.goal(), first)
         assert least == plain.least_path(plain.goal(), first)
         assert spec.is_plan([str(a) for a in least]) and len(least) == first
+        # Read off through both directions, wherever they meet: the same path.
+        for r in (grouped, plain):
+            for forward in range(first + 1):
+                assert r.least_path_meeting(forward, first - forward) == least
         target = grouped.best_in_layer(first, grouped.goal())
         path = [str(a) for a in grouped.path_to(target.state, first)]
         assert spec.is_plan(path) and len(path) == first

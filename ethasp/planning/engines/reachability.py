@@ -822,16 +822,43 @@ class Reachability:
         step.  The same path whatever engine found the length first."""
         if length > 0:
             self._build(None)  # (built by the expansions that made the layers)
+        return self._least_walk(self._within_layers(self.layers[length] & states, length))
+
+    def least_path_meeting(self, forward: int, backward: int) -> list[clingo.Symbol]:
+        """The least path of ``forward + backward`` actions from the initial
+        state into the set the backward layers start from, where forward layer
+        ``forward`` and backward layer ``backward`` are the first to meet (so
+        that this is the length of a shortest path): as :meth:`least_path`,
+        without the forward layers beyond ``forward``.  A state at step k of
+        such a path is at distance k from the initial state and at distance
+        ``forward + backward - k`` from the set: up to step ``forward`` the
+        sets of states from which the rest leads into the meeting are
+        computed backwards within the forward layers; after it, they are the
+        backward layers themselves."""
+        self._build(None)
+        meeting = self.layers[forward] & self.back_layers[backward]
+        targets = self._within_layers(meeting, forward)
+        targets += [self.back_layers[backward - j] for j in range(1, backward + 1)]
+        return self._least_walk(targets)
+
+    def _within_layers(self, states, length: int) -> list:
+        """For k up to ``length``: the states of forward layer k from which a
+        path of ``length - k`` actions leads into ``states`` (of layer ``length``)."""
         targets = [self.bdd.false] * (length + 1)
-        targets[length] = self.layers[length] & states
+        targets[length] = states
         for k in range(length - 1, -1, -1):
             before = self.bdd.false
             for parts in self._images:
                 before |= self._preimage(targets[k + 1], parts)
             targets[k] = self.layers[k] & before
+        return targets
+
+    def _least_walk(self, targets: list) -> list[clingo.Symbol]:
+        """From the initial state (in ``targets[0]``), the least action into
+        ``targets[k]`` at each step k."""
         current = frozenset(self.model.init)
         actions: list[clingo.Symbol] = []
-        for k in range(1, length + 1):
+        for k in range(1, len(targets)):
             step = self._least_successor(current, targets[k])
             if step is None:
                 raise RuntimeError(f"no successor of a state of layer {k - 1} in layer {k}")
