@@ -664,7 +664,10 @@ class Reachability:
             for i in written:
                 step &= bdd.var(f"y{i}").equiv(after[i]) if i in after else unchanged[i]
             relation |= step
-            if self.nodes() > self.node_limit:
+            # (the manager's count of live nodes: a twentieth of the time of
+            # nodes(), which counts dead ones not yet collected too, once an
+            # action on models of hundreds of actions)
+            if len(bdd) > self.node_limit:
                 raise _TooLarge()
         qvars = [f"x{i}" for i in written]
         rename = {f"y{i}": f"x{i}" for i in written}
@@ -712,7 +715,8 @@ class Reachability:
         return self.bdd.let(rename, moved)
 
     def nodes(self) -> int:
-        """Live diagram nodes (of every diagram of the manager)."""
+        """Diagram nodes of the manager (with CUDD: live ones and dead ones
+        not yet collected)."""
         if self._compiled:
             with warnings.catch_warnings():  # dd warns of a changed unit of 'mem'
                 warnings.simplefilter("ignore")
