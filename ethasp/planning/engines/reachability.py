@@ -392,7 +392,7 @@ class Reachability:
         # far more than it saved on the planning models measured.
         self.bdd.configure(reordering=False)
         self._members: dict = {}
-        self._unit_bits: dict = {}
+        self._owner: dict[int, int] = {}
         # The states whose groups have valid codes (every reachable one).
         self.valid = self.bdd.true
         for unit, members in enumerate(self.layout.units):
@@ -559,11 +559,13 @@ class Reachability:
         owner = self._owners()
         return self._values(true, sorted({owner[b] for b in bits}), after)
 
-    def _owners(self) -> list[int]:
+    def _owners(self) -> dict[int, int]:
         """The unit of each bit."""
-        if not self._unit_bits:
-            self._unit_bits = {b: unit for unit, bits in enumerate(self.layout.bits) for b in bits}
-        return self._unit_bits
+        if not self._owner:
+            self._owner.update(
+                (b, unit) for unit, bits in enumerate(self.layout.bits) for b in bits
+            )
+        return self._owner
 
     def pick(self, states) -> frozenset[clingo.Symbol]:
         """The true variables of one state of a (non-empty) set."""
