@@ -304,3 +304,31 @@ def test_a_group_is_one_variable_in_binary_and_a_weighted_member_a_bit_of_its_ow
     assert weighted.run() and weighted.first_layer(weighted.goal()) == 2
     best = weighted.best_of(weighted.reached)
     assert best.utility == 5 and {str(v) for v in best.state} == {"at(t,p1)"}
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(min_value=0, max_value=10**9), st.booleans())
+def test_clusters_split_down_to_single_actions_give_the_same_layers_and_paths(seed, tokens):
+    """A cluster whose relation outgrows CLUSTER_NODES is split in two, again
+    and again (here every cluster, down to one action each): the same layers
+    and least paths as with whole clusters."""
+    import ethasp.planning.engines.reachability as reachability_module
+
+    spec = _token_model(seed, seed % 2 == 0, seed % 3 == 0) if tokens else spec_of(seed)
+    ground_model = Model.from_string(spec.to_asp()).planner.ground_model()
+    whole = Reachability(ground_model)
+    saved = reachability_module.CLUSTER_NODES, reachability_module.MERGE_NODES
+    reachability_module.CLUSTER_NODES = reachability_module.MERGE_NODES = -1
+    try:
+        split = Reachability(ground_model)
+        assert split.run() and whole.run()
+    finally:
+        reachability_module.CLUSTER_NODES, reachability_module.MERGE_NODES = saved
+    assert len(split._groups) == len(ground_model.actions)  # one action a cluster
+    assert [_states(split, layer) for layer in split.layers] == [
+        _states(whole, layer) for layer in whole.layers
+    ]
+    first = whole.first_layer(whole.goal())
+    assert split.first_layer(split.goal()) == first
+    if first is not None:
+        assert split.least_path(split.goal(), first) == whole.least_path(whole.goal(), first)

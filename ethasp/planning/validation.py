@@ -21,7 +21,7 @@ from ethasp.planning.messages import Messages
 from ethasp.planning.model import Model
 from ethasp.planning.naming import ASP_NAMING, Naming
 from ethasp.planning.plan import Plan
-from ethasp.planning.readers.pddl import SCHEMA_PREDICATES
+from ethasp.planning.readers import SCHEMA_PREDICATES
 from ethasp.resources import encoding
 from ethasp.vocabulary import (
     Failure,

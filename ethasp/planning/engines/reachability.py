@@ -65,6 +65,11 @@ UTILITY_MEMO_LIMIT = 2_000_000
 # write: one relational product per cluster instead of one image per action.
 CLUSTER_VARIABLES = 16
 
+# A cluster whose relation grows beyond this many nodes is split in two
+# (satellite p5: 110 take_image actions over 16 variables made a relation of
+# 1.1 million nodes, the layers gave up before their first image).
+CLUSTER_NODES = 20_000
+
 # On models whose cluster relations have at most this many nodes together,
 # neighbouring clusters are merged while their joint relation stays within it
 # (logistics p4: one relation for all 84 actions, 1981 nodes, layers 4.5x
@@ -357,6 +362,10 @@ class _Stopped(Exception):
     """A budget ran out while a transition relation was built."""
 
 
+class _Split(Exception):
+    """A cluster's transition relation grew beyond :data:`CLUSTER_NODES`."""
+
+
 class _TooLarge(Exception):
     """A transition relation grew beyond the node limit while it was built."""
 
@@ -634,8 +643,16 @@ class Reachability:
             self.stopped = self.unbuilt
             return False
         while len(self._images) < len(self._groups):
+            group = self._groups[len(self._images)]
             try:
-                self._images.append(self._cluster(self._groups[len(self._images)], budget))
+                self._images.append(self._cluster(group, budget, split=True))
+            except _Split:
+                # Two clusters of half the actions each (split again if need be).
+                half = len(group) // 2
+                self._groups[len(self._images) : len(self._images) + 1] = [
+                    group[:half],
+                    group[half:],
+                ]
             except _TooLarge:
                 self._images = []
                 self.unbuilt = (
@@ -651,11 +668,16 @@ class Reachability:
         self._built = True
         return True
 
-    def _cluster(self, actions: list[GroundAction], budget: Budget | None = None):
+    def _cluster(
+        self, actions: list[GroundAction], budget: Budget | None = None, split: bool = False
+    ):
         """The transition relation of a cluster of actions over the bits they
-        write (before: x, after: y), and what an image under it quantifies and renames."""
+        write (before: x, after: y), and what an image under it quantifies and
+        renames.  ``split``: give up (:class:`_Split`) once the relation of two
+        or more actions has more than :data:`CLUSTER_NODES` nodes."""
         bdd = self.bdd
         written = self._written_bits(actions)
+        start = len(bdd)
         unchanged = {i: bdd.var(f"y{i}").equiv(bdd.var(f"x{i}")) for i in written}
         relation = bdd.false
         for action in actions:
@@ -668,8 +690,17 @@ class Reachability:
             relation |= step
             # (the manager's count of live nodes: a twentieth of the time of
             # nodes(), which counts dead ones not yet collected too, once an
-            # action on models of hundreds of actions)
-            if len(bdd) > self.node_limit:
+            # action on models of hundreds of actions; the relation's own
+            # size, a traversal, only once the manager has grown that much)
+            grown = len(bdd)
+            if (
+                split
+                and len(actions) > 1
+                and grown - start > CLUSTER_NODES
+                and len(relation) > CLUSTER_NODES
+            ):
+                raise _Split()
+            if grown > self.node_limit:
                 raise _TooLarge()
         qvars = [f"x{i}" for i in written]
         rename = {f"y{i}": f"x{i}" for i in written}

@@ -7,3 +7,7 @@ PDDL domains and problems (:mod:`ethasp.planning.readers.pddl`, parsed by
 clingo grounds like any model file; what the facts mean is decided by the
 encodings alone.
 """
+
+#: The heads of the rules over pddl_candidate/1 that a PDDL translation writes
+#: (see encodings/planning/static.lp); here, where reading them needs no reader.
+SCHEMA_PREDICATES = ("pddl_schema_instance", "pddl_static_failure")

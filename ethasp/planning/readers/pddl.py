@@ -131,9 +131,6 @@ __all__ = ["FRAGMENT", "PddlFile", "is_pddl", "split_paths", "translate", "trans
 
 AUXILIARY = "formula"
 
-#: The heads of the rules over pddl_candidate/1 (see encodings/planning/static.lp).
-SCHEMA_PREDICATES = ("pddl_schema_instance", "pddl_static_failure")
-
 
 # -- negation normal form ---------------------------------------------------------
 
