@@ -6,11 +6,15 @@ refutation costs more than the one before.  Exact breadth-first layers of
 the reachable states (:class:`ethasp.planning.engines.reachability.Reachability`)
 prove the same bounds symbolically: no goal state in layers 0..k proves that
 every plan has more than k steps, and the first layer with a goal state is
-the length of a shortest plan, with a shortest path to read off.  Diagrams
-do well where the encodings do badly (many interchangeable objects, many
-independent actions) and badly where they do well, so :class:`Layers`
-computes them in a thread of its own while the solver works on the
-horizons, and the search takes whichever proof comes first.
+the length of a shortest plan, with a shortest path to read off.  By
+default (:data:`BIDIRECTIONAL`) the layers grow from both ends, forward from
+the initial state and backward from the goal states, and no meeting of
+forward layers 0..i with backward layers 0..j proves that every plan has
+more than i + j steps.  Diagrams do well where the encodings do badly (many
+interchangeable objects, many independent actions) and badly where they do
+well, so :class:`Layers` computes them in a process (or thread) of its own
+while the solver works on the horizons, and the search takes whichever
+proof comes first.
 
 Models with exogenous events get explicit layers of configurations instead
 (:mod:`ethasp.planning.engines.explicit`): the diagrams know no events.
@@ -63,8 +67,8 @@ NODE_LIMIT = 500_000
 # through both where they meet).  With a diagram variable per state variable
 # the backward layers held states that no reachable state resembles and grew
 # far faster than the forward ones (depots p2: 1.4 million nodes at backward
-# layer 2); with each mutex group one variable in binary they hold only
-# states of the groups' shape, and meet early: satellite p4 (17 steps) in
+# layer 2); with each mutex group one variable in binary they hold no state
+# with two members of a group true, and meet early: satellite p4 (17 steps) in
 # 0.3 s where forward layers pass 500,000 nodes at layer 13, driverlog p4 (16
 # steps) in 0.16 s where forward layers take 1.8 s.
 BIDIRECTIONAL = True
