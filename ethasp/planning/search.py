@@ -16,18 +16,19 @@ goal, restrictions, question constraints, utility thresholds) and a
 * ``bounded``: the search stopped at the maximal horizon or the budget
   (time limit, cancellation) without a plan; a plan may still exist.
 
-Engines race for speed, never for the answer: while no limit is hit, a search
-answers the same on every run, whichever engine proves what first.  The plan
-of a shortest search is the *least* shortest plan (plans of a length compared
-step by step, step 1 first, by their actions' terms), read off the exact
-layers (:meth:`~ethasp.planning.engines.reachability.Reachability.least_path`)
+Engines race for speed, never for the answer: while no limit is hit, a
+search answers the same on every run, whichever engine proves what first.
+The plan of a shortest search is the *least* shortest plan (plans of a
+length compared step by step, step 1 first, by their actions' terms), read
+off the exact layers where forward and backward ones meet
+(:meth:`~ethasp.planning.engines.reachability.Reachability.least_path_meeting`)
 or found by the solver's least-plan heuristic (``planning/lexicographic.lp``);
-each kind of claim has one proof text; and ``none`` at the maximal horizon is
-claimed exactly when the layers know every reachable state within one step
-beyond it, or no path one step beyond it lacks a repeated state, however far
-the race got.  Any-plan searches take the greedy search's plan where it runs
-and finds one, else the solver's, whose horizons and slices are measured in
-conflicts, not seconds.
+each kind of claim has one proof text; and ``none`` at the maximal horizon
+is claimed exactly when the layers know every reachable state within one
+step beyond it, or no path one step beyond it lacks a repeated state,
+however far the race got.  Any-plan searches take the greedy search's plan
+where it runs and finds one, else the solver's, whose horizons and slices
+are measured in conflicts, not seconds.
 """
 
 from __future__ import annotations
