@@ -16,11 +16,14 @@ and the state there).
 
 from __future__ import annotations
 
+import random
+
 import pytest
 from conftest import answer_sets
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from oracle import features, random_model
+from test_groups import token_model
 from test_layers import finished
 
 import ethasp.planning.engines.explicit as explicit_module
@@ -39,7 +42,20 @@ pytestmark = pytest.mark.slow
 SEEDS = st.integers(min_value=0, max_value=10**9)
 
 
-def spec_of(seed: int, far: bool):
+def spec_of(seed: int, far: bool, tokens: bool = False):
+    """A random model drawing every feature; with ``tokens``, one of tokens that
+    move (mutex groups, which the diagrams encode in binary: tests/
+    test_groups.py) with conditional effects, derived variables and
+    utilities of facts drawn."""
+    if tokens:
+        rng = random.Random(seed)
+        spec = token_model(seed, conditional=rng.random() < 0.5, derived=rng.random() < 0.3)
+        spec.fact_utility = {
+            (v, rng.random() < 0.7): rng.randint(-3, 3)
+            for v in spec.variables
+            if rng.random() < 0.3
+        }
+        return spec
     return random_model(seed, max_variables=4, max_actions=4, far_goal=far, **features(seed))
 
 
@@ -124,12 +140,12 @@ def check_status(spec, status: Status) -> None:
         assert spec.shortest_plan_length() == status.goal_layer
 
 
-@settings(max_examples=40, deadline=None)
-@given(SEEDS, st.booleans(), st.booleans())
-def test_the_layers_bounds_and_nones_hold_in_the_encodings(seed, far, read_plan):
+@settings(max_examples=60, deadline=None)
+@given(SEEDS, st.booleans(), st.booleans(), st.booleans())
+def test_the_layers_bounds_and_nones_hold_in_the_encodings(seed, far, read_plan, tokens):
     """The exact layers beside plan search (the diagrams, or the explicit layers
     of configurations on a model with events)."""
-    spec = spec_of(seed, far)
+    spec = spec_of(seed, far, tokens)
     model = Model.from_string(spec.to_asp())
     if model.planner.is_fact("unreachable_goal"):
         check_no_plan(spec)  # relaxed reachability's claim: no engine starts
@@ -182,12 +198,12 @@ def test_greedy_nones_hold_in_the_encodings(seed, far):
             assert spec.is_plan([str(action) for action in plan])
 
 
-@settings(max_examples=60, deadline=None)
-@given(SEEDS, st.booleans())
-def test_the_diagrams_bounds_nones_and_best_states_hold_in_the_encodings(seed, far):
+@settings(max_examples=80, deadline=None)
+@given(SEEDS, st.booleans(), st.booleans())
+def test_the_diagrams_bounds_nones_and_best_states_hold_in_the_encodings(seed, far, tokens):
     """Exact reachability (binary decision diagrams) on the models it handles
     (no events): the first layer with a goal state, "none", the best utility."""
-    spec = spec_of(seed, far)
+    spec = spec_of(seed, far, tokens)
     spec.events = []
     ground = Model.from_string(spec.to_asp()).planner.ground_model()
     r = Reachability(ground)
