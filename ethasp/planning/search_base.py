@@ -86,7 +86,11 @@ def before_search(budget: Budget, planner: Planner) -> str:
 
 
 # One proof text for each kind of claim, whichever engine proved it first.
-SEARCHED = "every reachable state was searched, and none is a goal state"
+# "None" proven by exhausting a search space: forward (every reachable state,
+# or every one that is no dead end), or backward (every state from which a
+# goal state is reachable, the initial state not among them).  One text for
+# every engine, which raced to it is not said.
+SEARCHED = "no goal state is reachable (an exhaustive search proved it)"
 GREEDY_PROOF = "a plan found by greedy forward search (not proven shortest)"
 
 
