@@ -74,14 +74,7 @@ from ethasp.vocabulary import (
 REASONS = ("reasons/literals.lp", "reasons/theory.lp", "reasons/evaluate.lp")
 NECESSARY = (*REASONS, "reasons/necessary.lp", "reasons/relevance.lp")
 SUFFICIENT = (*REASONS, "reasons/shape.lp", "reasons/sufficient.lp", "reasons/comparison.lp")
-INUS = (
-    "reasons/literals.lp",
-    "reasons/theory.lp",
-    "reasons/shape.lp",
-    "reasons/evaluate.lp",
-    "reasons/evaluate_copies.lp",
-    "reasons/inus.lp",
-)
+INUS = (*REASONS, "reasons/shape.lp", "reasons/evaluate_copies.lp", "reasons/inus.lp")
 # Core-guided optimisation for the relevant reason: the relevance criteria count
 # literals, and each violated conjunct is a core; model-guided optimisation
 # stalls on large ones.  Domain heuristics make enumerations subset-minimal.

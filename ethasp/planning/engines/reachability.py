@@ -268,6 +268,7 @@ class Layout:
         group_of = {v: number for number, group in enumerate(groups) for v in group}
         self.units: list[tuple[clingo.Symbol, ...]] = []  # unit -> its members
         self.bits: list[tuple[int, ...]] = []  # unit -> its bits
+        self.owner: list[int] = []  # bit -> its unit
         self.place: dict[clingo.Symbol, tuple[int, int]] = {}  # variable -> (unit, code)
         placed: set[int] = set()
         width = 0
@@ -285,6 +286,7 @@ class Layout:
             size = len(members).bit_length()  # codes 0 to len(members)
             self.units.append(members)
             self.bits.append(tuple(range(width, width + size)))
+            self.owner += [unit] * size
             width += size
             for code, member in enumerate(members, start=1):
                 self.place[member] = (unit, code)
@@ -401,7 +403,6 @@ class Reachability:
         # far more than it saved on the planning models measured.
         self.bdd.configure(reordering=False)
         self._members: dict = {}
-        self._owner: dict[int, int] = {}
         # The states whose groups have valid codes (every reachable one).
         self.valid = self.bdd.true
         for unit, members in enumerate(self.layout.units):
@@ -565,22 +566,12 @@ class Reachability:
 
     def _bit_values(self, true, bits: Iterable[int], after: bool = False):
         """The cube giving ``bits`` their values in a state (true variables given)."""
-        owner = self._owners()
+        owner = self.layout.owner
         return self._values(true, sorted({owner[b] for b in bits}), after)
-
-    def _owners(self) -> dict[int, int]:
-        """The unit of each bit."""
-        if not self._owner:
-            self._owner.update(
-                (b, unit) for unit, bits in enumerate(self.layout.bits) for b in bits
-            )
-        return self._owner
 
     def pick(self, states) -> frozenset[clingo.Symbol]:
         """The true variables of one state of a (non-empty) set."""
-        care = [f"x{b}" for b in range(self.layout.width)]
-        values = self.bdd.pick(states, care_vars=care)
-        return self.layout.state(lambda b: values[f"x{b}"])
+        return next(self.states(states))
 
     def states(self, states) -> Iterator[frozenset[clingo.Symbol]]:
         """The true variables of every state of a set, one state after the other."""
@@ -1082,13 +1073,12 @@ class Reachability:
         never changes: no reordering.)"""
         if self._level_table is None:
             bdd, weights, layout = self.bdd, self.model.weights, self.layout
-            owner = self._owners()
             by_level: list[tuple[int, int, int] | None] = []
             for level in range(len(bdd.vars)):
                 name = bdd.var_at_level(level)
                 if name.startswith("x"):
                     b = int(name[1:])
-                    members = layout.units[owner[b]]
+                    members = layout.units[layout.owner[b]]
                     if len(members) == 1:
                         v = members[0]
                         by_level.append((b, weights.get((v, False), 0), weights.get((v, True), 0)))
