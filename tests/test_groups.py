@@ -86,6 +86,17 @@ def token_model(seed: int, conditional: bool = False, derived: bool = False) -> 
     return spec
 
 
+def weighted_token_model(seed: int, conditional: bool = False, derived: bool = False):
+    """A token model with utilities on some facts (members of groups among
+    them, which the diagrams keep out of their groups)."""
+    spec = token_model(seed, conditional, derived)
+    rng = random.Random(seed)
+    spec.fact_utility = {
+        (v, rng.random() < 0.7): rng.randint(-3, 3) for v in spec.variables if rng.random() < 0.3
+    }
+    return spec
+
+
 def search_model_of(spec: RandomModel):
     return search_model(Atoms(Model.from_string(spec.to_asp()).planner))
 

@@ -16,14 +16,12 @@ and the state there).
 
 from __future__ import annotations
 
-import random
-
 import pytest
 from conftest import answer_sets
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from oracle import features, random_model
-from test_groups import token_model
+from test_groups import weighted_token_model
 from test_layers import finished
 
 import ethasp.planning.engines.explicit as explicit_module
@@ -48,14 +46,7 @@ def spec_of(seed: int, far: bool, tokens: bool = False):
     test_groups.py) with conditional effects, derived variables and
     utilities of facts drawn."""
     if tokens:
-        rng = random.Random(seed)
-        spec = token_model(seed, conditional=rng.random() < 0.5, derived=rng.random() < 0.3)
-        spec.fact_utility = {
-            (v, rng.random() < 0.7): rng.randint(-3, 3)
-            for v in spec.variables
-            if rng.random() < 0.3
-        }
-        return spec
+        return weighted_token_model(seed, conditional=seed % 2 == 0, derived=seed % 3 == 0)
     return random_model(seed, max_variables=4, max_actions=4, far_goal=far, **features(seed))
 
 

@@ -5,14 +5,12 @@ variables; and the ground model it reads from the planner."""
 
 from __future__ import annotations
 
-import random
-
 import clingo
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from oracle import random_model
-from test_groups import token_model
+from test_groups import weighted_token_model
 
 from ethasp import Model
 from ethasp.planning.engines.reachability import Reachability, from_atoms
@@ -202,17 +200,6 @@ def test_every_state_has_a_shortest_path_and_each_layer_its_best(seed, cluster, 
             assert spec.run(plan) == frozenset(str(v) for v in state), (plan, state)
 
 
-def _token_model(seed: int, conditional: bool, derived: bool):
-    """A model of tokens that move (mutex groups: tests/test_groups.py), with
-    utilities on some facts (members of groups among them)."""
-    spec = token_model(seed, conditional, derived)
-    rng = random.Random(seed)
-    spec.fact_utility = {
-        (v, rng.random() < 0.7): rng.randint(-3, 3) for v in spec.variables if rng.random() < 0.3
-    }
-    return spec
-
-
 def _reached(r: Reachability, sets) -> list[set[frozenset]]:
     """The reachable states of each set, each as the text of its true variables
     (up to the last set that has one)."""
@@ -233,7 +220,7 @@ def test_groups_in_binary_agree_with_a_bit_per_variable_and_breadth_first_search
     (against explicit breadth-first search), best states, goal distances,
     backward layers (their reachable states) and least paths as with a
     diagram variable per variable."""
-    spec = _token_model(seed, conditional, derived)
+    spec = weighted_token_model(seed, conditional, derived)
     ground_model = Model.from_string(spec.to_asp()).planner.ground_model()
     grouped, plain = Reachability(ground_model), Reachability(ground_model, grouped=False)
     assert all(len(m) == 1 for m in plain.layout.units)
@@ -270,7 +257,7 @@ def test_the_token_models_give_groups_of_several_bits():
     """(The property test above meets groups: most token models have one.)"""
     widths = []
     for seed in range(20):
-        spec = _token_model(seed, False, False)
+        spec = weighted_token_model(seed, False, False)
         r = Reachability(Model.from_string(spec.to_asp()).planner.ground_model())
         widths += [
             len(bits) for unit, bits in enumerate(r.layout.bits) if len(r.layout.units[unit]) > 1
@@ -314,7 +301,7 @@ def test_clusters_split_down_to_single_actions_give_the_same_layers_and_paths(se
     and least paths as with whole clusters."""
     import ethasp.planning.engines.reachability as reachability_module
 
-    spec = _token_model(seed, seed % 2 == 0, seed % 3 == 0) if tokens else spec_of(seed)
+    spec = weighted_token_model(seed, seed % 2 == 0, seed % 3 == 0) if tokens else spec_of(seed)
     ground_model = Model.from_string(spec.to_asp()).planner.ground_model()
     whole = Reachability(ground_model)
     saved = reachability_module.CLUSTER_NODES, reachability_module.MERGE_NODES
