@@ -38,6 +38,7 @@ import time
 from dataclasses import replace
 
 from ethasp.errors import InputError
+from ethasp.memo import results
 from ethasp.planning.budget import Budget
 from ethasp.planning.driver.planner import (
     MUTEX_AFTER,
@@ -408,6 +409,16 @@ def _least(
     return witness
 
 
+def _search_model(planner: Planner):
+    """The planner's search model (:func:`ethasp.planning.engines.layers.
+    search_model`), read once per planner: the searches of the sets of a
+    goal's items on one soft HModel each hand it to the external planner."""
+    memo = results(planner)
+    if "search_model" not in memo:
+        memo["search_model"] = layers_module.search_model(Atoms(planner))
+    return memo["search_model"]
+
+
 def _with_final_facts(model, facts):
     """A search model whose goal also asks ``facts`` of the final state
     (question constraints ``ends(F,B)``, see :func:`ethasp.planning.driver.
@@ -460,12 +471,11 @@ def _external(
     if not systems.usable(planner, setting, all_plans):
         return None
     from ethasp.planning.engines import downward, sas
-    from ethasp.planning.engines.layers import Atoms, search_model
 
     # Question constraints ends(F,B), the only ones handed over: goal facts
     # (those no plan meets were refused before: impossible_constraint).
     facts = final_facts(setting.constraints) or []
-    ground = _with_final_facts(search_model(Atoms(planner)), facts)
+    ground = _with_final_facts(_search_model(planner), facts)
     try:
         task = downward.compiled(ground)
     except sas.NotCompiled as why:

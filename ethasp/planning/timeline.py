@@ -17,6 +17,7 @@ import clingo
 from clorm import unify
 
 from ethasp.errors import InputError
+from ethasp.planning.driver.planner import TRACE_EVENTS
 from ethasp.planning.model import Model
 from ethasp.planning.naming import ASP_NAMING, Naming
 from ethasp.planning.plan import Plan
@@ -45,7 +46,7 @@ from ethasp.vocabulary import (
 STEPS = (
     "planning/model.lp",
     "planning/trace.lp",
-    "planning/trace_events.lp",
+    TRACE_EVENTS,
     "planning/steps.lp",
     "judgement/judge.lp",
 )

@@ -37,7 +37,7 @@ import clingo
 from clorm import unify
 
 from ethasp.errors import InputError
-from ethasp.planning.driver.planner import occurrences, solve_configuration
+from ethasp.planning.driver.planner import TRACE_EVENTS, occurrences, solve_configuration
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
 from ethasp.planning.validation import plan_atoms
@@ -59,7 +59,7 @@ from ethasp.vocabulary import (
 ENCODINGS = (
     "planning/model.lp",
     "planning/trace.lp",
-    "planning/trace_events.lp",
+    TRACE_EVENTS,
     "planning/steps.lp",
     "questions/links.lp",
     "questions/removable.lp",
@@ -69,7 +69,7 @@ ENCODINGS = (
 DEMAND_ENCODINGS = (
     "planning/model.lp",
     "planning/trace.lp",
-    "planning/trace_events.lp",
+    TRACE_EVENTS,
     "planning/steps.lp",
     "questions/demands.lp",
 )

@@ -89,10 +89,15 @@ ACTION_VOCABULARY = (
     ("action_label", 3),
 )
 
+# The trace of a plan under exogenous events: it extends trace.lp, and every
+# rule of it starts from an event that is due (event_at/2), so it is left out
+# of the programs of a model without events (their grounding costs a few
+# milliseconds even where nothing is derived).
+TRACE_EVENTS = "planning/trace_events.lp"
 TRACE_ENCODINGS = (
     "planning/model.lp",
     "planning/trace.lp",
-    "planning/trace_events.lp",
+    TRACE_EVENTS,
     "judgement/judge.lp",
 )
 
@@ -103,7 +108,7 @@ QUESTIONS = "questions/questions.lp"
 GIVEN = (
     "planning/model.lp",
     "planning/trace.lp",
-    "planning/trace_events.lp",
+    TRACE_EVENTS,
     "planning/steps.lp",
     "questions/given.lp",
     QUESTIONS,
@@ -1259,7 +1264,10 @@ class Planner:
         text to write and parse again).  Under a ``budget`` the grounding runs
         in a thread of its own, and GroundingStopped is raised if the budget
         runs out first (the control, of no other use, is left to finish its
-        grounding and is dropped)."""
+        grounding and is dropped).  :data:`TRACE_EVENTS` is left out where the
+        model has no events (nothing of it would hold)."""
+        if not self.has_events:
+            encodings = [name for name in encodings if name != TRACE_EVENTS]
         messages = Messages()
         ctl = clingo.Control(list(arguments), logger=messages, message_limit=20)
         try:
