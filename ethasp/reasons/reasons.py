@@ -37,6 +37,7 @@ from collections.abc import Iterable
 import clingo
 from clorm import unify
 
+from ethasp import vocabulary  # (its predicates are made when first read)
 from ethasp.errors import InputError
 from ethasp.memo import results
 from ethasp.planning.budget import Budget
@@ -58,18 +59,6 @@ from ethasp.principles.principle import Principle, select_principles
 from ethasp.reasons import DEFAULT_LIMIT
 from ethasp.reasons.explanation import Comparison, Explanation, Labels, Literal
 from ethasp.reasons.words import non_contrastive
-from ethasp.vocabulary import (
-    ActionLabel,
-    ActualValue,
-    AgentLabel,
-    ComparisonAtom,
-    Conjunct,
-    FactLabel,
-    Mention,
-    PatientLabel,
-    ReasonAtom,
-    Verdict,
-)
 
 REASONS = ("reasons/literals.lp", "reasons/theory.lp", "reasons/evaluate.lp")
 NECESSARY = (*REASONS, "reasons/necessary.lp", "reasons/relevance.lp")
@@ -99,7 +88,7 @@ EVIDENCE = (
 
 
 def _literals(symbols: Iterable[clingo.Symbol]) -> list[Literal]:
-    atoms = unify([ReasonAtom], symbols).query(ReasonAtom).all()
+    atoms = unify([vocabulary.ReasonAtom], symbols).query(vocabulary.ReasonAtom).all()
     return sorted(
         (Literal(a.atom.symbol, a.value == "true") for a in atoms),
         key=lambda lit: (str(lit.atom), lit.value),
@@ -112,7 +101,7 @@ def _actual(ctl: clingo.Control) -> frozenset[Literal]:
     facts = [
         atom.symbol for atom in ctl.symbolic_atoms.by_signature("actual_value", 2) if atom.is_fact
     ]
-    atoms = unify([ActualValue], facts).query(ActualValue).all()
+    atoms = unify([vocabulary.ActualValue], facts).query(vocabulary.ActualValue).all()
     return frozenset(Literal(a.atom.symbol, a.value == "true") for a in atoms)
 
 
@@ -218,25 +207,33 @@ def _optimum(ctl: clingo.Control, budget: Budget) -> tuple[list[clingo.Symbol] |
 
 
 def _labels(symbols: Iterable[clingo.Symbol]) -> Labels:
-    answer = unify([AgentLabel, ActionLabel, FactLabel, PatientLabel], symbols)
+    answer = unify(
+        [
+            vocabulary.AgentLabel,
+            vocabulary.ActionLabel,
+            vocabulary.FactLabel,
+            vocabulary.PatientLabel,
+        ],
+        symbols,
+    )
     labels = Labels()
-    for agent in answer.query(AgentLabel).all():
+    for agent in answer.query(vocabulary.AgentLabel).all():
         labels.agent, labels.possessive = agent.name, agent.possessive
-    for action in answer.query(ActionLabel).all():
+    for action in answer.query(vocabulary.ActionLabel).all():
         labels.actions[action.action.symbol] = (action.phrase, action.gerund)
-    for fact in answer.query(FactLabel).all():
+    for fact in answer.query(vocabulary.FactLabel).all():
         labels.facts[(fact.variable.symbol, fact.value == "true")] = fact.phrase
-    for patient in answer.query(PatientLabel).all():
+    for patient in answer.query(vocabulary.PatientLabel).all():
         labels.patients[patient.patient.symbol] = patient.phrase
     return labels
 
 
 def _comparisons(symbols: Iterable[clingo.Symbol]) -> dict[clingo.Symbol, Comparison]:
-    answer = unify([Mention, ComparisonAtom], symbols)
+    answer = unify([vocabulary.Mention, vocabulary.ComparisonAtom], symbols)
     result: dict[clingo.Symbol, Comparison] = {}
-    for atom in answer.query(ComparisonAtom).all():
+    for atom in answer.query(vocabulary.ComparisonAtom).all():
         result[atom.atom.symbol] = Comparison([], [], atom.relation)
-    for mention in sorted(answer.query(Mention).all(), key=str):
+    for mention in sorted(answer.query(vocabulary.Mention).all(), key=str):
         side = result[mention.atom.symbol]
         pair = (mention.variable.symbol, mention.value == "true")
         (side.left if mention.side == "left" else side.right).append(pair)
@@ -381,10 +378,12 @@ def explain(
             spoken = whole
     permissible = any(
         v.value == "true" and str(v.name.symbol) == chosen.asp_name
-        for v in unify([Verdict], answer.get("verdict", 2)).query(Verdict).all()
+        for v in unify([vocabulary.Verdict], answer.get("verdict", 2))
+        .query(vocabulary.Verdict)
+        .all()
     )
     conj: dict[clingo.Symbol, list[tuple[clingo.Symbol, str]]] = {}
-    for member in unify([Conjunct], words).query(Conjunct).all():
+    for member in unify([vocabulary.Conjunct], words).query(vocabulary.Conjunct).all():
         conj.setdefault(member.name.symbol, []).append((member.variable.symbol, member.value))
     for members in conj.values():
         members.sort(key=lambda pair: str(pair[0]))

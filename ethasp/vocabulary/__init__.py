@@ -36,10 +36,10 @@ _HOMES = {
     "UtilityOfFinal": "judgement",
     "FormulaOf": "judgement",
     "Conj": "judgement",
-    "Alternative": "judgement",
-    "UpperBound": "judgement",
-    "BestFact": "judgement",
-    "AtHorizon": "judgement",
+    "Alternative": "states",
+    "UpperBound": "states",
+    "BestFact": "states",
+    "AtHorizon": "states",
     "ReasonAtom": "reasons",
     "ActualValue": "reasons",
     "Mention": "reasons",
@@ -74,16 +74,7 @@ _HOMES = {
 }
 
 if TYPE_CHECKING:  # the same names for type checkers, which do not run __getattr__
-    from ethasp.vocabulary.judgement import (
-        Alternative,
-        AtHorizon,
-        BestFact,
-        Conj,
-        FormulaOf,
-        UpperBound,
-        UtilityOfFinal,
-        Verdict,
-    )
+    from ethasp.vocabulary.judgement import Conj, FormulaOf, UtilityOfFinal, Verdict
     from ethasp.vocabulary.links import (
         Chain,
         Demanded,
@@ -118,6 +109,7 @@ if TYPE_CHECKING:  # the same names for type checkers, which do not run __getatt
         PatientLabel,
         ReasonAtom,
     )
+    from ethasp.vocabulary.states import Alternative, AtHorizon, BestFact, UpperBound
     from ethasp.vocabulary.trace import (
         Failure,
         Final,

@@ -1,8 +1,8 @@
-"""Judgements, the language L and best reachable states (``encodings/judgement/``)."""
+"""Judgements and the language L (``encodings/judgement/``)."""
 
 from clorm import ConstantStr, Predicate, Raw
 
-# -- judgements and the language L (language.lp, judge.lp, judgement/best.lp) ----
+# -- judgements and the language L (language.lp, judge.lp) ----------------------
 
 
 class Verdict(Predicate, name="verdict"):
@@ -23,22 +23,3 @@ class Conj(Predicate, name="conj"):
     name: Raw
     variable: Raw
     value: ConstantStr
-
-
-class Alternative(Predicate, name="alternative"):
-    name: Raw
-
-
-class UpperBound(Predicate, name="upper_bound"):
-    bound: int
-
-
-class BestFact(Predicate, name="best_fact"):
-    variable: Raw
-    value: ConstantStr
-
-
-class AtHorizon(Predicate, name="at_horizon"):
-    variable: Raw
-    value: ConstantStr
-    time: int

@@ -49,13 +49,13 @@ from typing import TYPE_CHECKING
 import clingo
 from clorm import Raw, unify
 
+from ethasp import vocabulary  # (its predicates are made when first read)
 from ethasp.memo import results
 from ethasp.planning.budget import Budget
 from ethasp.planning.driver.planner import Planner, Setting
 from ethasp.planning.engines import ALL_FEATURES, require
 from ethasp.planning.plan import Plan, steps
 from ethasp.planning.search import DEFAULT_MAX_HORIZON
-from ethasp.vocabulary import Alternative, AtHorizon, BestFact, Conj, UpperBound
 
 if TYPE_CHECKING:  # the diagrams are loaded by the planner, where a model needs them
     from ethasp.planning.engines.reachability import Best, Reachability
@@ -93,8 +93,8 @@ class ReachableState:
 
     def asp_facts(self, name: clingo.Symbol = BEST) -> list:
         """``alternative(name)`` and its ``conj(name,V,B)`` facts."""
-        return [Alternative(name=Raw(name))] + [
-            Conj(name=Raw(name), variable=Raw(v), value="true" if b else "false")
+        return [vocabulary.Alternative(name=Raw(name))] + [
+            vocabulary.Conj(name=Raw(name), variable=Raw(v), value="true" if b else "false")
             for v, b in self.facts
         ]
 
@@ -212,7 +212,11 @@ def _state(planner: Planner, r: Reachability, best: Best) -> ReachableState:
 def upper_bound(planner: Planner) -> int:
     """No reachable state has a higher utility (per variable, the best utility of
     a value reachable ignoring delete effects: ``upper_bound/1`` of relaxed.lp)."""
-    atoms = unify([UpperBound], planner.bound().get("upper_bound", 1)).query(UpperBound).all()
+    atoms = (
+        unify([vocabulary.UpperBound], planner.bound().get("upper_bound", 1))
+        .query(vocabulary.UpperBound)
+        .all()
+    )
     return next(iter(atoms)).bound
 
 
@@ -296,7 +300,11 @@ def _restriction(r: Reachability, within: str, other_than):
 def _bound_states(planner: Planner, r: Reachability):
     """The reachable states that attain the upper bound are those with every
     ``best_fact/2`` of relaxed.lp: a cube, cheap to test a layer against."""
-    atoms = unify([BestFact], planner.bound().get("best_fact", 2)).query(BestFact).all()
+    atoms = (
+        unify([vocabulary.BestFact], planner.bound().get("best_fact", 2))
+        .query(vocabulary.BestFact)
+        .all()
+    )
     facts = [(atom.variable.symbol, atom.value == "true") for atom in atoms]
     return r.condition(facts)
 
@@ -765,7 +773,7 @@ def _horizons(max_horizon: int) -> list[int]:
 def _read_state(symbols, horizon: int) -> list[tuple[clingo.Symbol, bool]]:
     # The state at the time checked: the horizon, or the last event's step when
     # it is later (Planner.solve); at_horizon/3 holds at that one time only.
-    atoms = unify([AtHorizon], symbols).query(AtHorizon).all()
+    atoms = unify([vocabulary.AtHorizon], symbols).query(vocabulary.AtHorizon).all()
     return sorted(
         ((a.variable.symbol, a.value == "true") for a in atoms), key=lambda pair: str(pair[0])
     )
