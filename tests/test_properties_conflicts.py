@@ -129,6 +129,49 @@ def test_the_oracle_is_monotone_on_an_example():
             assert covered != blocked
 
 
+# A model of three goal facts: one action reaches a and b at once, another c;
+# deontology forbids nothing.
+WITNESSED = """
+variable(a; b; c). action(both; third).
+eff(both,a,true). eff(both,b,true). eff(third,c,true).
+goal(a,true). goal(b,true). goal(c,true).
+"""
+
+
+def test_a_set_that_a_plan_found_reaches_is_decided_without_a_search(monkeypatch):
+    """A plan found for some items is checked against every item; a set of
+    items it reaches is reachable without a search of its own (the insertion
+    and growth of the exploration decide many such sets), and a set it does
+    not reach is still searched."""
+    from ethasp.principles.goal_items import GoalItems
+    from ethasp.principles.principle import select_principles
+
+    items = GoalItems(Model.from_string(WITNESSED), select_principles(["deontology"]))
+    assert [str(item.term) for item in items.items] == [
+        "goal(a,true)",
+        "goal(b,true)",
+        "goal(c,true)",
+    ]
+    searched: list[frozenset[int]] = []
+    search = GoalItems._reach
+    monkeypatch.setattr(
+        GoalItems, "_reach", lambda self, chosen: searched.append(chosen) or search(self, chosen)
+    )
+    first = items.reach(frozenset({0}))
+    assert first.status == "found" and "both" in [str(a) for a in first.plan]
+    # What the plan reaches, read off its actions: both makes a and b, third c.
+    reached = {0, 1} | ({2} if "third" in [str(a) for a in first.plan] else set())
+    for size in range(1, 4):
+        for chosen in map(frozenset, itertools.combinations(range(3), size)):
+            searched.clear()
+            found = items.reach(chosen)
+            assert found.status == "found"
+            if chosen <= reached:
+                assert searched == [] and found.plan == first.plan, chosen
+            else:
+                assert searched == [chosen], chosen
+
+
 # -- the questions' constraints count like goal facts --------------------------------
 
 QUESTION_PRINCIPLES = ["deontology", "utilitarianism", "do-no-harm"]

@@ -136,6 +136,9 @@ class GoalItems:
         self.items: list[Item] = []
         self._constraints: list[frozenset[Constraint]] = []
         self._reached: dict[frozenset[int], Reach] = {}
+        # The plans found, each with every item it reaches (a witness for each
+        # set of them: no search is made for a set a plan found reaches).
+        self._witnesses: list[tuple[frozenset[int], Plan]] = []
         self._depth: Depth | None = None
         self.searched_in_asp = False
         if restriction is None:
@@ -183,13 +186,31 @@ class GoalItems:
         return self._depth
 
     def reach(self, items: frozenset[int]) -> Reach:
-        """Whether a permissible plan reaches the items (kept per set)."""
+        """Whether a permissible plan reaches the items (kept per set): by a
+        plan found before that reaches them too, else by a decision (a plan
+        found is checked against every item, :meth:`_reached_by`)."""
         if items not in self._reached:
+            for reached, plan in self._witnesses:
+                if items <= reached:
+                    return Reach(FOUND, plan)
             found = self._reach(items)
+            if found.status == FOUND and found.plan is not None:
+                self._witnesses.append((self._reached_by(found.plan) | items, found.plan))
             if found.status != BOUNDED or not self.budget.expired():
                 self._reached[items] = found
             return found
         return self._reached[items]
+
+    def _reached_by(self, plan: Plan) -> frozenset[int]:
+        """The items a plan of the soft HModel reaches: those whose
+        constraints it meets (``questions/questions.lp``)."""
+        terms = sorted({c.term for constraints in self._constraints for c in constraints}, key=str)
+        met = self.soft.planner.met(plan, terms) if terms else set()
+        return frozenset(
+            number
+            for number, constraints in enumerate(self._constraints)
+            if all(c.term in met for c in constraints)
+        )
 
     def _reach(self, items: frozenset[int]) -> Reach:
         planner = self.soft.planner
