@@ -55,6 +55,28 @@ def test_ask_new_forms_json():
     assert run.returncode == 0 and "no plan can take at most 3 steps" in run.stdout
 
 
+def test_a_satisficing_contrast_has_at_most_the_steps_asked_for():
+    """A plan found fast for "why not in N steps" has at most N steps: the
+    greedy search's plan of more steps ends no search (the search went on
+    at horizon 0 until the time limit, and answered bounded)."""
+    for steps, status in ((4, "found"), (3, "none")):
+        question = f"why not in {steps} steps"
+        answers = [
+            json.loads(
+                ethasp(
+                    *("ask", RESCUE, "--plan", KEY_PLAN, "--question", question),
+                    *("--json", "--time-limit", "60", *satisficing),
+                ).stdout
+            )
+            for satisficing in (["--satisficing"], [])
+        ]
+        for answer in answers:
+            assert answer["status"] == status, (question, answer["proof"])
+        if status == "found":
+            assert len(answers[0]["contrast"]["plan"]) <= steps
+            assert answers[0]["principle_dropped"] == answers[1]["principle_dropped"] is True
+
+
 def test_ask_errors_are_one_line():
     for question, message in (
         ("why take_key at 2", "step 2 of the plan is move(r1,r2)"),

@@ -282,6 +282,38 @@ def test_the_command_line_plans_with_each_planner_and_the_lengths_agree():
     assert len(set(lengths.values())) == 1, lengths
 
 
+GRIPPER = [
+    str(ROOT / "asp" / "pddl" / f"gripper-{part}") for part in ("domain.pddl", "problem.pddl")
+]
+GRIPPER_PLAN = " ".join(
+    f"pick(ball_{n},a,left) throw(ball_{n},a,b,left)" for n in range(1, 5)
+)  # a shortest plan: 8 steps
+
+
+@installed
+def test_a_satisficing_contrast_never_has_more_steps_than_the_question_allows():
+    """Fast Downward's greedy plan for the contrast of "why not in 7 steps"
+    has 13 steps; it meets no such question, and every plan has 8 steps or
+    more: the answer is none (the same as without --satisficing), not that
+    plan."""
+    for satisficing in (["--satisficing"], []):
+        done = subprocess.run(
+            [
+                *(sys.executable, "-m", "ethasp.interfaces.cli", "ask", *GRIPPER),
+                str(ROOT / "asp" / "pddl" / "gripper-utility.lp"),
+                *("--plan", GRIPPER_PLAN, "--question", "why not in 7 steps"),
+                *("--planner", "fast-downward", "--json", *satisficing),
+            ],
+            capture_output=True,
+            text=True,
+            cwd=ROOT,
+            check=True,
+        )
+        answer = json.loads(done.stdout)
+        assert answer["status"] == "none" and answer["contrast"] is None, answer
+        assert "no plan has at most 7 steps" in answer["proof"], answer["proof"]
+
+
 def test_no_planner_is_assumed_where_none_is_chosen():
     model = Model.from_string("variable(a). action(go). eff(go,a,true). goal(a,true).")
     assert model.planning_system == systems.AUTO

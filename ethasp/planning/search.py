@@ -493,7 +493,9 @@ def _external(
         return SearchResult(NONE, horizon=0, optimal=optimal, proof=SEARCHED)
     plan = _checked(planner, task.plan(outcome.operators), "Fast Downward", setting.constraints)
     length = len(plan)
-    if optimal and longest is not None and length > longest:
+    if longest is not None and length > longest:
+        if not optimal:
+            return None  # more steps than the question allows: clingo looks within them
         return SearchResult(NONE, horizon=longest, proof=_too_long(longest))
     if length > max_horizon:
         if not optimal:
@@ -558,7 +560,8 @@ def shortest(
         )
     plain = not setting.constraints and not all_plans
     exact = _Exact(planner, setting, budget, read_plan=plain, threads=threads)
-    exact.max_horizon = max_horizon
+    # (A plan beyond the question's steps ends no search: it meets no question.)
+    exact.max_horizon = max_horizon if longest is None else min(max_horizon, longest)
     if plain and _one_plan_wanted(setting):
         setting = replace(setting, canonical=True)
     try:
@@ -747,7 +750,7 @@ def any_plan(
         return external
     plain = not setting.constraints
     exact = _Exact(planner, setting, budget, read_plan=plain, greedy=True)
-    exact.max_horizon = max_horizon
+    exact.max_horizon = max_horizon if longest is None else min(max_horizon, longest)
     setting = replace(setting, satisficing=True, canonical=plain and _one_plan_wanted(setting))
     try:
         result = _any_plan(
