@@ -282,6 +282,40 @@ sys.exit(main(sys.argv[1:], worker=True))
 """
 
 
+SLOW_CONTRAST = """
+import sys, time
+import ethasp.questions.contrast as contrast
+
+def slow_ask(*args, **kwargs):
+    time.sleep(60)  # as where clingo cannot be stopped
+
+contrast.ask = slow_ask
+from ethasp.interfaces.cli import main
+sys.exit(main(sys.argv[1:], worker=True))
+"""
+
+
+@pytest.mark.slow
+def test_a_question_ended_before_its_contrast_answers_bounded_with_the_plan_judged():
+    """The plan asked about is judged, the contrast is not found: the JSON
+    answer says bounded like every answer without a contrast (its status),
+    with the verdict on the plan asked about and why it is bounded."""
+    arguments = ["ask", "trolley", "--plan", "pull", "--question", "why pull"]
+    done = subprocess.run(
+        [sys.executable, "-c", SLOW_CONTRAST, *arguments, "--time-limit", "2", "--json"],
+        capture_output=True,
+        text=True,
+        timeout=HANG,
+    )
+    assert done.returncode == 0, done.stderr
+    data = json.loads(done.stdout)
+    assert data["status"] == "bounded" and data["contrast"] is None
+    assert data["original"]["plan"] == ["pull"] and data["original"]["status"] == "proven"
+    assert data["bounded"] == (
+        "the time limit of 2 s was reached before the contrast plan was found and explained"
+    )
+
+
 @pytest.mark.slow
 def test_a_command_ended_at_its_time_limit_answers_with_what_it_found():
     """The verdicts are found, their reasons are not: the answer is the

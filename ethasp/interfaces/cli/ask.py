@@ -118,6 +118,7 @@ def _checkpoint(args: argparse.Namespace, model, plan, limits) -> None:
             "status": judgement.status,
         },
         "contrast": None,
+        "status": "bounded",  # (no contrast plan yet: the front end says why)
     }
     verdict_words = "permissible" if judgement.permissible else "impermissible"
     text = f"  plan asked about: {shown} ({principle}: {verdict_words}, {judgement.status})"
