@@ -231,6 +231,11 @@ class Model:
             )
             naming = PddlNaming()
         for path in files:
+            if path.suffix.lower() == ".hera":
+                raise InputError(
+                    f"{path}: HERA's text format (.hera) is not read; give the situation "
+                    "or causal agency model as YAML or JSON, as HERA's examples are"
+                )
             text = read_text(path)
             scan_file(path, text)
             sources.append(Source(str(path), text, path))
