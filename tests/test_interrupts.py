@@ -298,8 +298,8 @@ sys.exit(main(sys.argv[1:], worker=True))
 @pytest.mark.slow
 def test_a_question_ended_before_its_contrast_answers_bounded_with_the_plan_judged():
     """The plan asked about is judged, the contrast is not found: the JSON
-    answer says bounded like every answer without a contrast (its status),
-    with the verdict on the plan asked about and why it is bounded."""
+    answer says bounded like every answer without a contrast (its status and
+    proof), with the verdict on the plan asked about and why it is bounded."""
     arguments = ["ask", "trolley", "--plan", "pull", "--question", "why pull"]
     done = subprocess.run(
         [sys.executable, "-c", SLOW_CONTRAST, *arguments, "--time-limit", "2", "--json"],
@@ -311,8 +311,10 @@ def test_a_question_ended_before_its_contrast_answers_bounded_with_the_plan_judg
     data = json.loads(done.stdout)
     assert data["status"] == "bounded" and data["contrast"] is None
     assert data["original"]["plan"] == ["pull"] and data["original"]["status"] == "proven"
-    assert data["bounded"] == (
-        "the time limit of 2 s was reached before the contrast plan was found and explained"
+    assert (
+        data["bounded"]
+        == data["proof"]
+        == ("the time limit of 2 s was reached before the contrast plan was found and explained")
     )
 
 

@@ -130,7 +130,10 @@ def _bounded(args: argparse.Namespace, why: str, partial, progress) -> str:
     if isinstance(partial, dict):
         bounded = f"{why} before {partial['missing']}"
         if getattr(args, "json", False):
-            return json.dumps({**partial["data"], "bounded": bounded}, indent=2)
+            data = {**partial["data"], "bounded": bounded}
+            if data.get("status") == "bounded":  # (an answer bounded as a whole says why)
+                data.setdefault("proof", bounded)
+            return json.dumps(data, indent=2)
         return f"{partial['text']}\nbounded: {bounded}"
     proof = f"{why} before an answer was found"
     if progress:
