@@ -44,7 +44,7 @@ import clingo
 
 from ethasp.planning.budget import Budget
 from ethasp.planning.depth import Depth, reachable_depth
-from ethasp.planning.driver.planner import Constraint, Setting, final_facts
+from ethasp.planning.driver.planner import Constraint, Setting
 from ethasp.planning.engines.best_state import PROVEN
 from ethasp.planning.model import Model
 from ethasp.planning.naming import Naming
@@ -203,37 +203,14 @@ class GoalItems:
 
     def _reached_by(self, plan: Plan) -> frozenset[int]:
         """The items a plan of the soft HModel reaches: those whose
-        constraints it meets.  Constraints on the final state alone
-        (``ends(V,B)``, :func:`~ethasp.planning.driver.planner.final_facts`)
-        are read off the plan's trace (its final state, kept from the check
-        of the plan); others are met by ``questions/questions.lp``."""
-        planner = self.soft.planner
-        asked = [final_facts(constraints) for constraints in self._constraints]
-        final: set[tuple[clingo.Symbol, bool]] = set()
-        if any(facts for facts in asked):
-            for atom in planner.trace(plan).get("final", 2):
-                variable, value = atom.arguments
-                final.add((variable, value.name == "true"))
-        others = sorted(
-            {
-                c.term
-                for facts, constraints in zip(asked, self._constraints, strict=True)
-                if facts is None
-                for c in constraints
-            },
-            key=str,
-        )
-        met = planner.met(plan, others) if others else set()
+        constraints it meets (``questions/questions.lp``, one program for
+        every item's constraints)."""
+        terms = sorted({c.term for constraints in self._constraints for c in constraints}, key=str)
+        met = self.soft.planner.met(plan, terms) if terms else set()
         return frozenset(
             number
-            for number, (facts, constraints) in enumerate(
-                zip(asked, self._constraints, strict=True)
-            )
-            if (
-                set(facts) <= final
-                if facts is not None
-                else all(c.term in met for c in constraints)
-            )
+            for number, constraints in enumerate(self._constraints)
+            if all(c.term in met for c in constraints)
         )
 
     def _reach(self, items: frozenset[int]) -> Reach:
