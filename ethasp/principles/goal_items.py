@@ -195,7 +195,7 @@ class GoalItems:
                     return Reach(FOUND, plan)
             found = self._reach(items)
             if found.status == FOUND and found.plan is not None:
-                self._witnesses.append((self._reached_by(found.plan) | items, found.plan))
+                self._witnesses.append((self._reached_by(found.plan), found.plan))
             if found.status != BOUNDED or not self.budget.expired():
                 self._reached[items] = found
             return found
