@@ -79,7 +79,11 @@ def run(args: argparse.Namespace) -> int:
 
     default_reasons_limit(args)
     model = load_model(args)
-    plan = given_plan(args) if (args.plan or args.plan_file) else model.own_plan()
+    plan = (
+        given_plan(args)
+        if (args.plan is not None or args.plan_file is not None)
+        else model.own_plan()
+    )
     limits = budget(args)
     if plan is not None:
         _checkpoint(args, model, plan, limits)

@@ -105,7 +105,7 @@ def run(args: argparse.Namespace) -> int:
     }
     progress = ProgressLine(enabled=False if args.quiet else None)
     files = model_files(args, resolve=True)
-    plan = given_plan(args) if (args.plan or args.plan_file) else None
+    plan = given_plan(args) if (args.plan is not None or args.plan_file is not None) else None
     moves = Moves(model, args, progress)
     try:
         dialogue, actions, facts, current = moves.first(

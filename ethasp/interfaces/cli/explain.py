@@ -57,7 +57,7 @@ def run(args: argparse.Namespace) -> int:
     from ethasp.questions.steps import explain_steps
 
     model = load_model(args)
-    if args.plan or args.plan_file:
+    if args.plan is not None or args.plan_file is not None:
         plan = given_plan(args)
     elif args.principle is None and model.own_plan() is not None:
         plan = model.own_plan()
