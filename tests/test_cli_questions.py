@@ -238,3 +238,19 @@ def test_the_dialogue_saves_only_when_asked_and_minus_is_standard_output(tmp_pat
     assert (
         '"format": "ethasp-dialogue"' in run.stdout and "written to standard output" in run.stdout
     )
+
+
+def test_an_empty_plan_given_is_the_plan_asked_about_not_the_models_own():
+    """``--plan ""`` is the empty plan: ask answers about it, and explain
+    explains it (or refuses it where it is no plan), never the plan the model
+    comes with or a plan it searches."""
+    run = ethasp("ask", "hera/trolley.yaml", "--plan", "", "--question", "why not pull", "--json")
+    assert run.returncode == 0, run.stderr
+    answer = json.loads(run.stdout)
+    assert answer["original"]["plan"] == [] and answer["contrast"]["plan"] == ["pull"]
+    for model in ("hera/trolley.yaml", "trolley"):
+        run = ethasp("explain", model, "--plan", "")
+        assert run.returncode == 2 and "goal is not reached" in run.stderr, run.stdout
+    run = ethasp("dialogue", "hera/trolley.yaml", "--plan", "", stdin="quit\n")
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.startswith("current plan: (empty)"), run.stdout

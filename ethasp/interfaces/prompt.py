@@ -88,7 +88,8 @@ def opened(
     if saved is not None:
         dialogue = Dialogue.load(saved, model, **options)
     else:
-        dialogue = Dialogue.start(model, principle, plan or model.own_plan(), files, **options)
+        own = plan if plan is not None else model.own_plan()
+        dialogue = Dialogue.start(model, principle, own, files, **options)
     dialogue.model_files = list(files)
     naming, planner = model.naming, model.planner
     actions = [naming.action(atom.arguments[0]) for atom in planner.get("action", 1)]
