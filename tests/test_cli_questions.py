@@ -242,15 +242,26 @@ def test_the_dialogue_saves_only_when_asked_and_minus_is_standard_output(tmp_pat
 
 def test_an_empty_plan_given_is_the_plan_asked_about_not_the_models_own():
     """``--plan ""`` is the empty plan: ask answers about it, and explain
-    explains it (or refuses it where it is no plan), never the plan the model
-    comes with or a plan it searches."""
+    explains it (or refuses it where it is no plan of an ASP model), never the
+    plan the model comes with or a plan it searches."""
     run = ethasp("ask", "hera/trolley.yaml", "--plan", "", "--question", "why not pull", "--json")
     assert run.returncode == 0, run.stderr
     answer = json.loads(run.stdout)
     assert answer["original"]["plan"] == [] and answer["contrast"]["plan"] == ["pull"]
-    for model in ("hera/trolley.yaml", "trolley"):
-        run = ethasp("explain", model, "--plan", "")
-        assert run.returncode == 2 and "goal is not reached" in run.stderr, run.stdout
+    run = ethasp("explain", "trolley", "--plan", "")  # an ASP model's plan reaches its goal
+    assert run.returncode == 2 and "goal is not reached" in run.stderr, run.stdout
+    run = ethasp("explain", "hera/trolley.yaml", "--plan", "", "--json")
+    assert run.returncode == 0, run.stderr
+    explained = json.loads(run.stdout)
+    assert explained["plan"] == [] and explained["goal_reached"] is False
+    assert explained["unmet_goal"] == ["-five_dead"]
+    run = ethasp("explain", "hera/trolley.yaml", "--plan", "")
+    assert run.returncode == 0, run.stderr
+    assert "The plan does not reach its goal: five saved lives does not hold" in run.stdout
+    run = ethasp("explain", "hera/trolley.yaml", "--plan", "refrain")  # needs nothing
+    assert "is not needed: without it, the plan still reaches every goal fact" in run.stdout
+    run = ethasp("judge", "hera/trolley.yaml", "--plan", "", "--principle", "deontology")
+    assert "goal: not reached (-five_dead does not hold at the end)" in run.stdout, run.stdout
     run = ethasp("dialogue", "hera/trolley.yaml", "--plan", "", stdin="quit\n")
     assert run.returncode == 0, run.stderr
     assert run.stdout.startswith("current plan: (empty)"), run.stdout

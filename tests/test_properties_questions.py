@@ -16,12 +16,14 @@ tests/question_oracle.py, which simulates events (tests/oracle.py):
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import random
 
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from oracle import plan_through, random_model
+from links_oracle import e_and_d_links, links_of_json
+from oracle import features, plan_through, random_model
 from question_oracle import (
     after_step,
     causes,
@@ -268,3 +270,50 @@ def test_links_and_removable_steps_against_brute_force(seed, kind):
     assert {(e.step, str(e.event)) for e in explanation.events if e.links} == {
         link[0][1:] for link in expected if isinstance(link[0], tuple)
     }
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(min_value=0, max_value=10**9), st.integers(0, 5))
+def test_a_sequence_that_misses_goal_facts_is_explained_against_those_it_reaches(seed, walk):
+    """A HERA situation's plan may miss its goal: an executable sequence is
+    explained as the plan it is of the goal facts it reaches (links,
+    removable steps, E-links and D-links by the oracles on the model with that
+    goal), and the goal facts it misses are named."""
+    spec = random_model(seed, max_variables=5, max_actions=5, **features(seed))
+    rng = random.Random(seed)
+    sequence, config = [], (spec.init, 0)
+    for _ in range(walk):
+        options = [a for a in spec.actions if spec.applicable(config[0], a)]
+        if not options:
+            break
+        sequence.append(rng.choice(options))
+        config = spec.successor(config, sequence[-1])
+    final = spec.run(sequence)
+    assert final is not None  # every step was applicable
+    reached = {v: b for v, b in spec.goal.items() if spec.satisfies(final, {v: b})}
+    missed = {(v, b) for v, b in spec.goal.items() if v not in reached}
+    explanation = explain_steps(
+        Model.from_string(spec.to_asp()), Plan.parse(" ".join(sequence)), allow_missed_goal=True
+    )
+    assert {(str(v), b) for v, b in explanation.unmet_goal} == missed
+    data = explanation.to_json()
+    assert data.get("goal_reached", True) is not bool(missed)
+    met = dataclasses.replace(spec, goal=reached)
+    found_links = {
+        (
+            _node(link.provider),
+            _node(link.consumer),
+            str(link.variable),
+            link.value,
+            ("condition", str(link.effect)) if link.kind == "condition" else link.kind,
+            None if link.via is None else str(link.via),
+        )
+        for link in explanation.links
+    }
+    assert found_links == links(met, sequence)
+    assert {step.step for step in explanation.steps if step.removable} == removable(met, sequence)
+    expected_e, expected_d = e_and_d_links(met, sequence)
+    assert links_of_json(data["d_links"]) == expected_d, (spec, sequence)
+    assert links_of_json(data["e_links"]) == expected_e, (spec, sequence)
+    if missed:
+        assert explanation.text.startswith("The plan does not reach its goal: ")

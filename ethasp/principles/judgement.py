@@ -149,7 +149,8 @@ class Judgement:
 class JudgementReport:
     """A plan, its final state (literals ``v`` / ``-v``) and utility, and its
     judgements; ``goal_reached`` is False for a HERA situation's plan that
-    misses its goal (judged all the same, as HERA does); ``cost``: the plan's
+    misses its goal (judged all the same, as HERA does), and ``unmet_goal``
+    the goal literals it misses; ``cost``: the plan's
     cost, in a model with action costs.  For a choice in a causal agency model
     the plan is the action, the final state its world, the utility that of its
     consequences, and ``caused`` the facts of consequences that the action
@@ -162,6 +163,7 @@ class JudgementReport:
     goal_reached: bool = True
     cost: int | None = None
     caused: list[str] | None = None
+    unmet_goal: list[str] = field(default_factory=list)
 
     def to_json(self) -> dict:
         data = {
@@ -173,6 +175,7 @@ class JudgementReport:
         }
         if not self.goal_reached:
             data["goal_reached"] = False
+            data["unmet_goal"] = self.unmet_goal
         if self.caused is not None:
             data["caused"] = self.caused
         return data
@@ -499,6 +502,7 @@ def judge(
         judgements,
         goal_reached=not validation.unmet_goals,
         cost=validate(model, plan).cost if model.planner.has_costs else None,
+        unmet_goal=list(validation.unmet_goals),
     )
 
 

@@ -31,6 +31,7 @@ This module reads the atoms back and puts them into words
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import clingo
@@ -54,6 +55,7 @@ from ethasp.vocabulary import (
     ServesGoal,
     StepCauses,
     StepUtility,
+    UnmetGoal,
 )
 
 ENCODINGS = (
@@ -249,11 +251,22 @@ class StepsExplanation:
     e_links: list[ProducerLink] = field(default_factory=list)
     d_links: list[ProducerLink] = field(default_factory=list)
     cost: int | None = None  # the plan's cost, in a model with action costs
+    # The goal facts (variable, value) the plan misses: only a HERA situation's
+    # plan may miss its goal, and its steps are explained against the goal
+    # facts it reaches.
+    unmet_goal: list[tuple[clingo.Symbol, bool]] = field(default_factory=list)
 
     def to_json(self, naming=None) -> dict:
+        missed = {}
+        if self.unmet_goal:
+            missed = {
+                "goal_reached": False,
+                "unmet_goal": [f"{'' if b else '-'}{v}" for v, b in self.unmet_goal],
+            }
         return {
             "plan": self.plan.to_list(),
             **({"cost": self.cost} if self.cost is not None else {}),
+            **missed,
             "steps": [step.to_json(naming) for step in self.steps],
             "events": [event.to_json(naming) for event in self.events if event.links],
             "e_links": [link.to_json() for link in self.e_links],
@@ -264,7 +277,7 @@ class StepsExplanation:
     def lines(self) -> list[str]:
         """The explanation in words, one sentence per step (and per event
         with links, in its place)."""
-        return plan_lines(self.labels, self.plan, self.steps, self.events)
+        return plan_lines(self.labels, self.plan, self.steps, self.events, self.unmet_goal)
 
     def link_lines(self) -> list[str]:
         """The E-links and D-links in words, a sentence per step (see
@@ -287,7 +300,7 @@ class StepsExplanation:
                 f"{'no steps' if not self.steps else f'steps 1 to {len(self.steps)}'}"
             )
         explained = self.steps[step - 1]
-        text = step_sentence(self.labels, self.plan, explained)
+        text = step_sentence(self.labels, self.plan, explained, bool(self.unmet_goal))
         if explained.chain:
             middle = [node for node in explained.chain[1:] if node.kind != "goal"]
             if middle:
@@ -373,10 +386,23 @@ def _moral_words(labels: Labels, explained: StepExplanation) -> str:
     return words.capitalize("; ".join(parts)) + "." if parts else ""
 
 
-def step_sentence(labels: Labels, plan: Plan, explained: StepExplanation) -> str:
+def step_sentence(
+    labels: Labels, plan: Plan, explained: StepExplanation, missed: bool = False
+) -> str:
     """One step in words: what it lets later steps, events and the goal do,
-    whether it is needed, and its moral side."""
+    whether it is needed, and its moral side (``missed``: the plan misses
+    part of its goal, and needed means needed for the part it reaches)."""
     head = f"Step {explained.step}, {words.action_phrase(labels, explained.action)},"
+    still = (
+        "without it, the plan still reaches every goal fact it reaches"
+        if missed
+        else "the plan without it is still a plan"
+    )
+    without = (
+        "without it, some step would not be applicable or the plan would reach less of its goal"
+        if missed
+        else "the plan without it is no plan"
+    )
     consumers: dict[Node, list[CausalLink]] = {}
     for link in explained.links:
         consumers.setdefault(link.consumer, []).append(link)
@@ -387,12 +413,12 @@ def step_sentence(labels: Labels, plan: Plan, explained: StepExplanation) -> str
         ]
         text = f"{head} {words.join(clauses)}."
         if explained.removable:
-            text += " It is not needed, though: the plan without it is still a plan."
+            text += f" It is not needed, though: {still}."
     elif explained.removable:
-        text = f"{head} is not needed: the plan without it is still a plan."
+        text = f"{head} is not needed: {still}."
     else:
         text = (
-            f"{head} is needed (the plan without it is no plan), though no later step, "
+            f"{head} is needed ({without}), though no later step, "
             "event or goal fact needs a value it sets."
         )
     moral = _moral_words(labels, explained)
@@ -505,19 +531,40 @@ def event_sentence(labels: Labels, plan: Plan, event: EventExplanation) -> str:
 
 
 def plan_text(
-    labels: Labels, plan: Plan, steps: list[StepExplanation], events: list[EventExplanation]
+    labels: Labels,
+    plan: Plan,
+    steps: list[StepExplanation],
+    events: list[EventExplanation],
+    unmet_goal: Sequence[tuple[clingo.Symbol, bool]] = (),
 ) -> str:
     """The whole plan in words, step by step (events with links in their place)."""
-    return " ".join(plan_lines(labels, plan, steps, events))
+    return " ".join(plan_lines(labels, plan, steps, events, unmet_goal))
+
+
+def missed_sentence(labels: Labels, unmet_goal: Sequence[tuple[clingo.Symbol, bool]]) -> str:
+    """Words for a plan that misses goal facts (a HERA situation's may)."""
+    facts = words.join([words.fact_phrase(labels, v, b) for v, b in unmet_goal])
+    verb = "does" if len(unmet_goal) == 1 else "do"
+    return (
+        f"The plan does not reach its goal: {facts} {verb} not hold at the end; its "
+        "steps are explained against the goal facts it reaches."
+    )
 
 
 def plan_lines(
-    labels: Labels, plan: Plan, steps: list[StepExplanation], events: list[EventExplanation]
+    labels: Labels,
+    plan: Plan,
+    steps: list[StepExplanation],
+    events: list[EventExplanation],
+    unmet_goal: Sequence[tuple[clingo.Symbol, bool]] = (),
 ) -> list[str]:
     """The sentences of :func:`plan_text`."""
+    opening = [missed_sentence(labels, list(unmet_goal))] if unmet_goal else []
     if not steps and not any(event.links for event in events):
+        if unmet_goal:
+            return [*opening, "The plan has no steps."]
         return ["The plan has no steps: the goal holds without any action."]
-    sentences = [] if steps else ["The plan has no steps."]
+    sentences = [*opening] if steps else [*opening, "The plan has no steps."]
     by_step: dict[int, list[EventExplanation]] = {}
     for event in events:
         if event.links:
@@ -525,7 +572,7 @@ def plan_lines(
     last = max([len(steps), *list(by_step)])  # events after the plan's end come last
     for number in range(1, last + 1):
         if number <= len(steps):
-            sentences.append(step_sentence(labels, plan, steps[number - 1]))
+            sentences.append(step_sentence(labels, plan, steps[number - 1], bool(unmet_goal)))
         sentences += [event_sentence(labels, plan, event) for event in by_step.get(number, [])]
     return sentences
 
@@ -533,19 +580,37 @@ def plan_lines(
 # -- the API -------------------------------------------------------------------------
 
 
-def explain_steps(model: Model, plan: Plan) -> StepsExplanation:
+def explain_steps(
+    model: Model, plan: Plan, allow_missed_goal: bool | None = None
+) -> StepsExplanation:
     """The causal explanation of a plan, step by step (one clingo call on its
     trace); InputError if it is not a plan or has more than
-    :data:`MAX_STEPS` steps."""
+    :data:`MAX_STEPS` steps.  With ``allow_missed_goal`` (by default for a
+    HERA situation's plan, which judge takes too:
+    :func:`ethasp.principles.judgement.require_plan`), an executable sequence
+    that misses goal facts is explained against the goal facts it reaches
+    (exactly as the plan it is of the goal made of those), and the
+    explanation says which it misses."""
     model.require_planning("explaining a plan step by step")
     if len(plan) > MAX_STEPS:
         raise InputError(
             f"the plan has {len(plan)} steps; step-by-step explanations are made "
             f"for plans of at most {MAX_STEPS} steps"
         )
-    symbols = plan_atoms(model, plan, ENCODINGS, demanded(model, plan))
+    symbols = plan_atoms(
+        model,
+        plan,
+        ENCODINGS,
+        demanded(model, plan),
+        reach_goal=not (model.is_situation if allow_missed_goal is None else allow_missed_goal),
+    )
     atoms = unify(
-        [Link, ServesGoal, Chain, StepUtility, StepCauses, Removable, ELink, DLink], symbols
+        [Link, ServesGoal, Chain, StepUtility, StepCauses, Removable, ELink, DLink, UnmetGoal],
+        symbols,
+    )
+    unmet_goal = sorted(
+        ((atom.variable.symbol, atom.value == "true") for atom in atoms.query(UnmetGoal).all()),
+        key=lambda fact: (str(fact[0]), fact[1]),
     )
     by_provider: dict[Node, list[CausalLink]] = {}
     for atom in atoms.query(Link).all():
@@ -622,10 +687,11 @@ def explain_steps(model: Model, plan: Plan) -> StepsExplanation:
         steps,
         events,
         labels,
-        plan_text(labels, plan, steps, events),
+        plan_text(labels, plan, steps, events, unmet_goal),
         e_links,
         d_links,
         costs[0] if costs and model.planner.has_costs else None,
+        unmet_goal,
     )
 
 

@@ -39,6 +39,11 @@ def judgement_text(report: JudgementReport, model: Model) -> str:
             f"plan: {naming.actions(report.plan)}{cost}" if len(report.plan) else "plan: (empty)",
             f"final state: {state_text(model, report.final_state)} (utility {report.utility})",
         ]
+        if not report.goal_reached:  # (a HERA situation's plan, judged as HERA does)
+            lines.append(
+                f"goal: not reached ({state_text(model, report.unmet_goal)} "
+                f"{'does' if len(report.unmet_goal) == 1 else 'do'} not hold at the end)"
+            )
     for judgement in report.judgements:
         verdict = "permissible" if judgement.permissible else "impermissible"
         if judgement.status == "bounded":
