@@ -5,7 +5,7 @@ exogenous events)."""
 import random
 
 import pytest
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from oracle import features, holds, plan_through, random_formula, random_model
 
@@ -127,3 +127,36 @@ def test_long_sequences_have_the_oracle_final_state_and_failure(seed, length):
         assert check.failure_step is None
         assert check.final_state == sorted(v if v in final else f"-{v}" for v in spec.variables)
         assert check.valid == spec.is_goal(final)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(min_value=0, max_value=10**9), st.integers(min_value=0, max_value=4))
+def test_the_facts_a_utilitarian_explanation_names_compare_as_its_states_do(seed, walk):
+    """The words of a GEq atom name some facts of each side and say how the
+    sides compare ("better", "as good as", "worse"): the relation is that of
+    the final state to the state compared with (by the oracle's utilities),
+    and the utilities of the facts named on each side sum to values that
+    compare the same way."""
+    spec, plan = model_with_plan(seed, walk)
+    report = judge(Model.from_string(spec.to_asp()), Plan.parse(" ".join(plan)), ["utilitarianism"])
+    explanation = report.judgements[0].explanation
+    assert explanation is not None
+    # (No comparison where no other state is reachable: the reason is empty.)
+    assume(explanation.comparisons)
+    relation = {1: "better", 0: "equal", -1: "worse"}
+
+    def compare(left: int, right: int) -> str:
+        return relation[(left > right) - (left < right)]
+
+    def worth(facts) -> int:
+        return sum(spec.fact_utility.get((str(v), b), 0) for v, b in facts)
+
+    assert explanation.alternative is not None
+    other = sum(
+        spec.fact_utility.get((lit.lstrip("-"), not lit.startswith("-")), 0)
+        for lit in explanation.alternative
+    )
+    for atom, comparison in explanation.comparisons.items():
+        assert str(atom).startswith("geq(final,"), atom
+        assert comparison.relation == compare(spec.state_utility(spec.run(plan)), other)
+        assert compare(worth(comparison.left), worth(comparison.right)) == comparison.relation

@@ -120,6 +120,30 @@ def test_trolley_utilitarianism_pull_compares_with_refrain():
     } <= answers[0]
 
 
+def test_the_facts_a_comparison_names_compare_as_its_sides_do():
+    """Gains first would name only ``arrived`` (+1 against 0) where the harm
+    ``blocked`` (-2) makes the final state worse: every valued differing fact
+    is named then, and their sums compare as the sides do."""
+    model = """
+        variable(arrived;blocked). action(drive). eff(drive,arrived,true).
+        eff(drive,blocked,true). goal(arrived,true).
+        utility(arrived,true,1). utility(blocked,true,-2). occurs(drive,1).
+        alternative(s). conj(s,arrived,false). conj(s,blocked,false).
+        explain(utilitarianism).
+    """
+    answers = answer_sets(
+        [*BASE, "principles/utilitarianism.lp", *CORE, "reasons/comparison.lp"], model
+    )
+    mentioned = {atom for atom in answers[0] if atom.startswith("mention(")}
+    assert mentioned == {
+        "mention(geq(final,s),left,arrived,true)",
+        "mention(geq(final,s),left,blocked,true)",
+        "mention(geq(final,s),right,arrived,false)",
+        "mention(geq(final,s),right,blocked,false)",
+    }
+    assert "comparison(geq(final,s),worse)" in answers[0]
+
+
 def test_theory_rules_out_impossible_literal_sets():
     # Caused(v) and Caused(-v) cannot both hold: not Caused(v) or not Caused(-v) is
     # entailed by nothing, so its only sufficient reason is empty.
