@@ -736,7 +736,7 @@ class Reachability:
             moved = self._module.and_exists(states, relation, qvars)
         else:
             moved = self.bdd.exist(qvars, states & relation)
-        return self.bdd.let(rename, moved)
+        return self._renamed(rename, moved)
 
     def nodes(self) -> int:
         """Diagram nodes of the manager (with CUDD: live ones and dead ones
@@ -806,12 +806,18 @@ class Reachability:
 
     # -- backward: pre-images from a set of states --------------------------------
 
+    def _renamed(self, renaming: dict[str, str], node):
+        """``node`` with its variables renamed (an action that writes no
+        variable renames none: dd warns on standard error of an empty
+        renaming, so it is not asked for one)."""
+        return self.bdd.let(renaming, node) if renaming else node
+
     def _preimage(self, states, parts):
         """The states from which an action of a cluster leads into ``states``:
         the written variables renamed to their after-copies, then the
         relation's product over them (the others keep their values)."""
         relation, _qvars, rename = parts
-        moved = self.bdd.let({x: y for y, x in rename.items()}, states)
+        moved = self._renamed({x: y for y, x in rename.items()}, states)
         after = list(rename)
         if self._compiled:
             return self._module.and_exists(moved, relation, after)
@@ -908,7 +914,7 @@ class Reachability:
             qvars = [f"x{b}" for b in written]
             moved = self.bdd.exist(qvars, full & relation)
             renaming = {f"y{b}": f"x{b}" for b in written}
-            after = self.bdd.let(renaming, moved) & states
+            after = self._renamed(renaming, moved) & states
             if after != self.bdd.false:
                 return action.name, self.pick(after)
         return None
