@@ -442,3 +442,30 @@ def test_every_ipc_instance_kept_is_read():
         for problem in sorted(folder.glob("p*.pddl")):
             model = Model.load([folder / "domain.pddl", problem])  # read, translated, checked
             assert model.sources[0].text.count("\naction(") > 0, problem
+
+
+def test_pddl_1_2_requirements_declared_without_their_sections_are_read(tmp_path):
+    """The ADL domains of the first competitions declare :domain-axioms (and
+    :ucpop, which implies it) without a single (:axiom ...): they are read;
+    an (:axiom ...) or (:safety ...) section is refused with one line."""
+    problem = "(define (problem p) (:domain d) (:init) (:goal (done)))"
+    for requirements in (":adl :domain-axioms", ":ucpop", ":strips :safety-constraints"):
+        model = load(
+            tmp_path,
+            f"(define (domain d) (:requirements {requirements}) (:predicates (done))"
+            " (:action finish :parameters () :precondition (not (done)) :effect (done)))",
+            problem,
+        )
+        assert length(model) == 1
+    for section, words in (
+        ("(:axiom :vars () :context (done) :implies (done))", "PDDL 1.2 axioms (:axiom"),
+        ("(:safety (done))", "safety constraints (:safety)"),
+    ):
+        with pytest.raises(InputError, match=re.escape(words)) as refused:
+            load(
+                tmp_path,
+                f"(define (domain d) (:requirements :adl :ucpop) (:predicates (done)) {section}"
+                " (:action finish :parameters () :effect (done)))",
+                problem,
+            )
+        assert "\n" not in str(refused.value)

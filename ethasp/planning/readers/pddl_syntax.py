@@ -359,7 +359,10 @@ class Problem:
 
 
 # Requirements that ethasp accepts (Fast Downward's list, which also names
-# the ones it implies); others are refused by name.
+# the ones it implies, and PDDL 1.2's :domain-axioms and :safety-constraints,
+# which the ADL domains of the first competitions declare without using:
+# their sections, (:axiom ...) and (:safety ...), are refused where they
+# occur); others are refused by name.
 REQUIREMENTS = {
     ":strips",
     ":typing",
@@ -376,8 +379,12 @@ REQUIREMENTS = {
     ":adl",
     ":fluents",
     ":numeric-fluents",
+    ":domain-axioms",
+    ":safety-constraints",
+    ":ucpop",
 }
 IMPLIED = {
+    ":ucpop": {":adl", ":domain-axioms", ":safety-constraints"},
     ":adl": {
         ":strips",
         ":typing",
@@ -403,6 +410,8 @@ SECTIONS_UNSUPPORTED = {
     ":process": "processes (:process)",
     ":event": "events (:event)",
     ":constraints": "constraints (:constraints)",
+    ":axiom": "PDDL 1.2 axioms (:axiom; derived predicates, :derived, are read)",
+    ":safety": "safety constraints (:safety)",
 }
 
 
