@@ -115,6 +115,29 @@ def solver_alone(monkeypatch):
     monkeypatch.setattr(cost_search, "UNIFORM_COST", False)
 
 
+def test_the_least_cheapest_plan_is_solved_on_a_control_of_its_own(monkeypatch):
+    """Which cheapest plan is reported must not depend on the search's
+    history (solves that another engine ended at a moment of the machine's
+    load leave learnt clauses and groundings behind, which change whether the
+    least plan is found within its conflicts): the least plan's solve is made
+    on a planner of its own, which finds the plan on every run."""
+    model = Model.from_string(TOWN)
+    searched = model.planner
+    solved_on = []
+    solve = cost_search.Planner.solve
+
+    def recording(self, horizon, setting, *args, **kwargs):
+        if setting.least:
+            solved_on.append(self)
+        return solve(self, horizon, setting, *args, **kwargs)
+
+    monkeypatch.setattr(cost_search.Planner, "solve", recording)
+    result = find_plan(model)
+    assert result.status == "found" and result.cost == 0
+    assert result.plan == Plan.parse("walk1 walk2 walk3")
+    assert solved_on and all(planner is not searched for planner in solved_on)
+
+
 def test_the_least_action_cost_proves_a_plan_cheapest(solver_alone):
     result = find_plan(Model.load([ERRAND]))
     assert result.status == "found" and result.cost == 2

@@ -204,8 +204,18 @@ def _least_cheapest(
     of ``planning/cost.lp`` and ``planning/lexicographic.lp`` at that horizon,
     under the bound ``cost``, so that the plan does not depend on which
     search proved what first.  The empty plan is its own least.  None where
-    the solver needs more than :data:`LEAST_CONFLICTS` conflicts for it (the
-    same effort on every run) or the budget stops it first."""
+    the solver needs more than :data:`LEAST_CONFLICTS` conflicts for it or
+    the budget stops it first.
+
+    The solve runs on a control of its own, made for it (:func:`_fresh`):
+    on the search's control, what the solver learnt in the solves before
+    (some of them stopped where another engine answered first, at a moment
+    that depends on the machine's load) and what it grounded for them (the
+    mutexes and the canonical order, grounded after solves that met many
+    conflicts) change how many conflicts the least plan takes, so the
+    conflict limit would decide differently from run to run between this
+    plan and uniform-cost search's.  A control made from the model alone
+    takes the same conflicts on every run."""
     length = len(witness)
     if length == 0:
         return witness
@@ -213,14 +223,39 @@ def _least_cheapest(
     if (length + 1) * max(1, usable) >= LEAST_LEVELS:
         return None
     try:
-        planner.use_least(budget)
+        own, constraints = _fresh(planner, setting)
+        own.use_least(budget)
     except GroundingStopped:
         return None
-    least = replace(setting, least=True, satisficing=False, canonical=False, max_cost=cost)
-    outcome = planner.solve(length, least, budget, conflicts=LEAST_CONFLICTS)
+    least = replace(
+        setting,
+        constraints=constraints,
+        least=True,
+        satisficing=False,
+        canonical=False,
+        max_cost=cost,
+    )
+    outcome = own.solve(length, least, budget, conflicts=LEAST_CONFLICTS, mutex_after=float("inf"))
     if not outcome.satisfiable:
         return None
     return plans_of([outcome.symbols])[0]
+
+
+def _fresh(planner: Planner, setting: Setting) -> tuple[Planner, frozenset]:
+    """A planner of the same model with nothing solved or learnt yet, and the
+    setting's question constraints made on it (questions are named in the
+    order they are made: made in the order of the originals' names); the
+    planner itself where the setting avoids a state made on it."""
+    if setting.other_state is not None:  # (a state avoided on this planner's control)
+        return planner, setting.constraints
+    own = Planner(planner.model)
+    by_question: dict = {}
+    for constraint in setting.constraints:
+        by_question.setdefault(constraint.question, []).append(constraint.term)
+    made = []
+    for name in sorted(by_question, key=lambda symbol: symbol.arguments[0].number):
+        made += own.question(by_question[name])
+    return own, frozenset(made)
 
 
 class _Search:
