@@ -494,3 +494,18 @@ def test_an_effect_without_condition_that_makes_a_variable_true_is_its_only_effe
     assert downward.configuration(task, True) == downward.OPTIMAL
     result = find_plan(model)
     assert result.status == "found" and [str(a) for a in result.plan] == ["a"]
+
+
+@installed
+def test_a_satisficing_plan_of_fast_downward_has_its_cost():
+    """In a model with action costs, a plan that Fast Downward's any-plan
+    search found carries its cost (read off its trace), as clingo's does."""
+    text = """
+        variable(at_b;at_c). action(hop;jump). pre(hop,at_b,false). eff(hop,at_b,true).
+        pre(jump,at_b,true). eff(jump,at_c,true). goal(at_c,true).
+        cost(hop,3). cost(jump,4)."""
+    for system in (systems.FAST_DOWNWARD, systems.CLINGO):
+        result = find_plan(forced(text, system), satisficing=True)
+        assert result.status == "found" and result.optimal is False, system
+        assert [str(action) for action in result.plan] == ["hop", "jump"]
+        assert result.cost == 7 and result.to_json()["cost"] == 7, system

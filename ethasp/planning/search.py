@@ -745,20 +745,19 @@ def any_plan(
         return SearchResult(NONE, horizon=0, optimal=False, proof=impossible)
     if longest is not None and start > longest:
         return SearchResult(NONE, horizon=longest, optimal=False, proof=_too_long(longest))
-    external = _external(planner, setting, budget, max_horizon, longest, False, deciding=deciding)
-    if external is not None:
-        return external
-    plain = not setting.constraints
-    exact = _Exact(planner, setting, budget, read_plan=plain, greedy=True)
-    exact.max_horizon = max_horizon if longest is None else min(max_horizon, longest)
-    setting = replace(setting, satisficing=True, canonical=plain and _one_plan_wanted(setting))
-    try:
-        result = _any_plan(
-            planner, setting, budget, max_horizon, start, start_proof, task, exact, longest
-        )
-    finally:
-        exact.stop()
-    if result.plan is not None and planner.has_costs:
+    result = _external(planner, setting, budget, max_horizon, longest, False, deciding=deciding)
+    if result is None:
+        plain = not setting.constraints
+        exact = _Exact(planner, setting, budget, read_plan=plain, greedy=True)
+        exact.max_horizon = max_horizon if longest is None else min(max_horizon, longest)
+        setting = replace(setting, satisficing=True, canonical=plain and _one_plan_wanted(setting))
+        try:
+            result = _any_plan(
+                planner, setting, budget, max_horizon, start, start_proof, task, exact, longest
+            )
+        finally:
+            exact.stop()
+    if result.plan is not None and planner.has_costs:  # (whichever planner found it)
         from ethasp.planning.cost_search import cost_of
 
         result.cost = cost_of(planner, result.plan)
