@@ -730,6 +730,12 @@ class Reachability:
         )
         return relation, written, {f"y{x[1:]}": x for x in written}
 
+    def _renamed(self, renaming: dict[str, str], node):
+        """``node`` with its variables renamed (an action that writes no
+        variable renames none: dd warns on standard error of an empty
+        renaming, so it is not asked for one)."""
+        return self.bdd.let(renaming, node) if renaming else node
+
     def _image(self, states, parts):
         relation, qvars, rename = parts
         if self._compiled:
@@ -805,12 +811,6 @@ class Reachability:
         return False
 
     # -- backward: pre-images from a set of states --------------------------------
-
-    def _renamed(self, renaming: dict[str, str], node):
-        """``node`` with its variables renamed (an action that writes no
-        variable renames none: dd warns on standard error of an empty
-        renaming, so it is not asked for one)."""
-        return self.bdd.let(renaming, node) if renaming else node
 
     def _preimage(self, states, parts):
         """The states from which an action of a cluster leads into ``states``:
