@@ -113,6 +113,33 @@ def test_manifests_give_cases_their_plans_principles_and_questions(tmp_path):
     assert sorted(line["principle"] for line in situation) == sorted(HERA)
 
 
+def test_an_empty_list_in_a_yaml_manifest_is_the_empty_plan(tmp_path):
+    """``plan: []`` gives the empty plan (judged: HERA's trolley situation
+    misses its goal with it), an empty cell none (the model's own plan)."""
+    situation = str(MODELS / "hera" / "trolley.yaml")
+    (tmp_path / "cases.yaml").write_text(
+        yaml.safe_dump(
+            {
+                "cases": [
+                    {
+                        "name": "empty",
+                        "files": [situation],
+                        "plan": [],
+                        "principles": ["deontology"],
+                    },
+                    {"name": "own", "files": [situation], "plan": "", "principles": ["deontology"]},
+                ]
+            }
+        )
+    )
+    cases = {case.name: case for case in discover([tmp_path / "cases.yaml"])}
+    assert cases["empty"].plan == "" and cases["own"].plan is None
+    lines = {line["case"]: line for line in run([tmp_path / "cases.yaml"], workers=1)}
+    assert lines["empty"]["task"] == "judge" and lines["empty"]["plan"] == []
+    assert lines["empty"]["goal_reached"] is False
+    assert lines["own"]["plan"] == ["pull"]
+
+
 def test_a_bad_manifest_is_refused_before_anything_runs(tmp_path):
     manifest = tmp_path / "bad.csv"
     manifest.write_text("files,colour\ntrolley.lp,red\n")

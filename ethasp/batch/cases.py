@@ -362,8 +362,11 @@ def _row_case(row: dict, folder: Path, where: str) -> Case:
     paths = tuple(path for path, _ in resolved)
     plan = row.get("plan")
     if plan is not None and not isinstance(plan, str):
+        # A YAML list is a plan given (the empty list: the empty plan); an
+        # empty cell or text gives none.
         plan = " ".join(_words(plan, where, "plan"))
-    plan = plan.strip() if isinstance(plan, str) and plan.strip() else None
+    elif plan is not None:
+        plan = plan.strip() or None
     principles = _words(row.get("principles"), where, "principles") or None
     questions = _words(row.get("questions"), where, "questions", ";") or None
     name = row.get("name")
