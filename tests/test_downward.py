@@ -509,3 +509,18 @@ def test_a_satisficing_plan_of_fast_downward_has_its_cost():
         assert result.status == "found" and result.optimal is False, system
         assert [str(action) for action in result.plan] == ["hop", "jump"]
         assert result.cost == 7 and result.to_json()["cost"] == 7, system
+
+
+def test_a_cheapest_plan_asked_of_fast_downward_says_that_clingo_searches(monkeypatch, capsys):
+    """Fast Downward's tasks give every action cost 1: where it is asked for
+    and the model has action costs, the cheapest plan is clingo's (and
+    uniform-cost search's), and one line says so."""
+    monkeypatch.setattr(systems, "_warned", set())
+    text = """
+        variable(at_b;at_c). action(hop;jump;fly). pre(hop,at_b,false). eff(hop,at_b,true).
+        pre(jump,at_b,true). eff(jump,at_c,true). eff(fly,at_c,true). goal(at_c,true).
+        cost(hop,1). cost(jump,1). cost(fly,5)."""
+    result = find_plan(forced(text))
+    assert result.status == "found" and result.cost == 2
+    assert [str(action) for action in result.plan] == ["hop", "jump"]
+    assert "Fast Downward does not search for cheapest plans" in capsys.readouterr().err

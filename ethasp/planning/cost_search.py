@@ -153,6 +153,7 @@ def cheapest(
     settled = settled_before(planner, setting, budget, max_horizon, start, longest)
     if settled is not None:
         return settled
+    _clingo_searches(planner)
     plain = not setting.constraints
     engine = _Engine(planner, setting, budget, read_plan=plain)
     setting = replace(
@@ -168,6 +169,19 @@ def cheapest(
         result.plans = _all_cheapest(planner, setting, budget, result)
         result.plan = result.plans[0]
     return result
+
+
+def _clingo_searches(planner: Planner) -> None:
+    """Cheapest plans are clingo's and uniform-cost search's (Fast Downward's
+    tasks give every action cost 1): where Fast Downward was asked for, one
+    line of warning says so."""
+    from ethasp.planning import systems
+
+    if getattr(planner.model, "planning_system", systems.DEFAULT) == systems.FAST_DOWNWARD:
+        systems.warn(
+            "Fast Downward does not search for cheapest plans (a model with action "
+            "costs): clingo searches instead"
+        )
 
 
 def _all_cheapest(
