@@ -363,7 +363,7 @@ def _row_case(row: dict, folder: Path, where: str) -> Case:
     plan = row.get("plan")
     if plan is not None and not isinstance(plan, str):
         # A YAML list is a plan given (the empty list: the empty plan); an
-        # empty cell or text gives none.
+        # empty cell (empty text) gives none.
         plan = " ".join(_words(plan, where, "plan"))
     elif plan is not None:
         plan = plan.strip() or None
