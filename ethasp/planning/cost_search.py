@@ -258,10 +258,10 @@ def _least_cheapest(
 def _fresh(planner: Planner, setting: Setting) -> tuple[Planner, frozenset]:
     """A planner of the same model with nothing solved or learnt yet, and the
     setting's question constraints made on it (questions are named in the
-    order they are made: made in the order of the originals' names); the
-    planner itself where the setting avoids a state made on it."""
-    if setting.other_state is not None:  # (a state avoided on this planner's control)
-        return planner, setting.constraints
+    order they are made: made in the order of the originals' names).  A
+    search for plans avoids no state (:meth:`Planner.avoid` is for searches
+    of best states, which the solver optimises on its own control)."""
+    assert setting.other_state is None
     own = Planner(planner.model)
     by_question: dict = {}
     for constraint in setting.constraints:

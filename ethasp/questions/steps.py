@@ -41,7 +41,7 @@ from ethasp.errors import InputError
 from ethasp.planning.driver.planner import TRACE_EVENTS, occurrences, solve_configuration
 from ethasp.planning.model import Model
 from ethasp.planning.plan import Plan
-from ethasp.planning.validation import plan_atoms
+from ethasp.planning.validation import literal, plan_atoms
 from ethasp.reasons import words
 from ethasp.reasons.explanation import Labels
 from ethasp.reasons.reasons import model_labels
@@ -261,7 +261,7 @@ class StepsExplanation:
         if self.unmet_goal:
             missed = {
                 "goal_reached": False,
-                "unmet_goal": [f"{'' if b else '-'}{v}" for v, b in self.unmet_goal],
+                "unmet_goal": [literal(v, "true" if b else "false") for v, b in self.unmet_goal],
             }
         return {
             "plan": self.plan.to_list(),
