@@ -35,7 +35,9 @@ def add_parser(commands) -> None:
         "requires it: a literal that, had it not held, would have let a "
         "subsequence of the later steps reach the goal without it). The plan is "
         "--plan, or else the plan the model comes with, or else the plan 'ethasp "
-        "plan [--principle P]' makes. See docs/questions.md.",
+        "plan [--principle P]' makes. A HERA situation's plan may miss its goal: "
+        "it is explained against the goal facts it reaches, and the ones it misses "
+        "are named. See docs/questions.md.",
     )
     inherit(explaining, model_options())
     inherit(explaining, plan_options(required=False, what="the plan explained"))
